@@ -1,0 +1,47 @@
+# The two set-up commands of the README:
+#   make demo   install missing Debian packages, configure, build, run the main job
+#   make test   the same set-up, then every test through ctest
+BUILD_DIR  ?= build
+BUILD_TYPE ?= RelWithDebInfo
+JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
+CMAKE_ARGS ?=
+
+.PHONY: all deps configure build demo test asan fuzz bench golden-update clean
+
+all: build
+
+deps:
+	@scripts/install-deps.sh
+
+$(BUILD_DIR)/build.ninja: | deps
+	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(CMAKE_ARGS)
+
+configure: deps $(BUILD_DIR)/build.ninja
+
+build: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+demo: build
+	@scripts/demo.sh $(BUILD_DIR)
+
+test: build
+	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
+
+# Every test again under AddressSanitizer and UndefinedBehaviorSanitizer, in build-asan/.
+asan:
+	$(MAKE) test BUILD_DIR=build-asan BUILD_TYPE=Debug CMAKE_ARGS="-DCBTL_SANITIZE=ON -DCBTL_BUILD_BENCH=OFF"
+
+# The compiler fuzzer for FUZZ_SECONDS (default 60), built with clang in build-fuzz/.
+FUZZ_SECONDS ?= 60
+fuzz: deps
+	scripts/fuzz.sh $(FUZZ_SECONDS)
+
+bench: build
+	scripts/bench.sh $(BUILD_DIR)
+
+# Rewrites the golden .out/.err files from the current compiler; review the diff before committing.
+golden-update: build
+	CBTL_UPDATE_GOLDEN=1 ctest --test-dir $(BUILD_DIR) -L golden -j $(JOBS)
+
+clean:
+	rm -rf $(BUILD_DIR)

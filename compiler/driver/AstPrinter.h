@@ -1,0 +1,13 @@
+// AstPrinter.h — a dump of the AST, with resolutions and types once the semantic passes have run.
+#pragma once
+
+#include "ast/Ast.h"
+#include "source/SourceManager.h"
+
+#include <string>
+
+namespace cbtl {
+
+std::string dumpAst(const Module& module, const SourceManager& sources);
+
+}  // namespace cbtl

@@ -1,0 +1,13 @@
+// EmbeddedStdlib.h — the standard-library modules compiled into the binary (stdlib/embed.cmake).
+#pragma once
+
+#include <map>
+#include <string>
+#include <string_view>
+
+namespace cbtl {
+
+// Module name ("std.geometry") -> source text, sorted by name.
+const std::map<std::string, std::string_view>& embeddedStdlib();
+
+}  // namespace cbtl

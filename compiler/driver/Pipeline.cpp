@@ -1,0 +1,247 @@
+#include "driver/Pipeline.h"
+
+#include "driver/AstPrinter.h"
+#include "driver/EmbeddedStdlib.h"
+#include "ir/GraphPrinter.h"
+#include "ir/Validator.h"
+#include "lower/Lowering.h"
+#include "parse/Parser.h"
+#include "sema/GeneratorChecker.h"
+#include "sema/NameResolver.h"
+#include "sema/TypeChecker.h"
+#include "util/Suggest.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+
+namespace cbtl {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Pass {
+  std::string name;
+  std::function<bool(TranslationUnit&)> run;
+  std::function<std::string(const TranslationUnit&)> dump;
+};
+
+bool readFile(const std::string& path, std::string& out) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) return false;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  out = ss.str();
+  return true;
+}
+
+// Loads the imports of every parsed module, depth first, detecting cycles. The prelude is implicit.
+class Loader {
+ public:
+  explicit Loader(TranslationUnit& tu) : tu_(tu) {}
+
+  void loadAll() {
+    std::vector<std::string> stack;
+    loadImports(0, stack);
+    // The prelude is imported by every file; loaded last so the root's own names come first in dumps.
+    if (!tu_.modules.empty() && !loaded_.count("std.prelude")) loadStd("std.prelude", SourceRange{}, stack);
+  }
+
+ private:
+  std::size_t addModule(std::string path, std::string text, bool embedded, const std::string& key) {
+    FileId id = tu_.sources.add(std::move(path), std::move(text), embedded);
+    ParseOutput out = parseModule(tu_.sources, id, tu_.diags, dumpTrees_);
+    if (dumpTrees_) tu_.parseTrees[id] = out.treeDump;
+    tu_.modules.push_back(std::move(out.module));
+    loaded_[key] = tu_.modules.size() - 1;
+    return tu_.modules.size() - 1;
+  }
+
+  void loadStd(const std::string& name, SourceRange at, std::vector<std::string>& stack) {
+    std::string text;
+    std::string path;
+    bool found = false;
+    if (!tu_.options.stdlibDir.empty()) {
+      path = (fs::path(tu_.options.stdlibDir) / "std" / (name.substr(4) + ".cbtl")).string();
+      found = readFile(path, text);
+    } else {
+      auto it = embeddedStdlib().find(name);
+      if (it != embeddedStdlib().end()) {
+        text = std::string(it->second);
+        path = "<stdlib>/" + name.substr(4) + ".cbtl";
+        found = true;
+      }
+    }
+    if (!found) {
+      if (!at.valid()) return;  // the implicit prelude is optional
+      Diagnostic& d = tu_.diags.error("E0203", at, fmt::format("unknown standard-library module '{}'", name));
+      std::vector<std::string> names;
+      for (const auto& [n, t] : embeddedStdlib()) names.push_back(n);
+      const std::string guess = closestMatch(name, names);
+      if (!guess.empty()) d.help(fmt::format("did you mean '{}'?", guess));
+      else {
+        std::string list;
+        for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+        d.help("available modules: " + list);
+      }
+      return;
+    }
+    const std::size_t index = addModule(path, std::move(text), tu_.options.stdlibDir.empty(), name);
+    loadImports(index, stack);
+  }
+
+  void loadImports(std::size_t index, std::vector<std::string>& stack) {
+    const FileId file = tu_.modules[index]->file;
+    const std::string self = keyOf(index);
+    stack.push_back(self);
+    // Copy the import list: loading appends to tu_.modules and may reallocate.
+    std::vector<const ImportDecl*> imports;
+    for (const auto& d : tu_.modules[index]->decls) {
+      if (d->kind == DeclKind::Import) imports.push_back(static_cast<const ImportDecl*>(d.get()));
+    }
+    for (const ImportDecl* imp : imports) {
+      std::string key;
+      if (imp->isPath) {
+        const fs::path base = fs::path(tu_.sources.file(file).path).parent_path();
+        key = (base / imp->target).lexically_normal().string();
+      } else {
+        key = imp->target;
+      }
+      if (std::find(stack.begin(), stack.end(), key) != stack.end()) {
+        tu_.diags.error("E0205", imp->range, fmt::format("import cycle: '{}' is already being imported", imp->target))
+            .help("move the shared declarations into a file that both import");
+        continue;
+      }
+      if (loaded_.count(key)) continue;
+      if (!imp->isPath) {
+        if (imp->target.rfind("std.", 0) != 0) {
+          tu_.diags.error("E0203", imp->targetRange, fmt::format("unknown module '{}'", imp->target))
+              .help("standard modules are named std.NAME; files are imported with a string: import \"file.cbtl\";");
+          continue;
+        }
+        loadStd(key, imp->targetRange, stack);
+        continue;
+      }
+      if (tu_.sources.file(file).embedded) continue;
+      std::string text;
+      if (!readFile(key, text)) {
+        tu_.diags.error("E0204", imp->targetRange, fmt::format("cannot read imported file '{}'", key))
+            .note("paths are relative to the importing file");
+        continue;
+      }
+      const std::size_t child = addModule(key, std::move(text), false, key);
+      loadImports(child, stack);
+    }
+    stack.pop_back();
+  }
+
+  std::string keyOf(std::size_t index) const {
+    for (const auto& [k, i] : loaded_) {
+      if (i == index) return k;
+    }
+    return tu_.sources.file(tu_.modules[index]->file).path;
+  }
+
+ public:
+  bool dumpTrees_ = false;
+  std::map<std::string, std::size_t> loaded_;
+
+ private:
+  TranslationUnit& tu_;
+};
+
+std::string dumpModules(const TranslationUnit& tu) {
+  std::string out;
+  for (const auto& m : tu.modules) {
+    if (tu.sources.file(m->file).embedded) continue;  // the standard library is the same for everyone
+    out += dumpAst(*m, tu.sources);
+  }
+  return out;
+}
+
+}  // namespace
+
+const std::vector<std::string>& passNames() {
+  static const std::vector<std::string> names = {"parse", "build-ast", "resolve-names", "check-types",
+                                                 "check-generators", "lower", "validate-ir"};
+  return names;
+}
+
+PipelineResult compileSource(TranslationUnit& tu, const std::string& path, std::string text, const std::string& dumpAfter,
+                             const std::string& stopAfter) {
+  PipelineResult result;
+  bool syntaxErrors = false;
+  std::vector<Pass> passes = {
+      {"parse",
+       [&](TranslationUnit& t) {
+         Loader loader(t);
+         loader.dumpTrees_ = dumpAfter == "parse";
+         t.root = t.sources.add(path, std::move(text));
+         ParseOutput out = parseModule(t.sources, t.root, t.diags, loader.dumpTrees_);
+         if (loader.dumpTrees_) t.parseTrees[t.root] = out.treeDump;
+         t.modules.push_back(std::move(out.module));
+         loader.loaded_[path] = 0;
+         loader.loadAll();
+         syntaxErrors = t.diags.hasErrors();
+         return !syntaxErrors;
+       },
+       [](const TranslationUnit& t) {
+         std::string out;
+         for (const auto& [file, tree] : t.parseTrees) {
+           if (t.sources.file(file).embedded) continue;
+           out += t.sources.file(file).path + ":\n" + tree + "\n";
+         }
+         return out;
+       }},
+      // The AST is built while parsing (one visitor pass over each parse tree); this pass names the
+      // result so it can be dumped before any semantic annotation.
+      {"build-ast", [](TranslationUnit&) { return true; }, dumpModules},
+      {"resolve-names", [](TranslationUnit& t) { return resolveNames(t.modules, t.types, t.symbols, t.diags); }, dumpModules},
+      {"check-types", [](TranslationUnit& t) { return checkTypes(t.modules, t.types, t.symbols, t.diags); }, dumpModules},
+      {"check-generators", [](TranslationUnit& t) { return checkGenerators(t.modules, t.diags); }, dumpModules},
+      {"lower", [](TranslationUnit& t) { return lowerToGraph(t.modules, t.symbols, t.sources, t.diags, t.graph); },
+       [](const TranslationUnit& t) { return ir::toText(t.graph); }},
+      {"validate-ir",
+       [&](TranslationUnit& t) {
+         const auto problems = ir::validate(t.graph);
+         if (problems.empty()) return true;
+         Diagnostic& d = t.diags.error("E0901", SourceRange{t.root, 0, 0}, "the compiler produced an invalid constraint graph");
+         for (const auto& p : problems) d.note(p);
+         result.outcome = PipelineOutcome::InternalError;
+         return false;
+       },
+       [](const TranslationUnit& t) { return ir::toText(t.graph); }},
+  };
+  for (auto& pass : passes) {
+    result.lastPass = pass.name;
+    const bool ok = pass.run(tu);
+    if (ok && pass.name == dumpAfter) result.dump = pass.dump(tu);
+    if (!ok || tu.diags.hasErrors()) {
+      if (result.outcome == PipelineOutcome::Ok) result.outcome = PipelineOutcome::InputErrors;
+      return result;
+    }
+    if (pass.name == stopAfter) break;
+  }
+  return result;
+}
+
+PipelineResult compileFile(TranslationUnit& tu, const std::string& path, const std::string& dumpAfter,
+                           const std::string& stopAfter) {
+  std::string text;
+  if (!readFile(path, text)) {
+    PipelineResult r;
+    r.outcome = PipelineOutcome::InputErrors;
+    r.lastPass = "";
+    r.dump = "";
+    return r;
+  }
+  return compileSource(tu, path, std::move(text), dumpAfter, stopAfter);
+}
+
+}  // namespace cbtl

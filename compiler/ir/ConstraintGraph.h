@@ -1,0 +1,262 @@
+// ConstraintGraph.h — the compiler's output: plain, serialisable data that the runtime consumes.
+//
+// Variables of every task are instantiated here: top-level variables keep their names and are shared by
+// all tasks; task variables keep theirs; a skill instance's variables are named "<instance>.<var>";
+// family members are "name[member]". Constraints are hyperedges over variable ids, with their expression
+// tree and source span. Top-level `forall` over a finite set is unrolled into one constraint per binding.
+// Nothing here points into the AST: the runtime never sees compiler data structures.
+//
+// Spans are 1-based line/column pairs with the file path as written by the user.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cbtl::ir {
+
+using VarId = std::uint32_t;
+
+struct Span {
+  std::string file;
+  std::uint32_t line = 0, column = 0, endLine = 0, endColumn = 0;
+};
+
+// Types as canonical spellings ("real", "vec<2>", "Conf<gen3>", "set<Book>", "Dip"), plus the kind.
+struct TypeDesc {
+  std::string kind;      // real|int|bool|text|enum|item|vec|SE2|SE3|Conf|set|tuple|range|void
+  std::string spelling;
+};
+
+// Expression trees. `op` names the node:
+//   num, str, bool, var (var id), obs (observation name; index child for families), const (name),
+//   enum (type + member), item (set + entry), param (index), local (binder name), call (callee, args),
+//   member (field), index, neg, not, + - * / % ^ == != < <= > >= and or => <=>, range, in,
+//   forall/exists (binder names; children: set, where-or-null-as-"true", body), if, tuple, list,
+//   family (family name + var ids of all members; child: index expression).
+struct Expr {
+  std::string op;
+  TypeDesc type;
+  double number = 0;
+  std::string text;                // str value, names, member, callee
+  std::string extra;               // enum type / item set / obs family
+  std::int64_t id = -1;            // var id, param index
+  std::vector<std::string> names;  // binder names
+  std::vector<VarId> vars;         // family members
+  std::vector<Expr> children;
+};
+
+struct Bound {
+  std::optional<Expr> lo, hi;  // absent: unbounded
+};
+
+struct Domain {
+  // real/int/vec/SE2/SE3: one bound per component (vec: N, SE2: x y yaw, SE3: x y z); enum/item/text/bool:
+  // `set` lists the allowed values (absent: all values of the type); Conf: the robot's joint limits.
+  std::vector<Bound> bounds;
+  std::optional<Expr> set;
+};
+
+struct Variable {
+  VarId id = 0;
+  std::string name;      // unique within each task that includes it
+  TypeDesc type;
+  Domain domain;
+  std::optional<Expr> init;
+  std::string family;    // family name for family members, else empty
+  std::string indexText; // the member's index as text ("salt", "2")
+  std::string scope;     // "global", "task:<name>" or "skill:<task>/<instance>"
+  Span span;
+};
+
+struct Constraint {
+  std::uint32_t id = 0;
+  std::string name;          // declared name, or "<scope>#<n>"; unrolled copies get "[binding]"
+  std::vector<VarId> vars;   // the hyperedge, sorted, unique
+  Expr expr;
+  std::string scope;
+  Span span;
+};
+
+struct Sampler {
+  std::uint32_t id = 0;
+  std::string sampler;       // "uniform" or an extern sampler's name
+  std::vector<VarId> writes;
+  std::vector<VarId> reads;
+  std::vector<Expr> args;
+  std::string scope;
+  Span span;
+};
+
+struct Cost {
+  bool maximize = false;
+  Expr expr;
+  std::vector<VarId> vars;
+  Span span;
+};
+
+struct Param {
+  std::string name;
+  TypeDesc type;
+};
+
+struct Pattern {
+  std::string param;
+  std::uint32_t paramIndex = 0;
+  std::string kind;  // glob | regex
+  std::string text;
+  Span span;
+};
+
+struct ModelFactor {
+  std::string label;               // factor name (defaults to the kind, numbered if repeated)
+  std::string kind;                // interval | threshold | table | text
+  std::optional<Expr> feature;     // interval/threshold feature; table key; text subject
+  double lo = 0, hi = 0;           // interval/threshold prior bounds
+  std::string direction;           // threshold: above | below
+  std::string prompt, learning;    // text
+  std::string scale = "absolute";  // text: relative | absolute
+  std::string rating = "digits";   // text: digits | options
+  std::vector<std::string> params; // generator parameters the factor reads
+  Span span;
+};
+
+struct LearnLabel {
+  std::string factor;  // empty: the single factor
+  Expr value;
+};
+
+struct LearnRule {
+  std::string event;
+  std::vector<std::string> binders;           // "_" for ignored positions
+  std::vector<std::string> binds;             // per binder: parameter/key it binds, or "" (local)
+  std::vector<LearnLabel> labels;
+  std::optional<Expr> condition;
+  Span span;
+};
+
+struct Generator {
+  std::string name;
+  std::vector<Param> params;  // arity = params.size()
+  std::vector<Pattern> patterns;
+  std::vector<std::string> captures;
+  std::vector<std::string> perKeys;
+  std::vector<ModelFactor> factors;
+  double accept = 0.5;
+  double fallback = 0.5;
+  std::vector<LearnRule> learnRules;
+  Span span;
+};
+
+struct Action {
+  std::string kind;  // call | for | if | block
+  std::string name;
+  std::vector<Expr> args;
+  std::vector<std::string> binders;
+  std::optional<Expr> set;        // for
+  std::optional<Expr> condition;  // if
+  std::vector<Action> body, elseBody;
+  Span span;
+};
+
+struct SkillInstance {
+  std::string skill;
+  std::string name;
+  std::vector<VarId> vars;                 // the instance's own variables
+  std::vector<VarId> params;               // task variables bound to the skill's parameters
+  std::vector<std::uint32_t> constraints;
+  std::vector<std::uint32_t> samplers;
+  std::vector<Action> actions;             // Var references use the task's ids
+  Span span;
+};
+
+struct Task {
+  std::string name;
+  std::vector<VarId> vars;  // every variable of the CSP: global, task, skill instances
+  std::vector<std::uint32_t> constraints;
+  std::vector<std::uint32_t> samplers;
+  std::vector<std::uint32_t> costs;
+  std::vector<SkillInstance> instances;
+  bool implicit = false;  // the `main` task of a file without tasks
+  Span span;
+};
+
+struct Enum {
+  std::string name;
+  std::vector<std::string> members;
+  Span span;
+};
+
+struct ItemField {
+  std::string name;
+  TypeDesc type;
+};
+struct ItemType {
+  std::string name;
+  std::vector<ItemField> fields;
+  Span span;
+};
+struct ItemEntry {
+  std::string name;
+  std::vector<std::pair<std::string, Expr>> fields;
+};
+struct ItemSet {
+  std::string name;
+  std::string itemType;
+  std::vector<ItemEntry> entries;
+  Span span;
+};
+
+struct Constant {
+  std::string name;
+  TypeDesc type;
+  std::string indexSet;  // family: the index set's spelling
+  Expr value;
+  Span span;
+};
+
+struct Observation {
+  std::string name;
+  TypeDesc type;
+  std::optional<Expr> indexSet;
+  Span span;
+};
+
+struct Function {
+  std::string name;
+  std::string kind;  // function | sampler | action
+  bool isExtern = true;
+  std::vector<std::string> typeParams;
+  std::vector<Param> params;
+  TypeDesc result;
+  std::optional<Expr> body;
+  Span span;
+};
+
+struct Robot {
+  std::string name;
+  int dof = 0;
+};
+
+struct ConstraintGraph {
+  std::string domain;
+  std::string world;  // as written, relative to the root file
+  std::vector<Robot> robots;
+  std::vector<Enum> enums;
+  std::vector<ItemType> itemTypes;
+  std::vector<ItemSet> itemSets;
+  std::vector<Constant> constants;
+  std::vector<Observation> observations;
+  std::vector<Function> feedback;  // kind "feedback": events with parameters
+  std::vector<Function> functions;
+  std::vector<Variable> variables;
+  std::vector<Constraint> constraints;
+  std::vector<Sampler> samplers;
+  std::vector<Cost> costs;
+  std::vector<Generator> generators;
+  std::vector<std::string> skills;
+  std::vector<Task> tasks;
+};
+
+}  // namespace cbtl::ir

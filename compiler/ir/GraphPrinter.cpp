@@ -1,0 +1,330 @@
+#include "ir/GraphPrinter.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <sstream>
+
+namespace cbtl::ir {
+namespace {
+
+using nlohmann::json;
+
+std::string num(double v) {
+  std::string s = fmt::format("{}", v);
+  return s;
+}
+
+std::string spanText(const Span& s) { return fmt::format("{}:{}:{}", s.file, s.line, s.column); }
+
+json spanJson(const Span& s) {
+  return json{{"file", s.file}, {"line", s.line}, {"column", s.column}, {"end_line", s.endLine}, {"end_column", s.endColumn}};
+}
+
+json exprJson(const Expr& e) {
+  json j{{"op", e.op}, {"type", e.type.spelling}};
+  if (e.op == "num" || e.op == "bool") j["value"] = e.number;
+  if (!e.text.empty()) j["text"] = e.text;
+  if (!e.extra.empty()) j["extra"] = e.extra;
+  if (e.id >= 0) j["id"] = e.id;
+  if (!e.names.empty()) j["names"] = e.names;
+  if (!e.vars.empty()) j["vars"] = e.vars;
+  if (!e.children.empty()) {
+    json c = json::array();
+    for (const auto& ch : e.children) c.push_back(exprJson(ch));
+    j["children"] = std::move(c);
+  }
+  return j;
+}
+
+json optExpr(const std::optional<Expr>& e) { return e ? exprJson(*e) : json(nullptr); }
+
+json actionJson(const Action& a) {
+  json j{{"kind", a.kind}, {"span", spanJson(a.span)}};
+  if (!a.name.empty()) j["name"] = a.name;
+  if (!a.args.empty()) {
+    json args = json::array();
+    for (const auto& x : a.args) args.push_back(exprJson(x));
+    j["args"] = std::move(args);
+  }
+  if (!a.binders.empty()) j["binders"] = a.binders;
+  if (a.set) j["set"] = exprJson(*a.set);
+  if (a.condition) j["condition"] = exprJson(*a.condition);
+  if (!a.body.empty()) {
+    json b = json::array();
+    for (const auto& x : a.body) b.push_back(actionJson(x));
+    j["body"] = std::move(b);
+  }
+  if (!a.elseBody.empty()) {
+    json b = json::array();
+    for (const auto& x : a.elseBody) b.push_back(actionJson(x));
+    j["else"] = std::move(b);
+  }
+  return j;
+}
+
+const char* infix(const std::string& op) {
+  static const char* ops[] = {"+", "-", "*", "/", "%", "^", "==", "!=", "<", "<=", ">", ">=", "and", "or", "=>", "<=>", "in", ".."};
+  for (const char* o : ops) {
+    if (op == o) return o;
+  }
+  if (op == "range") return "..";
+  return nullptr;
+}
+
+std::string varName(VarId id, const ConstraintGraph& g) {
+  return id < g.variables.size() ? g.variables[id].name : fmt::format("<var {}>", id);
+}
+
+}  // namespace
+
+std::string exprText(const Expr& e, const ConstraintGraph& g) {
+  auto kids = [&](const char* sep) {
+    std::string s;
+    for (std::size_t i = 0; i < e.children.size(); ++i) s += (i ? sep : "") + exprText(e.children[i], g);
+    return s;
+  };
+  if (e.op == "num") return e.text.empty() ? num(e.number) : e.text;
+  if (e.op == "str") return nlohmann::json(e.text).dump();
+  if (e.op == "bool") return e.number != 0 ? "true" : "false";
+  if (e.op == "var") return varName(static_cast<VarId>(e.id), g);
+  if (e.op == "enum" || e.op == "item") return e.extra + "." + e.text;
+  if (e.op == "param") return fmt::format("${}", e.text);
+  if (e.op == "local" || e.op == "enumset" || e.op == "itemset") return e.text;
+  if (e.op == "const" || e.op == "obs" || e.op == "family") {
+    return e.children.empty() ? e.text : fmt::format("{}[{}]", e.text, kids(", "));
+  }
+  if (e.op == "call") return fmt::format("{}({})", e.text, kids(", "));
+  if (e.op == "member") return fmt::format("{}.{}", exprText(e.children[0], g), e.text);
+  if (e.op == "index") {
+    std::string s = exprText(e.children[0], g) + "[";
+    for (std::size_t i = 1; i < e.children.size(); ++i) s += (i > 1 ? ", " : "") + exprText(e.children[i], g);
+    return s + "]";
+  }
+  if (e.op == "neg") return "-" + exprText(e.children[0], g);
+  if (e.op == "not") return "not " + exprText(e.children[0], g);
+  if (e.op == "forall" || e.op == "exists") {
+    std::string names;
+    for (std::size_t i = 0; i < e.names.size(); ++i) names += (i ? ", " : "") + e.names[i];
+    std::string where = e.children[1].op == "bool" && e.children[1].number != 0 ? "" : " where " + exprText(e.children[1], g);
+    return fmt::format("({} {} in {}{}: {})", e.op, names, exprText(e.children[0], g), where, exprText(e.children[2], g));
+  }
+  if (e.op == "if") {
+    return fmt::format("(if {} then {} else {})", exprText(e.children[0], g), exprText(e.children[1], g),
+                       exprText(e.children[2], g));
+  }
+  if (e.op == "tuple") return "(" + kids(", ") + ")";
+  if (e.op == "list") return "[" + kids(", ") + "]";
+  if (const char* op = infix(e.op); op != nullptr && e.children.size() == 2) {
+    return fmt::format("({} {} {})", exprText(e.children[0], g), op, exprText(e.children[1], g));
+  }
+  return fmt::format("<{}>", e.op);
+}
+
+std::string toText(const ConstraintGraph& g) {
+  std::ostringstream o;
+  o << "domain " << (g.domain.empty() ? "<unnamed>" : g.domain) << "\n";
+  if (!g.world.empty()) o << "world " << nlohmann::json(g.world).dump() << "\n";
+  o << fmt::format("summary: {} tasks, {} variables, {} constraints, {} samplers, {} generators\n", g.tasks.size(),
+                   g.variables.size(), g.constraints.size(), g.samplers.size(), g.generators.size());
+  for (const auto& v : g.variables) {
+    o << fmt::format("var %{} {} : {}", v.id, v.name, v.type.spelling);
+    if (!v.domain.bounds.empty()) {
+      o << " in [";
+      for (std::size_t i = 0; i < v.domain.bounds.size(); ++i) {
+        const auto& b = v.domain.bounds[i];
+        o << (i ? ", " : "") << (b.lo ? exprText(*b.lo, g) : "-inf") << " .. " << (b.hi ? exprText(*b.hi, g) : "inf");
+      }
+      o << "]";
+    }
+    if (v.domain.set) o << " in " << exprText(*v.domain.set, g);
+    if (v.init) o << " = " << exprText(*v.init, g);
+    o << "  (" << v.scope << ")\n";
+  }
+  for (const auto& c : g.constraints) {
+    o << fmt::format("constraint #{} {} over {{", c.id, c.name);
+    for (std::size_t i = 0; i < c.vars.size(); ++i) o << (i ? ", " : "") << varName(c.vars[i], g);
+    o << "}: " << exprText(c.expr, g) << "  @" << spanText(c.span) << "\n";
+  }
+  for (const auto& s : g.samplers) {
+    o << fmt::format("sampler #{} {}", s.id, s.sampler);
+    if (!s.args.empty()) {
+      o << "(";
+      for (std::size_t i = 0; i < s.args.size(); ++i) o << (i ? ", " : "") << exprText(s.args[i], g);
+      o << ")";
+    }
+    o << " writes {";
+    for (std::size_t i = 0; i < s.writes.size(); ++i) o << (i ? ", " : "") << varName(s.writes[i], g);
+    o << "} reads {";
+    for (std::size_t i = 0; i < s.reads.size(); ++i) o << (i ? ", " : "") << varName(s.reads[i], g);
+    o << "}\n";
+  }
+  for (std::size_t i = 0; i < g.costs.size(); ++i) {
+    o << fmt::format("cost #{} {} {}\n", i, g.costs[i].maximize ? "maximize" : "minimize", exprText(g.costs[i].expr, g));
+  }
+  for (const auto& gen : g.generators) {
+    o << "generator " << gen.name << " arity " << gen.params.size() << " (";
+    for (std::size_t i = 0; i < gen.params.size(); ++i) o << (i ? ", " : "") << gen.params[i].name << ": " << gen.params[i].type.spelling;
+    o << ")\n";
+    for (const auto& p : gen.patterns) o << fmt::format("  when {} ~ {} {}\n", p.param, p.kind, nlohmann::json(p.text).dump());
+    for (const auto& f : gen.factors) {
+      o << "  model " << f.label << " = " << f.kind;
+      if (f.feature) o << "(" << exprText(*f.feature, g);
+      if (f.kind == "interval" || f.kind == "threshold") o << ", " << num(f.lo) << " .. " << num(f.hi);
+      if (!f.direction.empty()) o << ", " << f.direction;
+      if (f.kind == "text") o << ", scale " << f.scale << ", rating " << f.rating;
+      o << ")\n";
+    }
+    if (!gen.perKeys.empty()) {
+      o << "  per";
+      for (const auto& k : gen.perKeys) o << " " << k;
+      o << "\n";
+    }
+    o << "  accept " << num(gen.accept) << ", fallback " << num(gen.fallback) << "\n";
+    for (const auto& r : gen.learnRules) {
+      o << "  learn " << r.event << "(";
+      for (std::size_t i = 0; i < r.binders.size(); ++i) o << (i ? ", " : "") << r.binders[i];
+      o << ") =>";
+      for (std::size_t i = 0; i < r.labels.size(); ++i) {
+        o << (i ? "," : "") << " " << (r.labels[i].factor.empty() ? "" : r.labels[i].factor + ": ") << exprText(r.labels[i].value, g);
+      }
+      if (r.condition) o << " if " << exprText(*r.condition, g);
+      o << "\n";
+    }
+  }
+  for (const auto& t : g.tasks) {
+    o << fmt::format("task {}{}: {} variables, {} constraints, {} samplers\n", t.name, t.implicit ? " (implicit)" : "",
+                     t.vars.size(), t.constraints.size(), t.samplers.size());
+    for (const auto& si : t.instances) {
+      o << fmt::format("  run {} as {}: {} variables, {} constraints, {} actions\n", si.skill, si.name, si.vars.size(),
+                       si.constraints.size(), si.actions.size());
+    }
+  }
+  return o.str();
+}
+
+std::string toJson(const ConstraintGraph& g) {
+  json j;
+  j["format"] = "cbtl-constraint-graph";
+  j["version"] = 1;
+  j["domain"] = g.domain;
+  j["world"] = g.world;
+  j["robots"] = json::array();
+  for (const auto& r : g.robots) j["robots"].push_back({{"name", r.name}, {"dof", r.dof}});
+  j["enums"] = json::array();
+  for (const auto& e : g.enums) j["enums"].push_back({{"name", e.name}, {"members", e.members}, {"span", spanJson(e.span)}});
+  j["item_types"] = json::array();
+  for (const auto& t : g.itemTypes) {
+    json fields = json::array();
+    for (const auto& f : t.fields) fields.push_back({{"name", f.name}, {"type", f.type.spelling}});
+    j["item_types"].push_back({{"name", t.name}, {"fields", fields}, {"span", spanJson(t.span)}});
+  }
+  j["item_sets"] = json::array();
+  for (const auto& s : g.itemSets) {
+    json entries = json::array();
+    for (const auto& e : s.entries) {
+      json fields = json::object();
+      for (const auto& [name, value] : e.fields) fields[name] = exprJson(value);
+      entries.push_back({{"name", e.name}, {"fields", fields}});
+    }
+    j["item_sets"].push_back({{"name", s.name}, {"item_type", s.itemType}, {"entries", entries}, {"span", spanJson(s.span)}});
+  }
+  j["constants"] = json::array();
+  for (const auto& c : g.constants) {
+    j["constants"].push_back({{"name", c.name}, {"type", c.type.spelling}, {"index_set", c.indexSet}, {"value", exprJson(c.value)},
+                              {"span", spanJson(c.span)}});
+  }
+  j["observations"] = json::array();
+  for (const auto& o : g.observations) {
+    j["observations"].push_back({{"name", o.name}, {"type", o.type.spelling}, {"index_set", optExpr(o.indexSet)}, {"span", spanJson(o.span)}});
+  }
+  auto functionJson = [](const Function& f) {
+    json params = json::array();
+    for (const auto& p : f.params) params.push_back({{"name", p.name}, {"type", p.type.spelling}});
+    json j{{"name", f.name}, {"kind", f.kind}, {"extern", f.isExtern}, {"type_params", f.typeParams}, {"params", params},
+           {"result", f.result.spelling}, {"span", spanJson(f.span)}};
+    if (f.body) j["body"] = exprJson(*f.body);
+    return j;
+  };
+  j["feedback"] = json::array();
+  for (const auto& f : g.feedback) j["feedback"].push_back(functionJson(f));
+  j["functions"] = json::array();
+  for (const auto& f : g.functions) j["functions"].push_back(functionJson(f));
+  j["variables"] = json::array();
+  for (const auto& v : g.variables) {
+    json bounds = json::array();
+    for (const auto& b : v.domain.bounds) bounds.push_back({{"lo", optExpr(b.lo)}, {"hi", optExpr(b.hi)}});
+    j["variables"].push_back({{"id", v.id}, {"name", v.name}, {"type", v.type.spelling}, {"kind", v.type.kind},
+                              {"bounds", bounds}, {"set", optExpr(v.domain.set)}, {"init", optExpr(v.init)},
+                              {"family", v.family}, {"index", v.indexText}, {"scope", v.scope}, {"span", spanJson(v.span)}});
+  }
+  j["constraints"] = json::array();
+  for (const auto& c : g.constraints) {
+    j["constraints"].push_back({{"id", c.id}, {"name", c.name}, {"vars", c.vars}, {"expr", exprJson(c.expr)}, {"scope", c.scope},
+                                {"span", spanJson(c.span)}});
+  }
+  j["samplers"] = json::array();
+  for (const auto& s : g.samplers) {
+    json args = json::array();
+    for (const auto& a : s.args) args.push_back(exprJson(a));
+    j["samplers"].push_back({{"id", s.id}, {"sampler", s.sampler}, {"writes", s.writes}, {"reads", s.reads}, {"args", args},
+                             {"scope", s.scope}, {"span", spanJson(s.span)}});
+  }
+  j["costs"] = json::array();
+  for (const auto& c : g.costs) {
+    j["costs"].push_back({{"maximize", c.maximize}, {"expr", exprJson(c.expr)}, {"vars", c.vars}, {"span", spanJson(c.span)}});
+  }
+  j["generators"] = json::array();
+  for (const auto& gen : g.generators) {
+    json params = json::array(), patterns = json::array(), factors = json::array(), rules = json::array();
+    for (const auto& p : gen.params) params.push_back({{"name", p.name}, {"type", p.type.spelling}});
+    for (const auto& p : gen.patterns) {
+      patterns.push_back({{"param", p.param}, {"param_index", p.paramIndex}, {"kind", p.kind}, {"text", p.text}, {"span", spanJson(p.span)}});
+    }
+    for (const auto& f : gen.factors) {
+      factors.push_back({{"label", f.label}, {"kind", f.kind}, {"feature", optExpr(f.feature)}, {"lo", f.lo}, {"hi", f.hi},
+                         {"direction", f.direction}, {"prompt", f.prompt}, {"learning", f.learning}, {"scale", f.scale},
+                         {"rating", f.rating}, {"params", f.params}, {"span", spanJson(f.span)}});
+    }
+    for (const auto& r : gen.learnRules) {
+      json labels = json::array();
+      for (const auto& l : r.labels) labels.push_back({{"factor", l.factor}, {"value", exprJson(l.value)}});
+      rules.push_back({{"event", r.event}, {"binders", r.binders}, {"binds", r.binds}, {"labels", labels},
+                       {"condition", optExpr(r.condition)}, {"span", spanJson(r.span)}});
+    }
+    j["generators"].push_back({{"name", gen.name}, {"arity", gen.params.size()}, {"params", params}, {"patterns", patterns},
+                               {"captures", gen.captures}, {"per", gen.perKeys}, {"factors", factors}, {"accept", gen.accept},
+                               {"fallback", gen.fallback}, {"learn", rules}, {"span", spanJson(gen.span)}});
+  }
+  j["skills"] = g.skills;
+  j["tasks"] = json::array();
+  for (const auto& t : g.tasks) {
+    json instances = json::array();
+    for (const auto& si : t.instances) {
+      json actions = json::array();
+      for (const auto& a : si.actions) actions.push_back(actionJson(a));
+      instances.push_back({{"skill", si.skill}, {"name", si.name}, {"vars", si.vars}, {"params", si.params},
+                           {"constraints", si.constraints}, {"samplers", si.samplers}, {"actions", actions},
+                           {"span", spanJson(si.span)}});
+    }
+    j["tasks"].push_back({{"name", t.name}, {"implicit", t.implicit}, {"vars", t.vars}, {"constraints", t.constraints},
+                          {"samplers", t.samplers}, {"costs", t.costs}, {"instances", instances}, {"span", spanJson(t.span)}});
+  }
+  return j.dump(1) + "\n";
+}
+
+std::string toDot(const ConstraintGraph& g) {
+  std::ostringstream o;
+  o << "graph cbtl {\n  graph [rankdir=LR];\n";
+  for (const auto& v : g.variables) {
+    o << fmt::format("  v{} [shape=ellipse, label={}];\n", v.id, nlohmann::json(v.name + " : " + v.type.spelling).dump());
+  }
+  for (const auto& c : g.constraints) {
+    o << fmt::format("  c{} [shape=box, label={}];\n", c.id, nlohmann::json(c.name).dump());
+    for (VarId v : c.vars) o << fmt::format("  c{} -- v{};\n", c.id, v);
+  }
+  o << "}\n";
+  return o.str();
+}
+
+}  // namespace cbtl::ir

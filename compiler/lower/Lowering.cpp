@@ -1,0 +1,911 @@
+#include "lower/Lowering.h"
+
+#include "ir/Pattern.h"
+#include "sema/GeneratorChecker.h"
+#include "sema/Type.h"
+#include "sema/TypeChecker.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace cbtl {
+namespace {
+
+// A value known at compile time, used for family indices and quantifier bindings.
+struct CVal {
+  enum class Kind { Enum, Int, Item, None } kind = Kind::None;
+  std::string text;     // member / entry name, or the integer as text
+  long long number = 0;
+  const Decl* decl = nullptr;  // EnumDecl or ItemsDecl
+  int index = -1;
+};
+
+ir::TypeDesc typeDesc(const Type* t) {
+  if (t == nullptr) return {"void", "void"};
+  static const char* kinds[] = {"error", "real", "int", "bool", "text", "enum", "item", "vec",
+                                "SE2", "SE3", "Conf", "set", "tuple", "range", "void"};
+  return {kinds[static_cast<int>(t->kind)], t->spelling};
+}
+
+class Lowerer {
+ public:
+  Lowerer(const GlobalSymbols& symbols, const SourceManager& sources, DiagnosticEngine& diags, ir::ConstraintGraph& g)
+      : symbols_(symbols), sources_(sources), diags_(diags), g_(g) {}
+
+  void run(const std::vector<std::unique_ptr<Module>>& modules) {
+    g_.domain = symbols_.domainName;
+    if (symbols_.world) g_.world = symbols_.world->path;
+    for (const auto& m : modules) {
+      for (const auto& d : m->decls) declareTop(*d);
+    }
+    // Global scope: shared by every task.
+    Ctx global;
+    global.scope = "global";
+    lowerBody(symbols_.globalScope, global, globalVars_, globalConstraints_, globalSamplers_, globalCosts_);
+    globalCtx_ = global;
+
+    bool anyTask = false;
+    std::set<std::string> usedSkills;
+    for (const auto& m : modules) {
+      for (const auto& d : m->decls) {
+        if (d->kind != DeclKind::Task) continue;
+        anyTask = true;
+        lowerTask(static_cast<const TaskDecl&>(*d), usedSkills);
+      }
+    }
+    if (!anyTask) {
+      ir::Task t;
+      t.name = "main";
+      t.implicit = true;
+      t.vars = globalVars_;
+      t.constraints = globalConstraints_;
+      t.samplers = globalSamplers_;
+      t.costs = globalCosts_;
+      g_.tasks.push_back(std::move(t));
+    }
+    for (const auto& [name, skill] : symbols_.skills) {
+      if (!usedSkills.count(name) && anyTask) {
+        diags_.warning("W0501", skill->name.range, fmt::format("skill '{}' is not run by any task", name));
+      }
+    }
+    for (const auto& m : modules) {
+      for (const auto& d : m->decls) {
+        if (d->kind == DeclKind::Personal) lowerGenerator(static_cast<const PersonalDecl&>(*d));
+      }
+    }
+  }
+
+ private:
+  struct Ctx {
+    std::string scope;
+    std::string prefix;  // "<instance>." for skill instances
+    std::map<const Decl*, std::map<std::string, ir::VarId>> vars;  // VarDecl -> member text ("" if scalar) -> id
+    const SkillDecl* skill = nullptr;
+    std::vector<std::optional<ir::Expr>> skillParams;  // lowered expression per skill parameter (a var node)
+    std::map<const BinderDecl*, CVal> env;
+  };
+
+  ir::Span span(SourceRange r) const {
+    ir::Span s;
+    if (!r.valid()) return s;
+    s.file = sources_.file(r.file).path;
+    LineCol a = sources_.position(r.file, r.begin), b = sources_.position(r.file, r.end);
+    s.line = a.line; s.column = a.column; s.endLine = b.line; s.endColumn = b.column;
+    return s;
+  }
+
+  // --- compile-time values ------------------------------------------------------------------
+
+  std::optional<CVal> evalConst(const Expr* e, const Ctx& ctx) {
+    if (e == nullptr) return std::nullopt;
+    switch (e->kind) {
+      case ExprKind::Number:
+        if (e->number == std::floor(e->number) && std::fabs(e->number) < 1e15) {
+          CVal v; v.kind = CVal::Kind::Int; v.number = static_cast<long long>(e->number); v.text = std::to_string(v.number);
+          return v;
+        }
+        return std::nullopt;
+      case ExprKind::Unary:
+        if (e->unaryOp == UnaryOp::Neg) {
+          auto v = evalConst(e->operands[0].get(), ctx);
+          if (v && v->kind == CVal::Kind::Int) { v->number = -v->number; v->text = std::to_string(v->number); return v; }
+        }
+        return std::nullopt;
+      case ExprKind::Binary: {
+        if (e->binaryOp != BinaryOp::Add && e->binaryOp != BinaryOp::Sub && e->binaryOp != BinaryOp::Mul) return std::nullopt;
+        auto a = evalConst(e->operands[0].get(), ctx), b = evalConst(e->operands[1].get(), ctx);
+        if (!a || !b || a->kind != CVal::Kind::Int || b->kind != CVal::Kind::Int) return std::nullopt;
+        CVal v; v.kind = CVal::Kind::Int;
+        v.number = e->binaryOp == BinaryOp::Add ? a->number + b->number
+                   : e->binaryOp == BinaryOp::Sub ? a->number - b->number : a->number * b->number;
+        v.text = std::to_string(v.number);
+        return v;
+      }
+      case ExprKind::Name: case ExprKind::Member:
+        if (e->ref.kind == RefKind::EnumMember) {
+          const auto* en = static_cast<const EnumDecl*>(e->ref.decl);
+          CVal v; v.kind = CVal::Kind::Enum; v.decl = en; v.index = e->ref.index; v.text = en->members[e->ref.index].name;
+          return v;
+        }
+        if (e->ref.kind == RefKind::ItemEntry) {
+          const auto* items = static_cast<const ItemsDecl*>(e->ref.decl);
+          CVal v; v.kind = CVal::Kind::Item; v.decl = items; v.index = e->ref.index; v.text = items->entries[e->ref.index].name.name;
+          return v;
+        }
+        if (e->ref.kind == RefKind::Binder) {
+          auto it = ctx.env.find(e->ref.binder);
+          if (it != ctx.env.end()) return it->second;
+        }
+        if (e->ref.kind == RefKind::Const) {
+          const auto* c = static_cast<const ConstDecl*>(e->ref.decl);
+          if (!c->index) return evalConst(c->value.get(), ctx);
+        }
+        return std::nullopt;
+      default:
+        return std::nullopt;
+    }
+  }
+
+  // The members of a compile-time finite set, or nullopt if it is not known at compile time.
+  std::optional<std::vector<CVal>> enumerate(const Expr* set, const Ctx& ctx) {
+    if (set == nullptr) return std::nullopt;
+    if ((set->kind == ExprKind::Name) && set->ref.kind == RefKind::EnumType) {
+      const auto* en = static_cast<const EnumDecl*>(set->ref.decl);
+      std::vector<CVal> out;
+      for (std::size_t i = 0; i < en->members.size(); ++i) {
+        CVal v; v.kind = CVal::Kind::Enum; v.decl = en; v.index = static_cast<int>(i); v.text = en->members[i].name;
+        out.push_back(v);
+      }
+      return out;
+    }
+    if (set->kind == ExprKind::Name && set->ref.kind == RefKind::ItemSet) {
+      const auto* items = static_cast<const ItemsDecl*>(set->ref.decl);
+      std::vector<CVal> out;
+      for (std::size_t i = 0; i < items->entries.size(); ++i) {
+        CVal v; v.kind = CVal::Kind::Item; v.decl = items; v.index = static_cast<int>(i); v.text = items->entries[i].name.name;
+        out.push_back(v);
+      }
+      return out;
+    }
+    if (set->kind == ExprKind::Range) {
+      auto lo = evalConst(set->operands[0].get(), ctx), hi = evalConst(set->operands[1].get(), ctx);
+      if (!lo || !hi || lo->kind != CVal::Kind::Int || hi->kind != CVal::Kind::Int) return std::nullopt;
+      if (hi->number - lo->number > 100000) return std::nullopt;
+      std::vector<CVal> out;
+      for (long long i = lo->number; i <= hi->number; ++i) {
+        CVal v; v.kind = CVal::Kind::Int; v.number = i; v.text = std::to_string(i);
+        out.push_back(v);
+      }
+      return out;
+    }
+    if (set->kind == ExprKind::List) {
+      std::vector<CVal> out;
+      for (const auto& op : set->operands) {
+        auto v = evalConst(op.get(), ctx);
+        if (!v) return std::nullopt;
+        out.push_back(*v);
+      }
+      return out;
+    }
+    return std::nullopt;
+  }
+
+  // Decides a `where` condition at compile time when it only compares bound values.
+  std::optional<bool> decide(const Expr* e, const Ctx& ctx) {
+    if (e == nullptr) return true;
+    if (e->kind == ExprKind::Bool) return e->boolean;
+    if (e->kind == ExprKind::Unary && e->unaryOp == UnaryOp::Not) {
+      auto v = decide(e->operands[0].get(), ctx);
+      return v ? std::optional<bool>(!*v) : std::nullopt;
+    }
+    if (e->kind != ExprKind::Binary) return std::nullopt;
+    if (e->binaryOp == BinaryOp::And || e->binaryOp == BinaryOp::Or) {
+      auto a = decide(e->operands[0].get(), ctx), b = decide(e->operands[1].get(), ctx);
+      if (!a || !b) return std::nullopt;
+      return e->binaryOp == BinaryOp::And ? (*a && *b) : (*a || *b);
+    }
+    auto a = evalConst(e->operands[0].get(), ctx), b = evalConst(e->operands[1].get(), ctx);
+    if (!a || !b || a->kind != b->kind) return std::nullopt;
+    const long long x = a->kind == CVal::Kind::Int ? a->number : a->index;
+    const long long y = b->kind == CVal::Kind::Int ? b->number : b->index;
+    switch (e->binaryOp) {
+      case BinaryOp::Eq: return x == y;
+      case BinaryOp::Ne: return x != y;
+      case BinaryOp::Lt: return x < y;
+      case BinaryOp::Le: return x <= y;
+      case BinaryOp::Gt: return x > y;
+      case BinaryOp::Ge: return x >= y;
+      default: return std::nullopt;
+    }
+  }
+
+  ir::Expr constNode(const CVal& v, const Type* t) {
+    ir::Expr x;
+    x.type = typeDesc(t);
+    if (v.kind == CVal::Kind::Int) { x.op = "num"; x.number = static_cast<double>(v.number); x.text = v.text; }
+    else if (v.kind == CVal::Kind::Enum) { x.op = "enum"; x.extra = v.decl->name.name; x.text = v.text; }
+    else { x.op = "item"; x.extra = v.decl->name.name; x.text = v.text; }
+    return x;
+  }
+
+  // --- expressions --------------------------------------------------------------------------
+
+  ir::Expr lower(const Expr* e, Ctx& ctx) {
+    ir::Expr x;
+    if (e == nullptr) { x.op = "bool"; x.number = 1; x.type = {"bool", "bool"}; return x; }
+    x.type = typeDesc(e->type);
+    switch (e->kind) {
+      case ExprKind::Number: x.op = "num"; x.number = e->number; x.text = e->text; return x;
+      case ExprKind::String: x.op = "str"; x.text = e->text; return x;
+      case ExprKind::Bool: x.op = "bool"; x.number = e->boolean ? 1 : 0; return x;
+      case ExprKind::Name: case ExprKind::Member:
+        if (e->kind == ExprKind::Member && e->ref.kind != RefKind::EnumMember && e->ref.kind != RefKind::ItemEntry) {
+          x.op = "member";
+          x.text = e->text;
+          x.children.push_back(lower(e->operands[0].get(), ctx));
+          return x;
+        }
+        return lowerName(*e, ctx, x);
+      case ExprKind::Call: {
+        x.op = "call";
+        x.text = e->operands[0]->text;
+        const auto* callee = static_cast<const CallableDecl*>(e->ref.decl);
+        for (const auto* a : orderedArgs(callee, e->args)) x.children.push_back(lower(a->value.get(), ctx));
+        return x;
+      }
+      case ExprKind::Index: {
+        const Expr* base = e->operands[0].get();
+        if (base->kind == ExprKind::Name && (base->ref.kind == RefKind::Variable || base->ref.kind == RefKind::Const ||
+                                             base->ref.kind == RefKind::Observation)) {
+          return lowerFamilyIndex(*e, ctx, x);
+        }
+        x.op = "index";
+        for (const auto& op : e->operands) x.children.push_back(lower(op.get(), ctx));
+        return x;
+      }
+      case ExprKind::Unary:
+        x.op = e->unaryOp == UnaryOp::Neg ? "neg" : "not";
+        x.children.push_back(lower(e->operands[0].get(), ctx));
+        return x;
+      case ExprKind::Binary:
+        x.op = toString(e->binaryOp);
+        x.children.push_back(lower(e->operands[0].get(), ctx));
+        x.children.push_back(lower(e->operands[1].get(), ctx));
+        return x;
+      case ExprKind::Range: case ExprKind::In:
+        x.op = e->kind == ExprKind::Range ? "range" : "in";
+        x.children.push_back(lower(e->operands[0].get(), ctx));
+        x.children.push_back(lower(e->operands[1].get(), ctx));
+        return x;
+      case ExprKind::Quantifier: {
+        x.op = e->quant == QuantKind::Forall ? "forall" : "exists";
+        for (const auto& n : e->binder->names) x.names.push_back(n->name.name);
+        x.children.push_back(lower(e->binder->set.get(), ctx));
+        x.children.push_back(lower(e->operands[0].get(), ctx));
+        x.children.push_back(lower(e->operands[1].get(), ctx));
+        return x;
+      }
+      case ExprKind::If:
+        x.op = "if";
+        for (const auto& op : e->operands) x.children.push_back(lower(op.get(), ctx));
+        return x;
+      case ExprKind::Tuple: case ExprKind::List:
+        x.op = e->kind == ExprKind::Tuple ? "tuple" : "list";
+        for (const auto& op : e->operands) x.children.push_back(lower(op.get(), ctx));
+        return x;
+    }
+    return x;
+  }
+
+  std::vector<const Arg*> orderedArgs(const CallableDecl* callee, const std::vector<Arg>& args) {
+    std::vector<const Arg*> out;
+    if (callee == nullptr) {
+      for (const auto& a : args) out.push_back(&a);
+      return out;
+    }
+    out.assign(callee->params.size(), nullptr);
+    std::size_t next = 0;
+    for (const auto& a : args) {
+      if (a.name.name.empty()) {
+        if (next < out.size()) out[next++] = &a;
+        continue;
+      }
+      for (std::size_t i = 0; i < callee->params.size(); ++i) {
+        if (callee->params[i].name.name == a.name.name) out[i] = &a;
+      }
+    }
+    out.erase(std::remove(out.begin(), out.end(), nullptr), out.end());
+    return out;
+  }
+
+  ir::Expr& lowerName(const Expr& e, Ctx& ctx, ir::Expr& x) {
+    const NameRef& r = e.ref;
+    switch (r.kind) {
+      case RefKind::Variable: {
+        x.op = "var";
+        x.text = e.text;
+        x.id = varId(r.decl, "", ctx);
+        return x;
+      }
+      case RefKind::Param: {
+        if (r.decl->kind == DeclKind::Skill && ctx.skill == r.decl && r.index < static_cast<int>(ctx.skillParams.size()) &&
+            ctx.skillParams[r.index]) {
+          x = *ctx.skillParams[r.index];
+          return x;
+        }
+        x.op = "param";
+        x.id = r.index;
+        x.text = e.text;
+        return x;
+      }
+      case RefKind::Const: {
+        const auto* c = static_cast<const ConstDecl*>(r.decl);
+        x.op = "const";
+        x.text = c->name.name;
+        return x;
+      }
+      case RefKind::EnumMember: {
+        CVal v; v.kind = CVal::Kind::Enum; v.decl = r.decl; v.index = r.index;
+        v.text = static_cast<const EnumDecl*>(r.decl)->members[r.index].name;
+        x = constNode(v, e.type);
+        return x;
+      }
+      case RefKind::ItemEntry: {
+        CVal v; v.kind = CVal::Kind::Item; v.decl = r.decl; v.index = r.index;
+        v.text = static_cast<const ItemsDecl*>(r.decl)->entries[r.index].name.name;
+        x = constNode(v, e.type);
+        return x;
+      }
+      case RefKind::EnumType: x.op = "enumset"; x.text = r.decl->name.name; return x;
+      case RefKind::ItemSet: x.op = "itemset"; x.text = r.decl->name.name; return x;
+      case RefKind::Observation: x.op = "obs"; x.text = r.decl->name.name; return x;
+      case RefKind::Binder: {
+        auto it = ctx.env.find(r.binder);
+        if (it != ctx.env.end()) {
+          x = constNode(it->second, e.type);
+          return x;
+        }
+        x.op = "local";
+        x.text = e.text;
+        return x;
+      }
+      case RefKind::Builtin: x.op = "num"; x.number = M_PI; x.text = "pi"; return x;
+      default: x.op = "invalid"; x.text = e.text; return x;
+    }
+  }
+
+  ir::Expr& lowerFamilyIndex(const Expr& e, Ctx& ctx, ir::Expr& x) {
+    const Expr* base = e.operands[0].get();
+    const Expr* index = e.operands.size() > 1 ? e.operands[1].get() : nullptr;
+    auto v = evalConst(index, ctx);
+    const Decl* decl = base->ref.decl;
+    if (base->ref.kind == RefKind::Variable) {
+      auto& members = ctx.vars[decl];
+      if (members.empty()) members = lookupVars(decl, ctx);
+      if (v) {
+        auto it = members.find(v->text);
+        if (it != members.end()) {
+          x.op = "var";
+          x.text = fmt::format("{}[{}]", base->text, v->text);
+          x.id = it->second;
+          return x;
+        }
+      }
+      x.op = "family";
+      x.text = base->text;
+      for (const auto& [k, id] : members) x.vars.push_back(id);
+      x.children.push_back(lower(index, ctx));
+      return x;
+    }
+    x.op = base->ref.kind == RefKind::Const ? "const" : "obs";
+    x.text = base->text;
+    x.children.push_back(lower(index, ctx));
+    return x;
+  }
+
+  // Variables visible in a context: its own, then the global ones.
+  std::map<std::string, ir::VarId> lookupVars(const Decl* decl, const Ctx& ctx) {
+    if (auto it = ctx.vars.find(decl); it != ctx.vars.end() && !it->second.empty()) return it->second;
+    if (auto it = globalCtx_.vars.find(decl); it != globalCtx_.vars.end()) return it->second;
+    return {};
+  }
+
+  ir::VarId varId(const Decl* decl, const std::string& member, Ctx& ctx) {
+    auto members = lookupVars(decl, ctx);
+    auto it = members.find(member);
+    return it == members.end() ? 0xffffffffu : it->second;
+  }
+
+  static void collectVars(const ir::Expr& x, std::set<ir::VarId>& out) {
+    if (x.op == "var" && x.id >= 0) out.insert(static_cast<ir::VarId>(x.id));
+    for (ir::VarId v : x.vars) out.insert(v);
+    for (const auto& c : x.children) collectVars(c, out);
+  }
+
+  // --- declarations -------------------------------------------------------------------------
+
+  void declareTop(const Decl& d) {
+    switch (d.kind) {
+      case DeclKind::Robot: g_.robots.push_back({d.name.name, static_cast<const RobotDecl&>(d).dof}); break;
+      case DeclKind::Enum: {
+        ir::Enum e{d.name.name, {}, span(d.range)};
+        for (const auto& m : static_cast<const EnumDecl&>(d).members) e.members.push_back(m.name);
+        g_.enums.push_back(std::move(e));
+        break;
+      }
+      case DeclKind::ItemType: {
+        ir::ItemType t{d.name.name, {}, span(d.range)};
+        for (const auto& f : static_cast<const ItemTypeDecl&>(d).fields) t.fields.push_back({f.name.name, typeDesc(f.type.resolved)});
+        g_.itemTypes.push_back(std::move(t));
+        break;
+      }
+      case DeclKind::ItemSet: {
+        const auto& items = static_cast<const ItemsDecl&>(d);
+        ir::ItemSet s{d.name.name, items.itemType.name.name, {}, span(d.range)};
+        Ctx none;
+        for (const auto& entry : items.entries) {
+          ir::ItemEntry e{entry.name.name, {}};
+          for (const auto& f : entry.fields) e.fields.emplace_back(f.name.name, lower(f.value.get(), none));
+          s.entries.push_back(std::move(e));
+        }
+        g_.itemSets.push_back(std::move(s));
+        break;
+      }
+      case DeclKind::Const: {
+        const auto& c = static_cast<const ConstDecl&>(d);
+        Ctx none;
+        ir::Constant k{c.name.name, typeDesc(c.valueType), c.index ? c.index->elementType->spelling : "",
+                       lower(c.value.get(), none), span(d.range)};
+        g_.constants.push_back(std::move(k));
+        break;
+      }
+      case DeclKind::Observe: {
+        const auto& o = static_cast<const ObserveDecl&>(d);
+        Ctx none;
+        ir::Observation obs{o.name.name, typeDesc(o.type.resolved), std::nullopt, span(d.range)};
+        if (o.index) obs.indexSet = lower(o.index->set.get(), none);
+        g_.observations.push_back(std::move(obs));
+        break;
+      }
+      case DeclKind::Feedback: {
+        ir::Function f;
+        f.name = d.name.name;
+        f.kind = "feedback";
+        for (const auto& p : static_cast<const FeedbackDecl&>(d).params) f.params.push_back({p.name.name, typeDesc(p.type.resolved)});
+        f.span = span(d.range);
+        g_.feedback.push_back(std::move(f));
+        break;
+      }
+      case DeclKind::Function: case DeclKind::Sampler: case DeclKind::Action: {
+        const auto& c = static_cast<const CallableDecl&>(d);
+        ir::Function f;
+        f.name = c.name.name;
+        f.kind = d.kind == DeclKind::Function ? "function" : d.kind == DeclKind::Sampler ? "sampler" : "action";
+        f.isExtern = c.isExtern;
+        for (const auto& tp : c.typeParams) f.typeParams.push_back(tp.name);
+        for (const auto& p : c.params) f.params.push_back({p.name.name, typeDesc(p.type.resolved)});
+        f.result = c.result ? typeDesc(c.result->resolved) : ir::TypeDesc{"void", "void"};
+        if (c.body) {
+          Ctx none;
+          f.body = lower(c.body.get(), none);
+        }
+        f.span = span(d.range);
+        g_.functions.push_back(std::move(f));
+        break;
+      }
+      case DeclKind::Skill: g_.skills.push_back(d.name.name); break;
+      default: break;
+    }
+  }
+
+  std::optional<ir::Expr> lowerBoundExpr(const Expr* e, Ctx& ctx) {
+    if (e == nullptr) return std::nullopt;
+    return lower(e, ctx);
+  }
+
+  ir::Domain lowerDomain(const VarDecl& v, Ctx& ctx) {
+    ir::Domain d;
+    const Expr* e = v.domain.get();
+    if (e == nullptr) return d;
+    if (e->kind == ExprKind::Range) {
+      d.bounds.push_back({lower(e->operands[0].get(), ctx), lower(e->operands[1].get(), ctx)});
+    } else if (e->kind == ExprKind::Call) {  // box(x:, y:, yaw:/z:)
+      const Type* t = v.type.resolved;
+      std::vector<std::string> order = t->kind == TypeKind::SE2 ? std::vector<std::string>{"x", "y", "yaw"}
+                                                                : std::vector<std::string>{"x", "y", "z"};
+      if (t->kind == TypeKind::Vec) order.resize(static_cast<std::size_t>(std::min(3, t->size)));
+      for (const auto& name : order) {
+        ir::Bound b;
+        for (const auto& a : e->args) {
+          if (a.name.name == name && a.value->kind == ExprKind::Range) {
+            b.lo = lower(a.value->operands[0].get(), ctx);
+            b.hi = lower(a.value->operands[1].get(), ctx);
+          }
+        }
+        d.bounds.push_back(std::move(b));
+      }
+    } else if (e->kind == ExprKind::List && v.type.resolved->kind == TypeKind::Vec) {
+      for (const auto& r : e->operands) {
+        d.bounds.push_back({lower(r->operands[0].get(), ctx), lower(r->operands[1].get(), ctx)});
+      }
+    } else {
+      d.set = lower(e, ctx);
+    }
+    return d;
+  }
+
+  void reportEmptyRange(const VarDecl& v, const ir::Domain& d) {
+    for (const auto& b : d.bounds) {
+      if (b.lo && b.hi && b.lo->op == "num" && b.hi->op == "num" && b.lo->number > b.hi->number) {
+        diags_.error("E0311", v.domain->range, fmt::format("the domain of '{}' is empty: {} > {}", v.name.name,
+                                                           b.lo->number, b.hi->number));
+      }
+    }
+  }
+
+  void lowerVar(const VarDecl& v, Ctx& ctx, std::vector<ir::VarId>& out) {
+    std::vector<std::pair<std::string, std::optional<CVal>>> members;
+    if (v.index) {
+      auto values = enumerate(v.index->set.get(), ctx);
+      if (!values) {
+        diags_.error("E0305", v.index->set->range, "the index set of a variable family must be known at compile time");
+        return;
+      }
+      for (const auto& val : *values) members.emplace_back(val.text, val);
+    } else {
+      members.emplace_back("", std::nullopt);
+    }
+    for (const auto& [member, val] : members) {
+      ir::Variable var;
+      var.id = static_cast<ir::VarId>(g_.variables.size());
+      var.name = ctx.prefix + v.name.name + (member.empty() ? "" : "[" + member + "]");
+      var.type = typeDesc(v.type.resolved);
+      Ctx inner = ctx;
+      if (val && !v.index->binder.name.empty()) {
+        // The index binder may appear in the domain: var pos[i in Pot] : real in 0 .. limit[i];
+        // It is not a BinderDecl; such domains see the member through the family's index only.
+      }
+      var.domain = lowerDomain(v, inner);
+      reportEmptyRange(v, var.domain);
+      if (v.init) var.init = lower(v.init.get(), inner);
+      if (!member.empty()) { var.family = ctx.prefix + v.name.name; var.indexText = member; }
+      var.scope = ctx.scope;
+      var.span = span(v.range);
+      ctx.vars[&v][member] = var.id;
+      out.push_back(var.id);
+      g_.variables.push_back(std::move(var));
+    }
+  }
+
+  std::uint32_t addConstraint(std::string name, ir::Expr expr, const std::string& scope, SourceRange at) {
+    ir::Constraint c;
+    c.id = static_cast<std::uint32_t>(g_.constraints.size());
+    c.name = std::move(name);
+    std::set<ir::VarId> vars;
+    collectVars(expr, vars);
+    c.vars.assign(vars.begin(), vars.end());
+    c.expr = std::move(expr);
+    c.scope = scope;
+    c.span = span(at);
+    g_.constraints.push_back(std::move(c));
+    return g_.constraints.back().id;
+  }
+
+  // Unrolls nested top-level foralls over compile-time sets.
+  void lowerRequire(const RequireDecl& r, Ctx& ctx, std::vector<std::uint32_t>& out, const std::string& base,
+                    const Expr* cond, std::string suffix) {
+    if (cond->kind == ExprKind::Quantifier && cond->quant == QuantKind::Forall) {
+      auto values = enumerate(cond->binder->set.get(), ctx);
+      if (values) {
+        const auto& names = cond->binder->names;
+        std::vector<std::size_t> pos(names.size(), 0);
+        if (values->empty()) return;
+        while (true) {
+          Ctx inner = ctx;
+          std::string binding;
+          for (std::size_t i = 0; i < names.size(); ++i) {
+            inner.env[names[i].get()] = (*values)[pos[i]];
+            binding += (i ? "," : "") + (*values)[pos[i]].text;
+          }
+          const Expr* where = cond->operands[0].get();
+          auto decided = decide(where, inner);
+          if (!decided || *decided) {
+            const std::string s = suffix + "[" + binding + "]";
+            if (decided) {
+              lowerRequire(r, inner, out, base, cond->operands[1].get(), s);
+            } else {
+              ir::Expr imp;
+              imp.op = "=>";
+              imp.type = {"bool", "bool"};
+              imp.children.push_back(lower(where, inner));
+              imp.children.push_back(lower(cond->operands[1].get(), inner));
+              out.push_back(addConstraint(base + s, std::move(imp), inner.scope, r.range));
+            }
+          }
+          std::size_t k = names.size();
+          while (k > 0) {
+            --k;
+            if (++pos[k] < values->size()) break;
+            pos[k] = 0;
+            if (k == 0) { k = SIZE_MAX; break; }
+          }
+          if (k == SIZE_MAX || names.empty()) break;
+        }
+        return;
+      }
+    }
+    out.push_back(addConstraint(base + suffix, lower(cond, ctx), ctx.scope, r.range));
+  }
+
+  void lowerSample(const SampleDecl& s, Ctx& ctx, std::vector<std::uint32_t>& out) {
+    std::vector<Ctx> bindings;
+    if (s.forBinder) {
+      auto values = enumerate(s.forBinder->set.get(), ctx);
+      if (!values) {
+        diags_.error("E0305", s.forBinder->set->range, "the 'for' set of a sample statement must be known at compile time");
+        return;
+      }
+      for (const auto& v : *values) {
+        Ctx inner = ctx;
+        for (const auto& n : s.forBinder->names) inner.env[n.get()] = v;
+        bindings.push_back(std::move(inner));
+      }
+    } else {
+      bindings.push_back(ctx);
+    }
+    for (auto& inner : bindings) {
+      ir::Sampler smp;
+      smp.id = static_cast<std::uint32_t>(g_.samplers.size());
+      smp.sampler = s.sampler.name;
+      std::set<ir::VarId> writes, reads;
+      for (const auto& t : s.targets) {
+        if (t->kind == ExprKind::Name && t->ref.kind == RefKind::Variable) {
+          for (const auto& [m, id] : lookupVars(t->ref.decl, inner)) writes.insert(id);
+        } else {
+          collectVars(lower(t.get(), inner), writes);
+        }
+      }
+      const auto* callee = s.samplerRef.kind == RefKind::Sampler ? static_cast<const CallableDecl*>(s.samplerRef.decl) : nullptr;
+      for (const auto* a : orderedArgs(callee, s.args)) {
+        smp.args.push_back(lower(a->value.get(), inner));
+        collectVars(smp.args.back(), reads);
+      }
+      smp.writes.assign(writes.begin(), writes.end());
+      smp.reads.assign(reads.begin(), reads.end());
+      smp.scope = inner.scope;
+      smp.span = span(s.range);
+      out.push_back(smp.id);
+      g_.samplers.push_back(std::move(smp));
+    }
+  }
+
+  void lowerBody(const std::vector<const Decl*>& body, Ctx& ctx, std::vector<ir::VarId>& vars,
+                 std::vector<std::uint32_t>& constraints, std::vector<std::uint32_t>& samplers,
+                 std::vector<std::uint32_t>& costs) {
+    for (const Decl* d : body) {
+      if (d->kind == DeclKind::Var) lowerVar(static_cast<const VarDecl&>(*d), ctx, vars);
+    }
+    std::size_t anonymous = 0;
+    for (const Decl* d : body) {
+      if (d->kind == DeclKind::Require) {
+        const auto& r = static_cast<const RequireDecl&>(*d);
+        const std::string base = ctx.prefix + (r.name.name.empty() ? fmt::format("require#{}", ++anonymous) : r.name.name);
+        lowerRequire(r, ctx, constraints, base, r.condition.get(), "");
+      } else if (d->kind == DeclKind::Sample) {
+        lowerSample(static_cast<const SampleDecl&>(*d), ctx, samplers);
+      } else if (d->kind == DeclKind::Cost) {
+        const auto& c = static_cast<const CostDecl&>(*d);
+        ir::Cost cost;
+        cost.maximize = c.maximize;
+        cost.expr = lower(c.value.get(), ctx);
+        std::set<ir::VarId> vs;
+        collectVars(cost.expr, vs);
+        cost.vars.assign(vs.begin(), vs.end());
+        cost.span = span(c.range);
+        costs.push_back(static_cast<std::uint32_t>(g_.costs.size()));
+        g_.costs.push_back(std::move(cost));
+      }
+    }
+  }
+
+  static std::vector<const Decl*> raw(const std::vector<std::unique_ptr<Decl>>& body) {
+    std::vector<const Decl*> out;
+    for (const auto& d : body) out.push_back(d.get());
+    return out;
+  }
+
+  ir::Action lowerAction(const ActionStmt& s, Ctx& ctx) {
+    ir::Action a;
+    a.span = span(s.range);
+    switch (s.kind) {
+      case ActionStmtKind::Call: {
+        a.kind = "call";
+        a.name = s.callee.name;
+        const auto* callee = s.calleeRef.kind == RefKind::Action ? static_cast<const CallableDecl*>(s.calleeRef.decl) : nullptr;
+        for (const auto* arg : orderedArgs(callee, s.args)) a.args.push_back(lower(arg->value.get(), ctx));
+        break;
+      }
+      case ActionStmtKind::For:
+        a.kind = "for";
+        for (const auto& n : s.forBinder->names) a.binders.push_back(n->name.name);
+        a.set = lower(s.forBinder->set.get(), ctx);
+        for (const auto& b : s.body) a.body.push_back(lowerAction(*b, ctx));
+        break;
+      case ActionStmtKind::If:
+        a.kind = "if";
+        a.condition = lower(s.condition.get(), ctx);
+        for (const auto& b : s.body) a.body.push_back(lowerAction(*b, ctx));
+        for (const auto& b : s.elseBody) a.elseBody.push_back(lowerAction(*b, ctx));
+        break;
+      case ActionStmtKind::Block:
+        a.kind = "block";
+        for (const auto& b : s.body) a.body.push_back(lowerAction(*b, ctx));
+        break;
+    }
+    return a;
+  }
+
+  void lowerTask(const TaskDecl& t, std::set<std::string>& usedSkills) {
+    ir::Task task;
+    task.name = t.name.name;
+    task.span = span(t.range);
+    task.vars = globalVars_;
+    task.constraints = globalConstraints_;
+    task.samplers = globalSamplers_;
+    task.costs = globalCosts_;
+    Ctx ctx;
+    ctx.scope = "task:" + t.name.name;
+    lowerBody(raw(t.body), ctx, task.vars, task.constraints, task.samplers, task.costs);
+    for (const auto& inst : t.instances) {
+      if (inst.skillDecl == nullptr) continue;
+      usedSkills.insert(inst.skill.name);
+      ir::SkillInstance si;
+      si.skill = inst.skill.name;
+      si.name = inst.instanceName();
+      si.span = span(inst.range);
+      Ctx sctx;
+      sctx.scope = fmt::format("skill:{}/{}", t.name.name, si.name);
+      sctx.prefix = si.name + ".";
+      sctx.skill = inst.skillDecl;
+      for (const auto& a : inst.args) {
+        ir::Expr x = lower(a.value.get(), ctx);
+        if (x.op == "var") si.params.push_back(static_cast<ir::VarId>(x.id));
+        sctx.skillParams.push_back(std::move(x));
+      }
+      std::vector<ir::VarId> vars;
+      std::vector<std::uint32_t> constraints, samplers, costs;
+      lowerBody(raw(inst.skillDecl->body), sctx, vars, constraints, samplers, costs);
+      for (const auto& a : inst.skillDecl->actions) si.actions.push_back(lowerAction(*a, sctx));
+      task.vars.insert(task.vars.end(), vars.begin(), vars.end());
+      task.constraints.insert(task.constraints.end(), constraints.begin(), constraints.end());
+      task.samplers.insert(task.samplers.end(), samplers.begin(), samplers.end());
+      task.costs.insert(task.costs.end(), costs.begin(), costs.end());
+      si.vars = std::move(vars);
+      si.constraints = std::move(constraints);
+      si.samplers = std::move(samplers);
+      task.instances.push_back(std::move(si));
+    }
+    g_.tasks.push_back(std::move(task));
+  }
+
+  // --- generators ---------------------------------------------------------------------------
+
+  static double constNumber(const Expr* e) {
+    if (e == nullptr) return 0;
+    if (e->kind == ExprKind::Unary && e->unaryOp == UnaryOp::Neg) return -constNumber(e->operands[0].get());
+    return e->number;
+  }
+
+  void lowerGenerator(const PersonalDecl& p) {
+    ir::Generator g;
+    g.name = p.name.name;
+    g.span = span(p.range);
+    for (const auto& prm : p.params) g.params.push_back({prm.name.name, typeDesc(prm.type.resolved)});
+    for (const auto& pat : p.patterns) {
+      g.patterns.push_back({pat.param.name, static_cast<std::uint32_t>(std::max(0, pat.paramIndex)),
+                            pat.kind == PatternKind::Glob ? "glob" : "regex", pat.pattern, span(pat.patternRange)});
+    }
+    for (const auto& c : p.captures) g.captures.push_back(c.name);
+    for (const auto& k : p.perKeys) g.perKeys.push_back(k.name);
+    Ctx none;
+    for (const auto& f : p.factors) {
+      ir::ModelFactor mf;
+      mf.label = generatorFactorName(p, f);
+      mf.kind = f.kind.name;
+      mf.span = span(f.range);
+      std::vector<const Arg*> positional;
+      for (const auto& a : f.args) {
+        if (a.name.name.empty()) positional.push_back(&a);
+        else if (a.name.name == "prompt") mf.prompt = a.value->text;
+        else if (a.name.name == "learning") mf.learning = a.value->text;
+        else if (a.name.name == "scale") mf.scale = a.value->text;
+        else if (a.name.name == "rating") mf.rating = a.value->text;
+      }
+      if (!positional.empty()) {
+        mf.feature = lower(positional[0]->value.get(), none);
+        for (int i : paramsRead(positional[0]->value.get())) mf.params.push_back(p.params[i].name.name);
+      }
+      if (positional.size() >= 2 && positional[1]->value->kind == ExprKind::Range) {
+        mf.lo = constNumber(positional[1]->value->operands[0].get());
+        mf.hi = constNumber(positional[1]->value->operands[1].get());
+      }
+      if (positional.size() >= 3) mf.direction = positional[2]->value->text;
+      g.factors.push_back(std::move(mf));
+    }
+    if (!p.accepts.empty()) g.accept = p.accepts[0]->number;
+    if (!p.fallbacks.empty()) g.fallback = p.fallbacks[0]->number;
+    for (const auto& rule : p.learnRules) {
+      ir::LearnRule r;
+      r.event = rule.event.name;
+      r.span = span(rule.range);
+      for (const auto& b : rule.binders) {
+        const std::string& n = b->name.name;
+        r.binders.push_back(n.empty() ? "_" : n);
+        bool binds = false;
+        for (const auto& prm : p.params) binds = binds || prm.name.name == n;
+        for (const auto& c : p.captures) binds = binds || c.name == n;
+        r.binds.push_back(binds && !n.empty() ? n : "");
+      }
+      for (const auto& l : rule.labels) r.labels.push_back({l.factor.name, lower(l.value.get(), none)});
+      if (rule.condition) r.condition = lower(rule.condition.get(), none);
+      g.learnRules.push_back(std::move(r));
+    }
+    warnIfUnmatched(p, g);
+    g_.generators.push_back(std::move(g));
+  }
+
+  // W0401: some parameter's pattern (with its type) matches no variable of any task.
+  void warnIfUnmatched(const PersonalDecl& p, const ir::Generator& g) {
+    for (std::size_t i = 0; i < p.params.size(); ++i) {
+      const ir::TypeDesc want = g.params[i].type;
+      const PatternClause* pat = nullptr;
+      for (const auto& pc : p.patterns) {
+        if (pc.paramIndex == static_cast<int>(i)) pat = &pc;
+      }
+      std::optional<GlobPattern> glob;
+      std::optional<std::regex> re;
+      std::string error;
+      std::size_t at = 0;
+      if (pat && pat->kind == PatternKind::Glob) glob = parseGlob(pat->pattern, error, at);
+      if (pat && pat->kind == PatternKind::Regex) re = compileRegex(pat->pattern, error);
+      bool any = false;
+      for (const auto& v : g_.variables) {
+        if (v.type.spelling != want.spelling) continue;
+        std::map<std::string, std::string> b;
+        if (pat == nullptr || (glob && matchGlob(*glob, v.name, b)) || (re && std::regex_match(v.name, *re))) {
+          any = true;
+          break;
+        }
+      }
+      if (!any) {
+        Diagnostic& d = diags_.warning("W0401", pat ? pat->patternRange : p.params[i].name.range,
+                                       fmt::format("no {} variable of any task matches parameter '{}' of generator '{}'",
+                                                   want.spelling, p.params[i].name.name, p.name.name));
+        d.help("`cbtlc emit FILE` lists every variable's name and type");
+      }
+    }
+  }
+
+  const GlobalSymbols& symbols_;
+  const SourceManager& sources_;
+  DiagnosticEngine& diags_;
+  ir::ConstraintGraph& g_;
+  Ctx globalCtx_;
+  std::vector<ir::VarId> globalVars_;
+  std::vector<std::uint32_t> globalConstraints_, globalSamplers_, globalCosts_;
+};
+
+}  // namespace
+
+bool lowerToGraph(const std::vector<std::unique_ptr<Module>>& modules, const GlobalSymbols& symbols,
+                  const SourceManager& sources, DiagnosticEngine& diags, ir::ConstraintGraph& graph) {
+  const std::size_t before = diags.errorCount();
+  Lowerer(symbols, sources, diags, graph).run(modules);
+  return diags.errorCount() == before;
+}
+
+}  // namespace cbtl

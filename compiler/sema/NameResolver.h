@@ -1,0 +1,25 @@
+// NameResolver.h — the `resolve-names` pass.
+//
+// Builds the global symbol table from every module of the translation unit, resolves every type as
+// written to a semantic Type, and every name in expressions, samples, actions, skill instances and
+// learning rules to its declaration (Expr::ref and friends). Scopes, innermost first: quantifier and
+// learn binders, function / generator / skill parameters, skill or task variables, then the global
+// namespace, then unambiguous enum members, then built-ins (pi, uniform, box). Reports E02xx and the
+// type-argument errors E0309; suggests the closest name for typos.
+#pragma once
+
+#include "ast/Ast.h"
+#include "diag/DiagnosticEngine.h"
+#include "sema/Symbols.h"
+#include "sema/Type.h"
+
+#include <memory>
+#include <vector>
+
+namespace cbtl {
+
+// Resolves all modules (root first, imports after). Returns false if errors were reported.
+bool resolveNames(const std::vector<std::unique_ptr<Module>>& modules, TypeContext& types, GlobalSymbols& symbols,
+                  DiagnosticEngine& diags);
+
+}  // namespace cbtl

@@ -1,0 +1,156 @@
+// cbtlc — the .cbtl compiler: check files, emit the constraint graph, dump any pass, explain codes.
+// Exit codes: 0 ok, 1 errors in the input, 2 usage, 70 internal error.
+#include "diag/DiagnosticCodes.h"
+#include "diag/DiagnosticRenderer.h"
+#include "driver/Pipeline.h"
+#include "ir/GraphPrinter.h"
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+
+namespace {
+
+struct CommonOptions {
+  std::string format = "text";
+  std::size_t errorLimit = 50;
+  bool warningsAsErrors = false;
+  std::string stdlibDir;
+};
+
+void addCommon(CLI::App* cmd, CommonOptions& o) {
+  cmd->add_option("--diagnostics-format", o.format, "how diagnostics are printed: text or json (one object per line)")
+      ->check(CLI::IsMember({"text", "json"}));
+  cmd->add_option("--error-limit", o.errorLimit, "stop showing errors after this many (default 50)");
+  cmd->add_flag("--warnings-as-errors,-W", o.warningsAsErrors, "treat warnings as errors");
+  cmd->add_option("--stdlib", o.stdlibDir, "read std.* modules from DIR/std/ instead of the embedded standard library");
+}
+
+// Prints the diagnostics of one translation unit; returns the exit code for its outcome.
+int report(const cbtl::TranslationUnit& tu, const cbtl::PipelineResult& result, const CommonOptions& o,
+           const std::string& path, bool missing) {
+  if (missing) {
+    if (o.format == "json") {
+      fmt::print(stderr, "{{\"severity\":\"error\",\"code\":\"E0204\",\"message\":\"cannot read file '{}'\"}}\n", path);
+    } else {
+      fmt::print(stderr, "cbtlc: error: cannot read file '{}'\n", path);
+    }
+    return 1;
+  }
+  for (const auto& d : tu.diags.sorted()) {
+    if (o.format == "json") fmt::print(stderr, "{}\n", cbtl::renderDiagnosticJson(d, tu.sources));
+    else fmt::print(stderr, "{}", cbtl::renderDiagnosticText(d, tu.sources));
+  }
+  if (o.format == "text" && (tu.diags.errorCount() > 0 || tu.diags.warningCount() > 0)) {
+    fmt::print(stderr, "{}: {} error{}, {} warning{}{}\n", path, tu.diags.errorCount(), tu.diags.errorCount() == 1 ? "" : "s",
+               tu.diags.warningCount(), tu.diags.warningCount() == 1 ? "" : "s",
+               tu.diags.droppedCount() ? fmt::format(" ({} not shown: error limit)", tu.diags.droppedCount()) : "");
+  }
+  if (result.outcome == cbtl::PipelineOutcome::InternalError) return 70;
+  return result.outcome == cbtl::PipelineOutcome::Ok ? 0 : 1;
+}
+
+cbtl::CompileOptions compileOptions(const CommonOptions& o) {
+  cbtl::CompileOptions c;
+  c.stdlibDir = o.stdlibDir;
+  c.errorLimit = o.errorLimit;
+  c.warningsAsErrors = o.warningsAsErrors;
+  return c;
+}
+
+bool readable(const std::string& path) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(path, ec);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"cbtlc: the CBTL compiler. Checks .cbtl files and emits their constraint graph."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "cbtlc 0.1.0");
+  int exitCode = 0;
+
+  CommonOptions checkOpts;
+  std::vector<std::string> checkFiles;
+  bool summary = false;
+  auto* check = app.add_subcommand("check", "check files and report diagnostics");
+  check->add_option("files", checkFiles, "the .cbtl files")->required();
+  check->add_flag("--summary", summary, "print a one-line summary of each file's constraint graph");
+  addCommon(check, checkOpts);
+  check->callback([&] {
+    for (const auto& path : checkFiles) {
+      cbtl::TranslationUnit tu(compileOptions(checkOpts));
+      const bool missing = !readable(path);
+      cbtl::PipelineResult r;
+      if (!missing) r = cbtl::compileFile(tu, path);
+      const int code = report(tu, r, checkOpts, path, missing);
+      if (code == 0 && summary) {
+        const auto& g = tu.graph;
+        fmt::print("{}: ok — domain {}, {} tasks, {} variables, {} constraints, {} samplers, {} generators\n", path,
+                   g.domain.empty() ? "<unnamed>" : g.domain, g.tasks.size(), g.variables.size(), g.constraints.size(),
+                   g.samplers.size(), g.generators.size());
+      }
+      exitCode = std::max(exitCode, code);
+    }
+  });
+
+  CommonOptions emitOpts;
+  std::string emitFile, emitFormat = "text", dumpAfter;
+  auto* emit = app.add_subcommand("emit", "print the constraint graph, or the representation after one pass");
+  emit->add_option("file", emitFile, "the .cbtl file")->required();
+  emit->add_option("--format", emitFormat, "graph format: text, json or dot")->check(CLI::IsMember({"text", "json", "dot"}));
+  emit->add_option("--dump-after", dumpAfter, "print the representation after this pass instead of the graph")
+      ->check(CLI::IsMember(cbtl::passNames()));
+  addCommon(emit, emitOpts);
+  emit->callback([&] {
+    cbtl::TranslationUnit tu(compileOptions(emitOpts));
+    const bool missing = !readable(emitFile);
+    cbtl::PipelineResult r;
+    if (!missing) r = cbtl::compileFile(tu, emitFile, dumpAfter, dumpAfter);
+    exitCode = report(tu, r, emitOpts, emitFile, missing);
+    if (exitCode != 0) return;
+    if (!dumpAfter.empty()) {
+      fmt::print("{}", r.dump);
+    } else if (emitFormat == "json") {
+      fmt::print("{}", cbtl::ir::toJson(tu.graph));
+    } else if (emitFormat == "dot") {
+      fmt::print("{}", cbtl::ir::toDot(tu.graph));
+    } else {
+      fmt::print("{}", cbtl::ir::toText(tu.graph));
+    }
+  });
+
+  std::string code;
+  bool listAll = false;
+  auto* explain = app.add_subcommand("explain", "explain a diagnostic code, e.g. cbtlc explain E0201");
+  explain->add_option("code", code, "the code");
+  explain->add_flag("--list", listAll, "list every code with its summary");
+  explain->callback([&] {
+    if (listAll || code.empty()) {
+      for (const auto& info : cbtl::diagnosticCodes()) fmt::print("{}  {}\n", info.code, info.summary);
+      return;
+    }
+    const auto* info = cbtl::findDiagnosticCode(code);
+    if (info == nullptr) {
+      fmt::print(stderr, "cbtlc: error: unknown diagnostic code '{}'; `cbtlc explain --list` lists them\n", code);
+      exitCode = 2;
+      return;
+    }
+    fmt::print("{}: {}\n\n{}\n", info->code, info->summary, info->explanation);
+  });
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int c = app.exit(e);
+    return c == 0 ? 0 : 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "cbtlc: internal error: {}\nthis is a bug in cbtlc; please report it with the input file.\n", e.what());
+    return 70;
+  }
+  return exitCode;
+}

@@ -1,0 +1,121 @@
+#include "textpref/TextBackend.h"
+
+#include <fmt/core.h>
+
+#include <set>
+
+namespace cbtl::textpref {
+
+const char* backendKindName(BackendKind kind) {
+  return kind == BackendKind::OfflineDescriptor ? "offline-descriptor" : "openai-compatible";
+}
+
+std::optional<BackendKind> parseBackendKind(std::string_view name) {
+  if (name == "offline-descriptor") return BackendKind::OfflineDescriptor;
+  if (name == "openai-compatible") return BackendKind::OpenAiCompatible;
+  return std::nullopt;
+}
+
+Result<TextBackendConfig> textBackendConfigFromJson(const nlohmann::json& j) {
+  auto bad = [](const std::string& what) { return Error{ErrorKind::Configuration, what}; };
+  if (!j.is_object()) return bad("the text-backend configuration must be a JSON object");
+  static const std::set<std::string> known{
+      "backend",     "base_url",    "model",     "api_key_env", "max_tokens_field", "connect_timeout_ms",
+      "request_timeout_ms", "max_attempts", "cache_dir", "cache_mode", "scale", "renormalize", "split",
+      "min_coverage", "top_logprobs", "seed"};
+  for (const auto& [key, value] : j.items())
+    if (!known.count(key)) return bad(fmt::format("unknown text-backend option \"{}\"", key));
+
+  TextBackendConfig c;
+  auto text = [&](const char* key, std::string& out) -> std::optional<Error> {
+    if (!j.contains(key)) return std::nullopt;
+    if (!j[key].is_string()) return bad(fmt::format("text-backend option \"{}\" must be a string", key));
+    out = j[key].get<std::string>();
+    return std::nullopt;
+  };
+  auto integer = [&](const char* key, auto& out, long long lo, long long hi) -> std::optional<Error> {
+    if (!j.contains(key)) return std::nullopt;
+    if (!j[key].is_number_integer() || j[key].get<long long>() < lo || j[key].get<long long>() > hi)
+      return bad(fmt::format("text-backend option \"{}\" must be an integer in {}..{}", key, lo, hi));
+    out = static_cast<std::remove_reference_t<decltype(out)>>(j[key].get<long long>());
+    return std::nullopt;
+  };
+  std::string backend = backendKindName(c.kind), cacheDir, cacheMode = cacheModeName(c.cacheMode),
+              scale = ratingScaleName(c.scale), split = splitPolicyName(c.split);
+  for (auto e : {text("backend", backend), text("base_url", c.chat.baseUrl), text("model", c.chat.model),
+                 text("api_key_env", c.chat.apiKeyEnv), text("max_tokens_field", c.chat.maxTokensField),
+                 text("cache_dir", cacheDir), text("cache_mode", cacheMode), text("scale", scale),
+                 text("split", split),
+                 integer("connect_timeout_ms", c.chat.connectTimeoutMs, 1, 3600000),
+                 integer("request_timeout_ms", c.chat.requestTimeoutMs, 1, 3600000),
+                 integer("max_attempts", c.chat.retry.maxAttempts, 1, 100),
+                 integer("top_logprobs", c.topLogprobs, 1, 20), integer("seed", c.seed, 0, INT64_MAX)})
+    if (e) return *e;
+  if (j.contains("renormalize")) {
+    if (!j["renormalize"].is_boolean()) return bad("text-backend option \"renormalize\" must be a boolean");
+    c.renormalize = j["renormalize"].get<bool>();
+  }
+  if (j.contains("min_coverage")) {
+    if (!j["min_coverage"].is_number() || j["min_coverage"].get<double>() < 0.0 || j["min_coverage"].get<double>() > 1.0)
+      return bad("text-backend option \"min_coverage\" must be a number in 0..1");
+    c.minCoverage = j["min_coverage"].get<double>();
+  }
+  auto kind = parseBackendKind(backend);
+  if (!kind) return bad(fmt::format("unknown backend \"{}\" (offline-descriptor or openai-compatible)", backend));
+  auto mode = parseCacheMode(cacheMode);
+  if (!mode) return bad(fmt::format("unknown cache mode \"{}\" (off, read-write, read-only, record)", cacheMode));
+  auto sc = parseRatingScale(scale);
+  if (!sc) return bad(fmt::format("unknown rating scale \"{}\" (digits or options)", scale));
+  auto sp = parseSplitPolicy(split);
+  if (!sp) return bad(fmt::format("unknown split policy \"{}\" (auto, always, never)", split));
+  c.kind = *kind;
+  c.cacheMode = *mode;
+  c.cacheDir = cacheDir;
+  c.scale = *sc;
+  c.split = *sp;
+  return c;
+}
+
+namespace {
+// A client together with the cache it points to, so that a model's shared_ptr<ChatClient> keeps both alive even
+// after the TextBackend is gone.
+struct ClientWithCache {
+  std::shared_ptr<ResponseCache> cache;
+  ChatClient client;
+  ClientWithCache(std::shared_ptr<ResponseCache> c, const ChatConfig& config, SleepFunction sleep)
+      : cache(std::move(c)), client(config, cache.get(), std::move(sleep)) {}
+};
+}  // namespace
+
+TextBackend::TextBackend(TextBackendConfig config, WarningSink warn, SleepFunction sleep)
+    : config_(std::move(config)) {
+  if (config_.kind == BackendKind::OpenAiCompatible) {
+    cache_ = std::make_shared<ResponseCache>(config_.cacheDir, config_.cacheMode, std::move(warn));
+    auto holder = std::make_shared<ClientWithCache>(cache_, config_.chat, std::move(sleep));
+    client_ = std::shared_ptr<ChatClient>(holder, &holder->client);  // aliasing: owns the holder
+  }
+}
+
+LlmModelOptions TextBackend::llmOptions(const PromptTemplates& prompts) const {
+  LlmModelOptions o;
+  o.prompts = prompts;
+  o.scale = config_.scale;
+  o.renormalize = config_.renormalize;
+  o.split = config_.split;
+  o.minCoverage = config_.minCoverage;
+  o.topLogprobs = config_.topLogprobs;
+  o.seed = config_.seed;
+  return o;
+}
+
+std::unique_ptr<TextPreferenceModel> TextBackend::makeModel(const PromptTemplates& prompts) const {
+  if (config_.kind == BackendKind::OfflineDescriptor) return std::make_unique<OfflineDescriptorModel>(config_.offline);
+  return std::make_unique<LlmPreferenceModel>(client_, llmOptions(prompts));
+}
+
+std::shared_ptr<LlmPreferenceModel> TextBackend::makeJudge(const PromptTemplates& prompts) const {
+  if (config_.kind == BackendKind::OfflineDescriptor) return nullptr;
+  return std::make_shared<LlmPreferenceModel>(client_, llmOptions(prompts));
+}
+
+}  // namespace cbtl::textpref

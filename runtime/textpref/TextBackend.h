@@ -1,0 +1,71 @@
+// TextBackend.h — one configured text-preference backend, from which each personalized constraint gets its model.
+//
+// The runtime reads a TextBackendConfig (from flags or a JSON file), creates one TextBackend per run, and asks it
+// for one TextPreferenceModel per constraint generator, passing the generator's prompt templates. With the
+// language-model backend all models share one ChatClient and one ResponseCache (owned by the TextBackend, which
+// must outlive its models only through the shared pointers it hands out). With the offline backend the prompts are
+// ignored and every model is an independent OfflineDescriptorModel.
+#pragma once
+
+#include "textpref/ChatClient.h"
+#include "textpref/LlmPreferenceModel.h"
+#include "textpref/OfflineDescriptorModel.h"
+#include "textpref/ResponseCache.h"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string_view>
+
+namespace cbtl::textpref {
+
+enum class BackendKind { OfflineDescriptor, OpenAiCompatible };
+
+const char* backendKindName(BackendKind kind);  // "offline-descriptor", "openai-compatible"
+std::optional<BackendKind> parseBackendKind(std::string_view name);
+
+struct TextBackendConfig {
+  BackendKind kind = BackendKind::OfflineDescriptor;  // the embedded default: no network, no key
+  ChatConfig chat;                                    // language-model backend only
+  std::filesystem::path cacheDir;                     // empty: memory-only cache
+  CacheMode cacheMode = CacheMode::ReadWrite;
+  RatingScale scale = RatingScale::Digits;
+  bool renormalize = true;
+  SplitPolicy split = SplitPolicy::Auto;
+  double minCoverage = 0.5;
+  int topLogprobs = 20;
+  std::int64_t seed = 0;
+  OfflineModelOptions offline;
+};
+
+// Reads a config object such as
+//   {"backend": "openai-compatible", "base_url": "http://127.0.0.1:8080/v1", "model": "qwen2.5",
+//    "api_key_env": "OPENAI_API_KEY", "max_tokens_field": "max_tokens", "connect_timeout_ms": 5000,
+//    "request_timeout_ms": 60000, "max_attempts": 5, "cache_dir": "cache/llm", "cache_mode": "read-only",
+//    "scale": "digits", "renormalize": true, "split": "auto", "min_coverage": 0.5, "top_logprobs": 20, "seed": 0}
+// Every key is optional; unknown keys and wrong types are Configuration errors naming the key.
+Result<TextBackendConfig> textBackendConfigFromJson(const nlohmann::json& j);
+
+class TextBackend {
+ public:
+  explicit TextBackend(TextBackendConfig config, WarningSink warn = {}, SleepFunction sleep = realSleep());
+
+  const TextBackendConfig& config() const { return config_; }
+  // A fresh model for one constraint generator. Never null.
+  std::unique_ptr<TextPreferenceModel> makeModel(const PromptTemplates& prompts) const;
+  // The language-model judge for simulated users (null with the offline backend).
+  std::shared_ptr<LlmPreferenceModel> makeJudge(const PromptTemplates& prompts) const;
+  // The shared cache (null with the offline backend).
+  const ResponseCache* cache() const { return cache_.get(); }
+
+ private:
+  LlmModelOptions llmOptions(const PromptTemplates& prompts) const;
+
+  TextBackendConfig config_;
+  std::shared_ptr<ResponseCache> cache_;
+  std::shared_ptr<ChatClient> client_;
+};
+
+}  // namespace cbtl::textpref

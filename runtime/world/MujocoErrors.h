@@ -1,0 +1,26 @@
+// MujocoErrors.h — MuJoCo's process-wide error and warning hooks.
+//
+// MuJoCo's default error handler prints "Press Enter to exit", waits on stdin and calls exit(1). Every
+// entry point of the robot world calls installMujocoHandlers() first; after that a MuJoCo error throws
+// MujocoError (a std::runtime_error) from the failing call, and warnings are counted and kept (the last
+// one) instead of being appended to MUJOCO_LOG.TXT in the working directory.
+// The handlers are process-global; installing them is idempotent and thread-safe.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace cbtl::world {
+
+class MujocoError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+void installMujocoHandlers();
+
+// Number of MuJoCo warnings seen in this process, and the text of the most recent one.
+long mujocoWarningCount();
+std::string lastMujocoWarning();
+
+}  // namespace cbtl::world

@@ -1,0 +1,105 @@
+// Known colliding and free states of the arm, its held object and the mobile base.
+#include "Collision.h"
+#include "InverseKinematics.h"
+#include "WorldTestSupport.h"
+
+namespace cbtl::world {
+namespace {
+
+TEST(WorldCollision, NamedFeedingConfigurationsAreFree) {
+  Workspace ws(test::feedingScene());
+  for (const auto& q : {configs::kRetract, configs::kHome, configs::kAbovePlate, configs::kDrinkGaze, configs::kZero}) {
+    const auto r = checkArm(ws, q);
+    EXPECT_TRUE(r.free()) << toString(r.status) << " " << r.first << " / " << r.second;
+  }
+}
+
+TEST(WorldCollision, ArmThroughTableCollides) {
+  Workspace ws(test::feedingScene());
+  // The gripper pushed 2.5 cm into the table top (found by IK to a tool target below the table top).
+  const ArmConfig q{-0.828, 0.843, 2.992, -1.341, 0.135, -0.966, -1.004};
+  const auto r = checkArm(ws, q);
+  EXPECT_EQ(r.status, CollisionStatus::RobotWorld) << r.first << " / " << r.second;
+  EXPECT_GT(r.depth, 0.0);
+}
+
+TEST(WorldCollision, ArmFoldedIntoItselfIsSelfCollision) {
+  Workspace ws(test::feedingScene());
+  const ArmConfig q{0, 0, 0, 2.6, 0, 2.2, 0};
+  const auto r = checkArm(ws, q);
+  EXPECT_EQ(r.status, CollisionStatus::SelfCollision) << toString(r.status) << " " << r.first << " / " << r.second;
+}
+
+TEST(WorldCollision, HeldObjectIsChecked) {
+  Workspace ws(test::feedingScene());
+  // Tool 0.25 m above the table top, pointing down; the drink held 0.2 m past the tool reaches into the table.
+  const ArmConfig above{-0.7673, 0.7097, 2.6987, -0.6445, 0.2934, -1.8253, -1.0358};
+  ws.setArm(above);
+  ASSERT_TRUE(checkRobotCollisions(ws).free());
+  ASSERT_EQ(ws.setObjectPose("drink", ws.toolPose() * Pose3::fromPosition({0, 0, 0.2})), StateStatus::Ok);
+  ASSERT_EQ(ws.setHeld(std::string("drink")), StateStatus::Ok);
+  const auto r = checkRobotCollisions(ws);
+  EXPECT_EQ(r.status, CollisionStatus::HeldObject) << toString(r.status) << " " << r.first << " / " << r.second;
+  // The held object follows the arm: in the home configuration it is clear of everything.
+  ws.setArm(configs::kHome);
+  EXPECT_TRUE(checkRobotCollisions(ws).free()) << checkRobotCollisions(ws).first;
+  ASSERT_EQ(ws.setHeld(std::nullopt), StateStatus::Ok);
+  EXPECT_TRUE(checkRobotCollisions(ws).free());
+}
+
+TEST(WorldCollision, MobileBaseIntoShelfCollides) {
+  Workspace ws(test::homeScene());
+  WorldState st;
+  st.arm = configs::kRetract;
+  ASSERT_EQ(ws.setState(st), StateStatus::Ok);
+  EXPECT_TRUE(checkRobotCollisions(ws).free()) << checkRobotCollisions(ws).first;
+  st.base = {0.0, 0.62, 0.0};
+  ASSERT_EQ(ws.setState(st), StateStatus::Ok);
+  EXPECT_EQ(checkRobotCollisions(ws).status, CollisionStatus::RobotWorld);
+}
+
+// The fast pair-list check agrees with MuJoCo's full collision pass on random states, with and without a
+// held object, in both scenes.
+void expectMethodsAgree(Workspace& ws, Rng& rng, int n) {
+  CollisionOptions full;
+  full.method = CollisionMethod::FullScene;
+  int colliding = 0;
+  for (int i = 0; i < n; ++i) {
+    const ArmConfig q = randomConfig(ws.scene(), rng);
+    const auto fast = checkArm(ws, q);
+    const auto ref = checkArm(ws, q, full);
+    ASSERT_EQ(fast.free(), ref.free()) << "config " << i << ": " << toString(ref.status) << " " << ref.first << "/"
+                                       << ref.second << " vs " << toString(fast.status);
+    colliding += ref.free() ? 0 : 1;
+  }
+  EXPECT_GT(colliding, 0);
+  EXPECT_LT(colliding, n);
+}
+
+TEST(WorldCollision, FastCheckAgreesWithFullScenePass) {
+  Rng rng(12);
+  Workspace feeding(test::feedingScene());
+  expectMethodsAgree(feeding, rng, 1500);
+  feeding.setArm(configs::kHome);
+  ASSERT_EQ(feeding.setObjectPose("drink", feeding.toolPose() * Pose3::fromPosition({0, 0, 0.05})), StateStatus::Ok);
+  ASSERT_EQ(feeding.setHeld(std::string("drink")), StateStatus::Ok);
+  expectMethodsAgree(feeding, rng, 1500);
+  Workspace home(test::homeScene());
+  WorldState st;
+  st.base = {0.0, -0.1, 0.0};
+  ASSERT_EQ(home.setState(st), StateStatus::Ok);
+  expectMethodsAgree(home, rng, 1500);
+}
+
+TEST(WorldCollision, UnknownObjectInStateIsRejected) {
+  Workspace ws(test::feedingScene());
+  WorldState st;
+  st.objects["teapot"] = Pose3::identity();
+  EXPECT_EQ(ws.setState(st), StateStatus::UnknownObject);
+  WorldState limits;
+  limits.arm = {0, 3.0, 0, 0, 0, 0, 0};
+  EXPECT_EQ(ws.setState(limits), StateStatus::OutOfLimits);
+}
+
+}  // namespace
+}  // namespace cbtl::world

@@ -1,0 +1,120 @@
+// Motion planning: solved paths are re-checked at a finer resolution than the planner used; statuses for
+// invalid endpoints; the SE(2) base planner; determinism.
+#include "InverseKinematics.h"
+#include "MotionPlanner.h"
+#include "WorldTestSupport.h"
+
+namespace cbtl::world {
+namespace {
+
+// Every interpolated state of the path at `spacing` (rad, L∞) is collision-free and within limits.
+void expectPathFree(Workspace& ws, const std::vector<ArmConfig>& path, double spacing) {
+  const auto dense = densifyArmPath(ws.scene(), path, spacing);
+  for (std::size_t i = 0; i < dense.size(); ++i) {
+    ASSERT_TRUE(ws.scene().withinLimits(dense[i])) << "waypoint " << i;
+    const auto r = checkArm(ws, dense[i]);
+    ASSERT_TRUE(r.free()) << "waypoint " << i << ": " << r.first << " / " << r.second;
+  }
+}
+
+TEST(WorldPlanner, RetractToAbovePlate) {
+  Workspace ws(test::feedingScene());
+  Rng rng(5);
+  const ArmPlan plan = planArm(ws, configs::kRetract, configs::kAbovePlate, rng);
+  ASSERT_EQ(plan.status, PlanStatus::Solved);
+  ASSERT_GE(plan.path.size(), 2U);
+  EXPECT_EQ(plan.path.front(), configs::kRetract);
+  EXPECT_EQ(plan.path.back(), configs::kAbovePlate);
+  expectPathFree(ws, plan.path, 0.0025);
+}
+
+TEST(WorldPlanner, RandomValidQueriesGiveFreePaths) {
+  Workspace ws(test::feedingScene());
+  Rng rng(11);
+  int solved = 0;
+  for (int i = 0; i < 8; ++i) {
+    ArmConfig a, b;
+    do a = randomConfig(ws.scene(), rng); while (!checkArm(ws, a).free());
+    do b = randomConfig(ws.scene(), rng); while (!checkArm(ws, b).free());
+    const ArmPlan plan = planArm(ws, a, b, rng);
+    if (!plan.solved()) continue;
+    ++solved;
+    expectPathFree(ws, plan.path, 0.0025);
+  }
+  EXPECT_GE(solved, 7);
+}
+
+TEST(WorldPlanner, InvalidEndpointsAreReported) {
+  Workspace ws(test::feedingScene());
+  Rng rng(1);
+  const ArmConfig inTable{-0.828, 0.843, 2.992, -1.341, 0.135, -0.966, -1.004};
+  EXPECT_EQ(planArm(ws, inTable, configs::kRetract, rng).status, PlanStatus::InvalidStart);
+  EXPECT_EQ(planArm(ws, configs::kRetract, inTable, rng).status, PlanStatus::InvalidGoal);
+  const ArmConfig outOfLimits{0, 2.5, 0, 0, 0, 0, 0};
+  EXPECT_EQ(planArm(ws, configs::kRetract, outOfLimits, rng).status, PlanStatus::InvalidGoal);
+}
+
+TEST(WorldPlanner, TinyBudgetIsExhausted) {
+  Workspace ws(test::feedingScene());
+  Rng rng(2);
+  PlanOptions o;
+  o.maxIterations = 0;
+  // A valid pair whose straight segment is blocked, so that RRTConnect must run.
+  ArmConfig a, b;
+  do {
+    do a = randomConfig(ws.scene(), rng); while (!checkArm(ws, a).free());
+    do b = randomConfig(ws.scene(), rng); while (!checkArm(ws, b).free());
+  } while (armSegmentFree(ws, a, b, 0.005));
+  const ArmPlan plan = planArm(ws, a, b, rng, o);
+  EXPECT_EQ(plan.status, PlanStatus::BudgetExhausted);
+  EXPECT_TRUE(plan.path.empty());
+}
+
+TEST(WorldPlanner, SameSeedSamePath) {
+  Workspace ws(test::feedingScene());
+  Rng a(77), b(77);
+  const ArmPlan p1 = planArm(ws, configs::kRetract, configs::kAbovePlate, a);
+  const ArmPlan p2 = planArm(ws, configs::kRetract, configs::kAbovePlate, b);
+  ASSERT_TRUE(p1.solved());
+  EXPECT_EQ(p1.path, p2.path);
+}
+
+TEST(WorldPlanner, BaseAroundTheTableInTheHomeScene) {
+  Workspace ws(test::homeScene());
+  WorldState st;
+  st.arm = configs::kRetract;
+  ASSERT_EQ(ws.setState(st), StateStatus::Ok);
+  Rng rng(3);
+  const BasePlan plan = planBase(ws, {0.0, -0.55, 0.0}, rng);
+  ASSERT_EQ(plan.status, PlanStatus::Solved);
+  ASSERT_GE(plan.path.size(), 2U);
+  // Re-check the base path at 2.5 mm / 2.5 mrad.
+  JointSpace se2{{false, false, true}};
+  std::vector<Waypoint> wps;
+  for (const auto& p : plan.path) wps.push_back({p.x, p.y, p.yaw});
+  for (const auto& w : densify(se2, wps, 0.0025)) {
+    ws.setBase({w[0], w[1], w[2]});
+    ASSERT_TRUE(checkRobotCollisions(ws).free());
+  }
+}
+
+TEST(WorldPlanner, PathDurationUsesVelocityLimits) {
+  const auto& scene = *test::feedingScene();
+  // Joint 1 (1.3963 rad/s) turns 1 rad, then joint 7 (1.2218 rad/s) turns 1 rad the short way across ±pi.
+  const ArmConfig a{0, 0, 0, 0, 0, 0, 3.0};
+  ArmConfig b = a;
+  b[0] = 1.0;
+  ArmConfig c = b;
+  c[6] = 3.0 + 1.0 - 2 * M_PI;
+  EXPECT_NEAR(armPathDuration(scene, {a, b, c}), 1.0 / 1.3963 + 1.0 / 1.2218, 1e-9);
+  EXPECT_EQ(armPathDuration(scene, {a}), 0.0);
+}
+
+TEST(WorldPlanner, BasePlanningNeedsAMobileBase) {
+  Workspace ws(test::feedingScene());
+  Rng rng(3);
+  EXPECT_EQ(planBase(ws, {0.1, 0.0, 0.0}, rng).status, PlanStatus::NoMobileBase);
+}
+
+}  // namespace
+}  // namespace cbtl::world

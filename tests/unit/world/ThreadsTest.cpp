@@ -1,0 +1,41 @@
+// One shared Scene, one Workspace per thread: concurrent planning and IK give the same answers as serial
+// runs with the same seeds.
+#include "InverseKinematics.h"
+#include "MotionPlanner.h"
+#include "WorldTestSupport.h"
+
+#include <thread>
+
+namespace cbtl::world {
+namespace {
+
+struct Outcome {
+  std::vector<ArmConfig> path;
+  ArmConfig ik{};
+};
+
+Outcome work(const std::shared_ptr<const Scene>& scene, std::uint64_t seed) {
+  Workspace ws(scene);
+  Rng rng(seed);
+  Outcome o;
+  o.path = planArm(ws, configs::kRetract, configs::kAbovePlate, rng).path;
+  o.ik = solveIk(ws, ws.forwardKinematics(configs::kDrinkGaze), configs::kRetract, rng).q;
+  return o;
+}
+
+TEST(WorldThreads, ConcurrentWorkspacesMatchSerialRuns) {
+  const auto scene = test::feedingScene();
+  const Outcome serialA = work(scene, 21), serialB = work(scene, 22);
+  Outcome a, b;
+  std::thread ta([&] { a = work(scene, 21); });
+  std::thread tb([&] { b = work(scene, 22); });
+  ta.join();
+  tb.join();
+  EXPECT_EQ(a.path, serialA.path);
+  EXPECT_EQ(b.path, serialB.path);
+  EXPECT_EQ(a.ik, serialA.ik);
+  EXPECT_EQ(b.ik, serialB.ik);
+}
+
+}  // namespace
+}  // namespace cbtl::world

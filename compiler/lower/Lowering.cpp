@@ -565,10 +565,6 @@ class Lowerer {
       var.name = ctx.prefix + v.name.name + (member.empty() ? "" : "[" + member + "]");
       var.type = typeDesc(v.type.resolved);
       Ctx inner = ctx;
-      if (val && !v.index->binder.name.empty()) {
-        // The index binder may appear in the domain: var pos[i in Pot] : real in 0 .. limit[i];
-        // It is not a BinderDecl; such domains see the member through the family's index only.
-      }
       var.domain = lowerDomain(v, inner);
       reportEmptyRange(v, var.domain);
       if (v.init) var.init = lower(v.init.get(), inner);

@@ -908,31 +908,27 @@ class Checker {
   }
 
   void checkRecursion(const std::vector<std::unique_ptr<Module>>& modules) {
-    std::map<const FuncDecl*, int> state;  // 0 unvisited, 1 on stack, 2 done
-    std::function<bool(const FuncDecl*)> visit = [&](const FuncDecl* f) -> bool {
-      int& s = state[f];
-      if (s == 1) return true;
-      if (s == 2) return false;
-      s = 1;
+    // Depth-first search; a callee found on the stack closes a cycle, reported once at its caller.
+    std::map<const FuncDecl*, int> state;  // 0 unvisited, 1 on the stack, 2 done
+    std::function<void(const FuncDecl*)> visit = [&](const FuncDecl* f) {
+      state[f] = 1;
       std::vector<const FuncDecl*> callees;
       collectCalls(f->body.get(), callees);
       for (const FuncDecl* c : callees) {
-        if (visit(c)) {
-          if (state[f] != 3) {
-            diags_.error("E0308", f->name.range, fmt::format("function '{}' is recursive", f->name.name))
-                .note(fmt::format("it calls '{}'", c->name.name), c->name.range);
-          }
-          state[f] = 2;
-          return false;  // report each cycle once
+        if (state[c] == 1) {
+          diags_.error("E0308", f->name.range, fmt::format("function '{}' is recursive", f->name.name))
+              .note(fmt::format("it calls '{}'", c->name.name), c->name.range);
+          break;
         }
+        if (state[c] == 0) visit(c);
       }
-      s = 2;
-      return false;
+      state[f] = 2;
     };
     for (const auto& m : modules) {
       for (const auto& d : m->decls) {
-        if (d->kind == DeclKind::Function && !static_cast<const FuncDecl&>(*d).isExtern) {
-          visit(static_cast<const FuncDecl*>(d.get()));
+        const auto* f = static_cast<const FuncDecl*>(d.get());
+        if (d->kind == DeclKind::Function && !f->isExtern && state[f] == 0) {
+          visit(f);
         }
       }
     }

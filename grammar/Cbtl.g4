@@ -18,8 +18,11 @@ file        : domainDecl? topDecl* EOF ;
 domainDecl  : DOMAIN qualifiedName SEMI ;
 qualifiedName : ident (DOT ident)* ;
 
+// A domain header after the first declaration is accepted here so that the compiler can say what is
+// wrong with it (E0211) instead of reporting a syntax error.
 topDecl
-    : importDecl
+    : domainDecl
+    | importDecl
     | worldDecl
     | robotDecl
     | constDecl
@@ -122,6 +125,7 @@ personalClause
     | MODEL modelFactor (STAR modelFactor)* (PER ident (COMMA ident)*)? SEMI    # modelClause
     | ACCEPT expr SEMI                                                          # acceptClause
     | FALLBACK expr SEMI                                                        # fallbackClause
+    | IF expr SEMI                                                              # guardClause
     | LEARN ident LPAREN (learnBinder (COMMA learnBinder)*)? RPAREN
             ARROW_FAT labelItem (COMMA labelItem)* (IF expr)? SEMI              # learnClause
     ;
@@ -195,8 +199,7 @@ primary
     | STRING                                                    # stringLit
     | (TRUE | FALSE)                                            # boolLit
     | ident                                                     # nameRef
-    | LPAREN expr RPAREN                                        # parenExpr
-    | LPAREN expr COMMA expr (COMMA expr)* RPAREN               # tupleLit
+    | LPAREN expr (COMMA expr)* RPAREN                          # parenOrTuple
     | LBRACK (expr (COMMA expr)* COMMA?)? RBRACK                # listLit
     ;
 

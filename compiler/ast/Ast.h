@@ -310,6 +310,9 @@ struct PersonalDecl : Decl {
   std::vector<SourceRange> modelRanges;  // one per `model` clause
   std::vector<ExprPtr> accepts;
   std::vector<ExprPtr> fallbacks;
+  // `if EXPR;` guards over the parameters: where one is false the constraint does not apply (holds, with
+  // no uncertainty). Several guards are conjoined.
+  std::vector<ExprPtr> guards;
   std::vector<LearnRule> learnRules;
   // Capture names from glob patterns, in order of first appearance (set by the generator checker).
   std::vector<Ident> captures;

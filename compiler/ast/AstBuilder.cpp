@@ -146,6 +146,11 @@ class Builder {
   // --- declarations ----------------------------------------------------------------------------
 
   std::unique_ptr<Decl> topDecl(P::TopDeclContext* ctx) {
+    if (auto* c = ctx->domainDecl()) {  // a misplaced or repeated header; name resolution reports it (E0211)
+      auto d = start<DomainDecl>(c);
+      if (c->qualifiedName() != nullptr) d->name = qualified(c->qualifiedName());
+      return d;
+    }
     if (auto* c = ctx->importDecl()) {
       auto d = start<ImportDecl>(c);
       if (c->STRING() != nullptr) {
@@ -326,6 +331,8 @@ class Builder {
         d->accepts.push_back(expr(a->expr()));
       } else if (auto* fb = dynamic_cast<P::FallbackClauseContext*>(clause)) {
         d->fallbacks.push_back(expr(fb->expr()));
+      } else if (auto* gc = dynamic_cast<P::GuardClauseContext*>(clause)) {
+        d->guards.push_back(expr(gc->expr()));
       } else if (auto* l = dynamic_cast<P::LearnClauseContext*>(clause)) {
         LearnRule rule;
         rule.range = range(l);
@@ -413,7 +420,7 @@ class Builder {
       d->name = ident(b->ident());
       for (auto* item : b->taskItem()) {
         if (item->scopeStmt() != nullptr) {
-          if (auto s = scopeStmt(item->scopeStmt())) d->body.push_back(std::move(s));
+          if (auto stmt = scopeStmt(item->scopeStmt())) d->body.push_back(std::move(stmt));
         } else {
           for (auto* inst : item->skillInstance()) d->instances.push_back(skillInstance(inst));
         }
@@ -595,14 +602,16 @@ class Builder {
       e->text = ident(c->ident()).name;
       return e;
     }
-    if (auto* c = dynamic_cast<P::ParenExprContext*>(ctx)) {
-      ExprPtr inner = expr(c->expr());
-      inner->range = range(ctx);  // the parentheses belong to the expression for diagnostics
-      return inner;
-    }
-    if (auto* c = dynamic_cast<P::TupleLitContext*>(ctx)) {
+    // One grammar alternative for both, so that a missing ')' is one error, not an ambiguity between the two.
+    if (auto* c = dynamic_cast<P::ParenOrTupleContext*>(ctx)) {
+      const auto xs = c->expr();
+      if (xs.size() == 1) {
+        ExprPtr inner = expr(xs.front());
+        inner->range = range(ctx);  // the parentheses belong to the expression for diagnostics
+        return inner;
+      }
       auto e = make(ExprKind::Tuple, ctx);
-      for (auto* x : c->expr()) e->operands.push_back(expr(x));
+      for (auto* x : xs) e->operands.push_back(expr(x));
       return e;
     }
     if (auto* c = dynamic_cast<P::ListLitContext*>(ctx)) {

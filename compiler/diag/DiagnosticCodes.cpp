@@ -29,7 +29,8 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
        "Extra input was found where the declaration or expression should already be complete.\n"
        "Example:  var x : real;;   or   require x < 1 2;\nFix: remove the extra tokens."},
       {"E0107", "invalid number",
-       "A number literal is out of range or malformed.\nFix: write a finite decimal number."},
+       "A number literal is too large to be represented (beyond about 1.8e308, the range of a double).\n"
+       "Example:  const big = 1e999;\nFix: write a finite decimal number."},
       {"E0108", "nesting too deep",
        "Brackets or prefix operators are nested more than 200 levels deep, or an expression has more than\n"
        "1000 levels. The compiler refuses such input rather than risk running out of stack.\n"
@@ -67,7 +68,7 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
       {"E0210", "unknown feedback event",
        "A learning rule names an event that no 'feedback' declaration defines.\n"
        "Example:  learn viewBlockd(c) => false;\nFix: correct the name or declare: feedback viewBlocked(c: Conf<gen3>);"},
-      {"E0211", "more than one domain header",
+      {"E0211", "misplaced or repeated domain header",
        "A file has more than one 'domain NAME;' header, or it is not the first declaration.\n"
        "Fix: keep one header at the top of the file."},
       // --- E03xx: types and domains --------------------------------------------------------------
@@ -119,6 +120,15 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
       {"E0315", "invalid declaration value",
        "A constant, robot field, or initial value has a type the declaration does not accept.\n"
        "Fix: match the declared type."},
+      {"E0316", "recursive constant",
+       "A constant's value uses the constant itself, directly or through other constants, so it has no value.\n"
+       "Example:  const a = b + 1;  const b = a * 2;\nFix: give one of the constants a value that does not depend on the others."},
+      {"E0317", "too large",
+       "A declaration expands into more than the compiler accepts: an integer range used as a family index or a\n"
+       "sample statement's 'for' set may have at most 100000 members, and the whole constraint graph at most\n"
+       "2000000 variables, constraints, samplers, costs, actions and expression nodes. (A top-level 'forall'\n"
+       "with more than 10000 instances is not an error: it is kept as one quantified constraint.)\n"
+       "Example:  var slot[0 .. 1000000] : bool;\nFix: use smaller sets, or a quantified constraint over an observation."},
       // --- E04xx: personalized constraint generators -------------------------------------------------
       {"E0401", "malformed initiation pattern",
        "A glob or regular expression in a 'when' clause is not well formed: an unclosed '{' capture, an empty\n"
@@ -185,8 +195,10 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
        "file; please report it together with the file."},
       // --- warnings ------------------------------------------------------------------------------
       {"W0201", "unused variable",
-       "A variable is declared but no constraint, sampler, cost or action reads it, so the solver can only\n"
-       "give it its initial or a uniform value.\nFix: use it or remove it."},
+       "A variable is declared but no constraint, sampler, cost, action or personalized constraint generator\n"
+       "reads it, so its value never matters. Reported once per declaration (all members of a family, all\n"
+       "instances of a skill).\nExample:  var forgotten : real in 0 .. 1;   (and nothing mentions it)\n"
+       "Fix: use it or remove it."},
       {"W0401", "pattern matches no variable",
        "A generator's initiation pattern (with its parameter types) matches no variable of any task, so the\n"
        "generator never produces a constraint.\nFix: check the pattern against the names in 'cbtlc emit'."},
@@ -196,8 +208,9 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
       {"W0501", "skill never used",
        "A skill is declared but no task runs it.\nFix: run it in a task or remove it."},
       {"W0502", "variable has no sampler",
-       "A variable with an unbounded domain has neither a sampler nor an initial value, so the solver cannot\n"
-       "produce values for it.\nFix: add 'sample x ~ ...;' or bound its domain."},
+       "A variable that is used but has an unbounded domain (a real, int, vec, SE2, SE3 or text without 'in')\n"
+       "has neither a sampler nor an initial value, so the solver cannot produce values for it.\n"
+       "Example:  var free : real;  require free > 1;\nFix: add 'sample x ~ ...;', an initial value, or bound its domain."},
   };
   return codes;
 }

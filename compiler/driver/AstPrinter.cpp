@@ -115,6 +115,10 @@ class Printer {
           line(depth + 1, "factor " + (f.label.name.empty() ? "" : f.label.name + " = ") + f.kind.name);
           for (const auto& a : f.args) expr(a.value.get(), depth + 2);
         }
+        for (const auto& c : p.guards) {
+          line(depth + 1, "if");
+          expr(c.get(), depth + 2);
+        }
         for (const auto& r : p.learnRules) {
           line(depth + 1, "learn " + r.event.name);
           for (const auto& l : r.labels) expr(l.value.get(), depth + 2);

@@ -30,9 +30,11 @@ struct Pass {
   std::function<std::string(const TranslationUnit&)> dump;
 };
 
+// Reads a regular file. Anything else (a directory, a FIFO, /dev/zero, /dev/stdin) is refused: an import
+// must never block or read without end.
 bool readFile(const std::string& path, std::string& out) {
   std::error_code ec;
-  if (fs::is_directory(path, ec)) return false;
+  if (!fs::is_regular_file(path, ec)) return false;
   std::ifstream in(path, std::ios::binary);
   if (!in) return false;
   std::ostringstream ss;
@@ -80,6 +82,11 @@ class Loader {
     }
     if (!found) {
       if (!at.valid()) return;  // the implicit prelude is optional
+      if (!tu_.options.stdlibDir.empty()) {
+        tu_.diags.error("E0204", at, fmt::format("cannot read standard-library module '{}' from '{}'", name, path))
+            .note("--stdlib DIR reads std.NAME from DIR/std/NAME.cbtl");
+        return;
+      }
       Diagnostic& d = tu_.diags.error("E0203", at, fmt::format("unknown standard-library module '{}'", name));
       std::vector<std::string> names;
       for (const auto& [n, t] : embeddedStdlib()) names.push_back(n);
@@ -106,6 +113,8 @@ class Loader {
       if (d->kind == DeclKind::Import) imports.push_back(static_cast<const ImportDecl*>(d.get()));
     }
     for (const ImportDecl* imp : imports) {
+      // Error recovery may leave an import without a target (the syntax error is already reported).
+      if (imp->target.empty() || !imp->targetRange.valid()) continue;
       std::string key;
       if (imp->isPath) {
         const fs::path base = fs::path(tu_.sources.file(file).path).parent_path();
@@ -211,7 +220,7 @@ PipelineResult compileSource(TranslationUnit& tu, const std::string& path, std::
        [&](TranslationUnit& t) {
          const auto problems = ir::validate(t.graph);
          if (problems.empty()) return true;
-         Diagnostic& d = t.diags.error("E0901", SourceRange{t.root, 0, 0}, "the compiler produced an invalid constraint graph");
+         Diagnostic& d = t.diags.error("E0901", t.sources.insertionPoint(t.root, 0), "the compiler produced an invalid constraint graph");
          for (const auto& p : problems) d.note(p);
          result.outcome = PipelineOutcome::InternalError;
          return false;

@@ -143,6 +143,7 @@ struct Generator {
   std::vector<std::string> captures;
   std::vector<std::string> perKeys;
   std::vector<ModelFactor> factors;
+  std::optional<Expr> guard;  // bool over the parameters; false: the constraint does not apply
   double accept = 0.5;
   double fallback = 0.5;
   std::vector<LearnRule> learnRules;

@@ -172,7 +172,11 @@ std::string toText(const ConstraintGraph& g) {
       if (f.feature) o << "(" << exprText(*f.feature, g);
       if (f.kind == "interval" || f.kind == "threshold") o << ", " << num(f.lo) << " .. " << num(f.hi);
       if (!f.direction.empty()) o << ", " << f.direction;
-      if (f.kind == "text") o << ", scale " << f.scale << ", rating " << f.rating;
+      if (f.kind == "text") {
+        if (!f.prompt.empty()) o << ", prompt " << nlohmann::json(f.prompt).dump();
+        if (!f.learning.empty()) o << ", learning " << nlohmann::json(f.learning).dump();
+        o << ", scale " << f.scale << ", rating " << f.rating;
+      }
       o << ")\n";
     }
     if (!gen.perKeys.empty()) {
@@ -180,6 +184,7 @@ std::string toText(const ConstraintGraph& g) {
       for (const auto& k : gen.perKeys) o << " " << k;
       o << "\n";
     }
+    if (gen.guard) o << "  if " << exprText(*gen.guard, g) << "\n";
     o << "  accept " << num(gen.accept) << ", fallback " << num(gen.fallback) << "\n";
     for (const auto& r : gen.learnRules) {
       o << "  learn " << r.event << "(";
@@ -241,10 +246,10 @@ std::string toJson(const ConstraintGraph& g) {
   auto functionJson = [](const Function& f) {
     json params = json::array();
     for (const auto& p : f.params) params.push_back({{"name", p.name}, {"type", p.type.spelling}});
-    json j{{"name", f.name}, {"kind", f.kind}, {"extern", f.isExtern}, {"type_params", f.typeParams}, {"params", params},
-           {"result", f.result.spelling}, {"span", spanJson(f.span)}};
-    if (f.body) j["body"] = exprJson(*f.body);
-    return j;
+    json fn{{"name", f.name}, {"kind", f.kind}, {"extern", f.isExtern}, {"type_params", f.typeParams}, {"params", params},
+            {"result", f.result.spelling}, {"span", spanJson(f.span)}};
+    if (f.body) fn["body"] = exprJson(*f.body);
+    return fn;
   };
   j["feedback"] = json::array();
   for (const auto& f : g.feedback) j["feedback"].push_back(functionJson(f));
@@ -293,7 +298,7 @@ std::string toJson(const ConstraintGraph& g) {
                        {"condition", optExpr(r.condition)}, {"span", spanJson(r.span)}});
     }
     j["generators"].push_back({{"name", gen.name}, {"arity", gen.params.size()}, {"params", params}, {"patterns", patterns},
-                               {"captures", gen.captures}, {"per", gen.perKeys}, {"factors", factors}, {"accept", gen.accept},
+                               {"captures", gen.captures}, {"per", gen.perKeys}, {"factors", factors}, {"guard", optExpr(gen.guard)}, {"accept", gen.accept},
                                {"fallback", gen.fallback}, {"learn", rules}, {"span", spanJson(gen.span)}});
   }
   j["skills"] = g.skills;

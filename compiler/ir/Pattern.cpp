@@ -1,6 +1,8 @@
 #include "ir/Pattern.h"
 
+#include <algorithm>
 #include <cctype>
+#include <string>
 
 namespace cbtl {
 
@@ -9,7 +11,8 @@ std::optional<GlobPattern> parseGlob(const std::string& text, std::string& error
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (c == '*') {
-      g.pieces.push_back({GlobPattern::Kind::Star, ""});
+      // "**" means the same as "*"; one piece keeps the matcher's recursion bounded by the name's length.
+      if (g.pieces.empty() || g.pieces.back().kind != GlobPattern::Kind::Star) g.pieces.push_back({GlobPattern::Kind::Star, ""});
     } else if (c == '?') {
       g.pieces.push_back({GlobPattern::Kind::One, ""});
     } else if (c == '{') {
@@ -49,11 +52,14 @@ std::optional<GlobPattern> parseGlob(const std::string& text, std::string& error
 
 namespace {
 
-// Backtracking matcher; patterns are short, so the worst case stays small in practice, and a budget of
-// steps bounds pathological patterns such as "*a*a*a*a*b".
+// Backtracking matcher; patterns are short, so the worst case stays small in practice. A budget of steps
+// bounds pathological patterns such as "*a*a*a*a*b", and a depth limit bounds the recursion (one level
+// per piece) for absurdly long patterns and names; past either the pattern does not match.
+constexpr std::size_t kMaxGlobDepth = 2000;
+
 bool matchFrom(const GlobPattern& g, std::size_t p, const std::string& s, std::size_t i,
                std::map<std::string, std::string>& b, long& budget) {
-  if (--budget < 0) return false;
+  if (--budget < 0 || p > kMaxGlobDepth) return false;
   if (p == g.pieces.size()) return i == s.size();
   const auto& piece = g.pieces[p];
   switch (piece.kind) {
@@ -94,9 +100,50 @@ bool matchGlob(const GlobPattern& glob, const std::string& name, std::map<std::s
   return true;
 }
 
+namespace {
+
+// The deepest nesting of groups in an ECMAScript pattern (escapes and bracket expressions skipped).
+std::size_t groupDepth(const std::string& text) {
+  std::size_t depth = 0, deepest = 0;
+  bool inClass = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\\') {
+      ++i;
+    } else if (inClass) {
+      inClass = c != ']';
+    } else if (c == '[') {
+      inClass = true;
+    } else if (c == '(') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ')' && depth > 0) {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+}  // namespace
+
 std::optional<std::regex> compileRegex(const std::string& text, std::string& error) {
+  // std::regex compiles and matches recursively: a long or deeply nested pattern could exhaust the stack
+  // (a pattern comes from a .cbtl file, so from anyone). Name patterns are short; these limits are generous.
+  if (text.size() > kMaxRegexLength) {
+    error = "the regular expression is longer than " + std::to_string(kMaxRegexLength) + " characters";
+    return std::nullopt;
+  }
+  if (groupDepth(text) > kMaxRegexNesting) {
+    error = "the regular expression nests groups more than " + std::to_string(kMaxRegexNesting) + " deep";
+    return std::nullopt;
+  }
   try {
+#if defined(__GLIBCXX__)
+    // libstdc++'s breadth-first executor matches in polynomial time (no exponential backtracking on patterns
+    // such as "(a*)*b"); it refuses back-references, which name patterns do not need.
+    return std::regex(text, std::regex::ECMAScript | std::regex_constants::__polynomial);
+#else
     return std::regex(text, std::regex::ECMAScript);
+#endif
   } catch (const std::regex_error& e) {
     error = e.what();
     return std::nullopt;

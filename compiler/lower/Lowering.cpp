@@ -1,6 +1,7 @@
 #include "lower/Lowering.h"
 
 #include "ir/Pattern.h"
+#include "lower/UsageWarnings.h"
 #include "sema/GeneratorChecker.h"
 #include "sema/Type.h"
 #include "sema/TypeChecker.h"
@@ -17,8 +18,8 @@ namespace {
 
 // A value known at compile time, used for family indices and quantifier bindings.
 struct CVal {
-  enum class Kind { Enum, Int, Item, None } kind = Kind::None;
-  std::string text;     // member / entry name, or the integer as text
+  enum class Kind { Enum, Int, Item, Text, None } kind = Kind::None;
+  std::string text;     // member / entry name, the integer as text, or the string
   long long number = 0;
   const Decl* decl = nullptr;  // EnumDecl or ItemsDecl
   int index = -1;
@@ -77,6 +78,7 @@ class Lowerer {
         if (d->kind == DeclKind::Personal) lowerGenerator(static_cast<const PersonalDecl&>(*d));
       }
     }
+    if (!tooLarge_) reportUsageWarnings(g_, declOf_, diags_);
   }
 
  private:
@@ -103,6 +105,10 @@ class Lowerer {
   std::optional<CVal> evalConst(const Expr* e, const Ctx& ctx) {
     if (e == nullptr) return std::nullopt;
     switch (e->kind) {
+      case ExprKind::String: {
+        CVal v; v.kind = CVal::Kind::Text; v.text = e->text;
+        return v;
+      }
       case ExprKind::Number:
         if (e->number == std::floor(e->number) && std::fabs(e->number) < 1e15) {
           CVal v; v.kind = CVal::Kind::Int; v.number = static_cast<long long>(e->number); v.text = std::to_string(v.number);
@@ -120,8 +126,11 @@ class Lowerer {
         auto a = evalConst(e->operands[0].get(), ctx), b = evalConst(e->operands[1].get(), ctx);
         if (!a || !b || a->kind != CVal::Kind::Int || b->kind != CVal::Kind::Int) return std::nullopt;
         CVal v; v.kind = CVal::Kind::Int;
-        v.number = e->binaryOp == BinaryOp::Add ? a->number + b->number
-                   : e->binaryOp == BinaryOp::Sub ? a->number - b->number : a->number * b->number;
+        // A result that does not fit in 64 bits is not a usable index or bound: not a compile-time value.
+        const bool overflow = e->binaryOp == BinaryOp::Add   ? __builtin_add_overflow(a->number, b->number, &v.number)
+                              : e->binaryOp == BinaryOp::Sub ? __builtin_sub_overflow(a->number, b->number, &v.number)
+                                                             : __builtin_mul_overflow(a->number, b->number, &v.number);
+        if (overflow) return std::nullopt;
         v.text = std::to_string(v.number);
         return v;
       }
@@ -150,8 +159,9 @@ class Lowerer {
     }
   }
 
-  // The members of a compile-time finite set, or nullopt if it is not known at compile time.
-  std::optional<std::vector<CVal>> enumerate(const Expr* set, const Ctx& ctx) {
+  // The members of a compile-time finite set, or nullopt if it is not known at compile time or (then
+  // *tooLarge is set) is an integer range of more than kMaxSetSize members.
+  std::optional<std::vector<CVal>> enumerate(const Expr* set, const Ctx& ctx, bool* tooLarge = nullptr) {
     if (set == nullptr) return std::nullopt;
     if ((set->kind == ExprKind::Name) && set->ref.kind == RefKind::EnumType) {
       const auto* en = static_cast<const EnumDecl*>(set->ref.decl);
@@ -174,13 +184,21 @@ class Lowerer {
     if (set->kind == ExprKind::Range) {
       auto lo = evalConst(set->operands[0].get(), ctx), hi = evalConst(set->operands[1].get(), ctx);
       if (!lo || !hi || lo->kind != CVal::Kind::Int || hi->kind != CVal::Kind::Int) return std::nullopt;
-      if (hi->number - lo->number > 100000) return std::nullopt;
+      long long span = 0;
+      if (__builtin_sub_overflow(hi->number, lo->number, &span) || span >= static_cast<long long>(kMaxSetSize)) {
+        if (tooLarge != nullptr) *tooLarge = true;
+        return std::nullopt;
+      }
       std::vector<CVal> out;
       for (long long i = lo->number; i <= hi->number; ++i) {
         CVal v; v.kind = CVal::Kind::Int; v.number = i; v.text = std::to_string(i);
         out.push_back(v);
       }
       return out;
+    }
+    if (set->kind == ExprKind::Name && set->ref.kind == RefKind::Const) {  // a constant list, e.g. knownMeals
+      const auto* c = static_cast<const ConstDecl*>(set->ref.decl);
+      if (!c->index) return enumerate(c->value.get(), ctx, tooLarge);
     }
     if (set->kind == ExprKind::List) {
       std::vector<CVal> out;
@@ -210,6 +228,15 @@ class Lowerer {
     }
     auto a = evalConst(e->operands[0].get(), ctx), b = evalConst(e->operands[1].get(), ctx);
     if (!a || !b || a->kind != b->kind) return std::nullopt;
+    if (a->kind != CVal::Kind::Int) {
+      // Members and entries are equal when they are the same member of the same declaration (two item sets
+      // may hold entries of one type at the same position); strings by their text. Only enum members of
+      // one enum are ordered (by declaration order).
+      const bool same = a->kind == CVal::Kind::Text ? a->text == b->text : a->decl == b->decl && a->index == b->index;
+      if (e->binaryOp == BinaryOp::Eq) return same;
+      if (e->binaryOp == BinaryOp::Ne) return !same;
+      if (a->kind != CVal::Kind::Enum || a->decl != b->decl) return std::nullopt;
+    }
     const long long x = a->kind == CVal::Kind::Int ? a->number : a->index;
     const long long y = b->kind == CVal::Kind::Int ? b->number : b->index;
     switch (e->binaryOp) {
@@ -228,6 +255,7 @@ class Lowerer {
     x.type = typeDesc(t);
     if (v.kind == CVal::Kind::Int) { x.op = "num"; x.number = static_cast<double>(v.number); x.text = v.text; }
     else if (v.kind == CVal::Kind::Enum) { x.op = "enum"; x.extra = v.decl->name.name; x.text = v.text; }
+    else if (v.kind == CVal::Kind::Text) { x.op = "str"; x.text = v.text; }
     else { x.op = "item"; x.extra = v.decl->name.name; x.text = v.text; }
     return x;
   }
@@ -426,6 +454,49 @@ class Lowerer {
     for (const auto& c : x.children) collectVars(c, out);
   }
 
+  // --- size limits --------------------------------------------------------------------------
+
+  // Families, unrolled foralls, sample `for` sets and skill instances multiply declarations. These limits
+  // turn a blow-up (a typo such as 0 .. 1000000, or a fuzzer's input) into a diagnostic instead of an
+  // exhausted machine. kMaxSetSize bounds one integer range used as a family index or `for` set;
+  // kMaxGraphSize bounds the whole graph in units of one variable, constraint, sampler, cost or action plus
+  // one per expression node. Real programs stay orders of magnitude below both.
+  static constexpr std::size_t kMaxSetSize = 100000;
+  static constexpr std::size_t kMaxGraphSize = 2000000;
+  // A top-level forall is unrolled only while the number of instances stays below this; beyond it the
+  // constraint keeps its quantifier (same meaning, one hyperedge).
+  static constexpr std::size_t kMaxUnrolled = 10000;
+
+  static std::size_t nodeCount(const ir::Expr& x) {
+    std::size_t n = 1;
+    for (const auto& c : x.children) n += nodeCount(c);
+    return n;
+  }
+
+  static std::size_t actionSize(const ir::Action& a) {
+    std::size_t n = 1 + (a.set ? nodeCount(*a.set) : 0) + (a.condition ? nodeCount(*a.condition) : 0);
+    for (const auto& x : a.args) n += nodeCount(x);
+    for (const auto& b : a.body) n += actionSize(b);
+    for (const auto& b : a.elseBody) n += actionSize(b);
+    return n;
+  }
+
+  // Adds `units` to the graph's size; false (with E0317 reported once) when the graph is too large.
+  bool grow(std::size_t units, SourceRange at) {
+    if (tooLarge_) return false;
+    graphSize_ += units;
+    if (graphSize_ <= kMaxGraphSize) return true;
+    tooLarge_ = true;
+    diags_.error("E0317", at, fmt::format("the constraint graph is too large (more than {} variables, constraints, "
+                                          "samplers and expression nodes)", kMaxGraphSize))
+        .help("check the sizes of families, 'for' sets and unrolled 'forall's that this declaration expands");
+    return false;
+  }
+
+  void tooManyMembers(SourceRange at, const char* what) {
+    diags_.error("E0317", at, fmt::format("{} may have at most {} members", what, kMaxSetSize));
+  }
+
   // --- declarations -------------------------------------------------------------------------
 
   void declareTop(const Decl& d) {
@@ -550,34 +621,59 @@ class Lowerer {
   void lowerVar(const VarDecl& v, Ctx& ctx, std::vector<ir::VarId>& out) {
     std::vector<std::pair<std::string, std::optional<CVal>>> members;
     if (v.index) {
-      auto values = enumerate(v.index->set.get(), ctx);
+      bool tooLarge = false;
+      auto values = enumerate(v.index->set.get(), ctx, &tooLarge);
+      if (!values && tooLarge) {
+        tooManyMembers(v.index->set->range, "a variable family");
+        return;
+      }
       if (!values) {
         diags_.error("E0305", v.index->set->range, "the index set of a variable family must be known at compile time");
         return;
       }
-      for (const auto& val : *values) members.emplace_back(val.text, val);
+      std::set<std::string> seen;
+      for (const auto& val : *values) {
+        if (!seen.insert(val.text).second) {
+          diags_.error("E0202", v.index->set->range,
+                       fmt::format("'{}[{}]' is declared twice: the index set lists {} more than once", v.name.name,
+                                   val.text, val.text));
+          return;
+        }
+        members.emplace_back(val.text, val);
+      }
     } else {
       members.emplace_back("", std::nullopt);
     }
+    bool firstMember = true;
     for (const auto& [member, val] : members) {
       ir::Variable var;
       var.id = static_cast<ir::VarId>(g_.variables.size());
       var.name = ctx.prefix + v.name.name + (member.empty() ? "" : "[" + member + "]");
       var.type = typeDesc(v.type.resolved);
-      Ctx inner = ctx;
+      // Domains and initial values read only constants and observations (checked by check-types), so
+      // they are lowered in an empty context rather than a copy of one that grows with every variable.
+      Ctx inner;
+      inner.scope = ctx.scope;
+      inner.prefix = ctx.prefix;
       var.domain = lowerDomain(v, inner);
-      reportEmptyRange(v, var.domain);
+      if (firstMember) reportEmptyRange(v, var.domain);  // once per declaration, not per member
+      firstMember = false;
       if (v.init) var.init = lower(v.init.get(), inner);
+      std::size_t units = 1 + (var.init ? nodeCount(*var.init) : 0) + (var.domain.set ? nodeCount(*var.domain.set) : 0);
+      for (const auto& b : var.domain.bounds) units += (b.lo ? nodeCount(*b.lo) : 0) + (b.hi ? nodeCount(*b.hi) : 0);
+      if (!grow(units, v.range)) return;
       if (!member.empty()) { var.family = ctx.prefix + v.name.name; var.indexText = member; }
       var.scope = ctx.scope;
       var.span = span(v.range);
       ctx.vars[&v][member] = var.id;
       out.push_back(var.id);
       g_.variables.push_back(std::move(var));
+      declOf_.push_back(&v);
     }
   }
 
   std::uint32_t addConstraint(std::string name, ir::Expr expr, const std::string& scope, SourceRange at) {
+    grow(1 + nodeCount(expr), at);
     ir::Constraint c;
     c.id = static_cast<std::uint32_t>(g_.constraints.size());
     c.name = std::move(name);
@@ -591,46 +687,46 @@ class Lowerer {
     return g_.constraints.back().id;
   }
 
-  // Unrolls nested top-level foralls over compile-time sets.
+  // Unrolls nested top-level foralls over compile-time sets. `instances` is the number of copies the
+  // enclosing levels already make; a level that would take the total past kMaxUnrolled keeps its quantifier.
+  // Binder values are set in ctx.env for the body and removed again, so no context is copied per binding.
   void lowerRequire(const RequireDecl& r, Ctx& ctx, std::vector<std::uint32_t>& out, const std::string& base,
-                    const Expr* cond, std::string suffix) {
-    if (cond->kind == ExprKind::Quantifier && cond->quant == QuantKind::Forall) {
+                    const Expr* cond, std::string suffix, std::size_t instances = 1) {
+    if (cond->kind == ExprKind::Quantifier && cond->quant == QuantKind::Forall && !cond->binder->names.empty()) {
       auto values = enumerate(cond->binder->set.get(), ctx);
-      if (values) {
-        const auto& names = cond->binder->names;
+      const auto& names = cond->binder->names;
+      std::size_t total = instances;
+      for (std::size_t i = 0; values && i < names.size() && total <= kMaxUnrolled; ++i) total *= std::max<std::size_t>(1, values->size());
+      if (values && total <= kMaxUnrolled) {
+        if (values->empty()) return;  // vacuously true: no instance
         std::vector<std::size_t> pos(names.size(), 0);
-        if (values->empty()) return;
-        while (true) {
-          Ctx inner = ctx;
+        while (!tooLarge_) {
           std::string binding;
           for (std::size_t i = 0; i < names.size(); ++i) {
-            inner.env[names[i].get()] = (*values)[pos[i]];
+            ctx.env[names[i].get()] = (*values)[pos[i]];
             binding += (i ? "," : "") + (*values)[pos[i]].text;
           }
           const Expr* where = cond->operands[0].get();
-          auto decided = decide(where, inner);
+          auto decided = decide(where, ctx);
           if (!decided || *decided) {
             const std::string s = suffix + "[" + binding + "]";
             if (decided) {
-              lowerRequire(r, inner, out, base, cond->operands[1].get(), s);
+              lowerRequire(r, ctx, out, base, cond->operands[1].get(), s, total);
             } else {
               ir::Expr imp;
               imp.op = "=>";
               imp.type = {"bool", "bool"};
-              imp.children.push_back(lower(where, inner));
-              imp.children.push_back(lower(cond->operands[1].get(), inner));
-              out.push_back(addConstraint(base + s, std::move(imp), inner.scope, r.range));
+              imp.children.push_back(lower(where, ctx));
+              imp.children.push_back(lower(cond->operands[1].get(), ctx));
+              out.push_back(addConstraint(base + s, std::move(imp), ctx.scope, r.range));
             }
           }
+          // Next binding: the last binder varies fastest.
           std::size_t k = names.size();
-          while (k > 0) {
-            --k;
-            if (++pos[k] < values->size()) break;
-            pos[k] = 0;
-            if (k == 0) { k = SIZE_MAX; break; }
-          }
-          if (k == SIZE_MAX || names.empty()) break;
+          while (k > 0 && ++pos[k - 1] == values->size()) pos[--k] = 0;
+          if (k == 0) break;
         }
+        for (const auto& n : names) ctx.env.erase(n.get());
         return;
       }
     }
@@ -638,45 +734,55 @@ class Lowerer {
   }
 
   void lowerSample(const SampleDecl& s, Ctx& ctx, std::vector<std::uint32_t>& out) {
-    std::vector<Ctx> bindings;
-    if (s.forBinder) {
-      auto values = enumerate(s.forBinder->set.get(), ctx);
-      if (!values) {
-        diags_.error("E0305", s.forBinder->set->range, "the 'for' set of a sample statement must be known at compile time");
-        return;
-      }
-      for (const auto& v : *values) {
-        Ctx inner = ctx;
-        for (const auto& n : s.forBinder->names) inner.env[n.get()] = v;
-        bindings.push_back(std::move(inner));
-      }
-    } else {
-      bindings.push_back(ctx);
+    if (!s.forBinder) {
+      lowerSampleInstance(s, ctx, out);
+      return;
     }
-    for (auto& inner : bindings) {
-      ir::Sampler smp;
-      smp.id = static_cast<std::uint32_t>(g_.samplers.size());
-      smp.sampler = s.sampler.name;
-      std::set<ir::VarId> writes, reads;
-      for (const auto& t : s.targets) {
-        if (t->kind == ExprKind::Name && t->ref.kind == RefKind::Variable) {
-          for (const auto& [m, id] : lookupVars(t->ref.decl, inner)) writes.insert(id);
-        } else {
-          collectVars(lower(t.get(), inner), writes);
-        }
-      }
-      const auto* callee = s.samplerRef.kind == RefKind::Sampler ? static_cast<const CallableDecl*>(s.samplerRef.decl) : nullptr;
-      for (const auto* a : orderedArgs(callee, s.args)) {
-        smp.args.push_back(lower(a->value.get(), inner));
-        collectVars(smp.args.back(), reads);
-      }
-      smp.writes.assign(writes.begin(), writes.end());
-      smp.reads.assign(reads.begin(), reads.end());
-      smp.scope = inner.scope;
-      smp.span = span(s.range);
-      out.push_back(smp.id);
-      g_.samplers.push_back(std::move(smp));
+    bool tooLarge = false;
+    auto values = enumerate(s.forBinder->set.get(), ctx, &tooLarge);
+    if (!values && tooLarge) {
+      tooManyMembers(s.forBinder->set->range, "the 'for' set of a sample statement");
+      return;
     }
+    if (!values) {
+      diags_.error("E0305", s.forBinder->set->range, "the 'for' set of a sample statement must be known at compile time");
+      return;
+    }
+    // One sampler per member; the binder's value is set in ctx.env for each and removed afterwards.
+    for (const auto& v : *values) {
+      if (tooLarge_) break;
+      for (const auto& n : s.forBinder->names) ctx.env[n.get()] = v;
+      lowerSampleInstance(s, ctx, out);
+    }
+    for (const auto& n : s.forBinder->names) ctx.env.erase(n.get());
+  }
+
+  void lowerSampleInstance(const SampleDecl& s, Ctx& inner, std::vector<std::uint32_t>& out) {
+    ir::Sampler smp;
+    smp.id = static_cast<std::uint32_t>(g_.samplers.size());
+    smp.sampler = s.sampler.name;
+    std::set<ir::VarId> writes, reads;
+    for (const auto& t : s.targets) {
+      if (t->kind == ExprKind::Name && t->ref.kind == RefKind::Variable) {
+        for (const auto& [m, id] : lookupVars(t->ref.decl, inner)) writes.insert(id);
+      } else {
+        collectVars(lower(t.get(), inner), writes);
+      }
+    }
+    const auto* callee = s.samplerRef.kind == RefKind::Sampler ? static_cast<const CallableDecl*>(s.samplerRef.decl) : nullptr;
+    std::size_t units = 1;
+    for (const auto* a : orderedArgs(callee, s.args)) {
+      smp.args.push_back(lower(a->value.get(), inner));
+      collectVars(smp.args.back(), reads);
+      units += nodeCount(smp.args.back());
+    }
+    if (!grow(units, s.range)) return;
+    smp.writes.assign(writes.begin(), writes.end());
+    smp.reads.assign(reads.begin(), reads.end());
+    smp.scope = inner.scope;
+    smp.span = span(s.range);
+    out.push_back(smp.id);
+    g_.samplers.push_back(std::move(smp));
   }
 
   void lowerBody(const std::vector<const Decl*>& body, Ctx& ctx, std::vector<ir::VarId>& vars,
@@ -702,6 +808,7 @@ class Lowerer {
         collectVars(cost.expr, vs);
         cost.vars.assign(vs.begin(), vs.end());
         cost.span = span(c.range);
+        if (!grow(1 + nodeCount(cost.expr), c.range)) continue;
         costs.push_back(static_cast<std::uint32_t>(g_.costs.size()));
         g_.costs.push_back(std::move(cost));
       }
@@ -757,6 +864,7 @@ class Lowerer {
     ctx.scope = "task:" + t.name.name;
     lowerBody(raw(t.body), ctx, task.vars, task.constraints, task.samplers, task.costs);
     for (const auto& inst : t.instances) {
+      if (tooLarge_) break;
       if (inst.skillDecl == nullptr) continue;
       usedSkills.insert(inst.skill.name);
       ir::SkillInstance si;
@@ -775,7 +883,10 @@ class Lowerer {
       std::vector<ir::VarId> vars;
       std::vector<std::uint32_t> constraints, samplers, costs;
       lowerBody(raw(inst.skillDecl->body), sctx, vars, constraints, samplers, costs);
-      for (const auto& a : inst.skillDecl->actions) si.actions.push_back(lowerAction(*a, sctx));
+      for (const auto& a : inst.skillDecl->actions) {
+        si.actions.push_back(lowerAction(*a, sctx));
+        grow(actionSize(si.actions.back()), a->range);
+      }
       task.vars.insert(task.vars.end(), vars.begin(), vars.end());
       task.constraints.insert(task.constraints.end(), constraints.begin(), constraints.end());
       task.samplers.insert(task.samplers.end(), samplers.begin(), samplers.end());
@@ -831,6 +942,19 @@ class Lowerer {
       }
       if (positional.size() >= 3) mf.direction = positional[2]->value->text;
       g.factors.push_back(std::move(mf));
+    }
+    for (const auto& c : p.guards) {
+      ir::Expr e = lower(c.get(), none);
+      if (!g.guard) {
+        g.guard = std::move(e);
+      } else {
+        ir::Expr both;
+        both.op = "and";
+        both.type = e.type;
+        both.children.push_back(std::move(*g.guard));
+        both.children.push_back(std::move(e));
+        g.guard = std::move(both);
+      }
     }
     if (!p.accepts.empty()) g.accept = p.accepts[0]->number;
     if (!p.fallbacks.empty()) g.fallback = p.fallbacks[0]->number;
@@ -891,6 +1015,9 @@ class Lowerer {
   DiagnosticEngine& diags_;
   ir::ConstraintGraph& g_;
   Ctx globalCtx_;
+  std::size_t graphSize_ = 0;
+  bool tooLarge_ = false;
+  std::vector<const VarDecl*> declOf_;  // the declaration of each graph variable, by id
   std::vector<ir::VarId> globalVars_;
   std::vector<std::uint32_t> globalConstraints_, globalSamplers_, globalCosts_;
 };

@@ -10,6 +10,9 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <cstdlib>
+
 namespace cbtl {
 namespace {
 
@@ -72,15 +75,14 @@ ParseOutput parseModule(const SourceManager& sources, FileId file, DiagnosticEng
     if (ascii) return static_cast<std::uint32_t>(std::min(cp, text.size()));
     return cp < byteOfCodePoint.size() ? byteOfCodePoint[cp] : static_cast<std::uint32_t>(text.size());
   };
+  // Tokens without text of their own (end of file, tokens conjured by error recovery) get a one-byte
+  // range where they would be, so that every diagnostic has a non-empty span.
   TokenRangeFn tokenRange = [&](antlr4::Token* t) -> SourceRange {
-    if (t == nullptr) return SourceRange{file, 0, 0};
-    if (t->getType() == antlr4::Token::EOF) {
-      const auto end = static_cast<std::uint32_t>(text.size());
-      return SourceRange{file, end, end};
-    }
+    if (t == nullptr) return sources.insertionPoint(file, 0);
+    if (t->getType() == antlr4::Token::EOF) return sources.insertionPoint(file, static_cast<std::uint32_t>(text.size()));
     const std::size_t start = t->getStartIndex();
     const std::size_t stop = t->getStopIndex();
-    if (start == INVALID_INDEX || stop == INVALID_INDEX || stop + 1 < start) return SourceRange{file, toByte(start), toByte(start)};
+    if (start == INVALID_INDEX || stop == INVALID_INDEX || stop + 1 <= start) return sources.insertionPoint(file, toByte(start));
     return SourceRange{file, toByte(start), toByte(stop + 1)};
   };
 
@@ -111,6 +113,14 @@ ParseOutput parseModule(const SourceManager& sources, FileId file, DiagnosticEng
                           type == cbtlgrammar::CbtlLexer::IF || type == cbtlgrammar::CbtlLexer::FORALL ||
                           type == cbtlgrammar::CbtlLexer::EXISTS;
       if (t->getChannel() == antlr4::Token::DEFAULT_CHANNEL) prefixRun = prefix ? prefixRun + 1 : 0;
+      // The lexer accepts any digit string; a literal past the range of a double would silently become
+      // infinity, so it is refused here, where the token still has its exact range.
+      if (type == cbtlgrammar::CbtlLexer::NUMBER && !std::isfinite(std::strtod(t->getText().c_str(), nullptr))) {
+        std::string shown = t->getText();
+        if (shown.size() > 24) shown = shown.substr(0, 21) + "...";
+        diags.error("E0107", tokenRange(t), fmt::format("number '{}' is too large", shown))
+            .help("numbers must be finite doubles (at most about 1.8e308)");
+      }
       if (depth > kMaxNesting || prefixRun > kMaxNesting) {
         diags.error("E0108", tokenRange(t), fmt::format("nesting is too deep (more than {} levels)", kMaxNesting))
             .help("split the expression with constants or functions");
@@ -138,12 +148,12 @@ ParseOutput parseModule(const SourceManager& sources, FileId file, DiagnosticEng
     tokens.seek(0);
     parser.reset();
     parser.getInterpreter<antlr4::atn::ParserATNSimulator>()->setPredictionMode(antlr4::atn::PredictionMode::LL);
-    strategy = std::make_shared<SyntaxErrorStrategy>(diags, tokenRange);
+    strategy = std::make_shared<SyntaxErrorStrategy>(diags, tokenRange, sources);
     parser.setErrorHandler(strategy);
     tree = parser.file();
     out.hadSyntaxErrors = strategy->errorsReported() > 0 || parser.getNumberOfSyntaxErrors() > 0;
     if (out.hadSyntaxErrors && strategy->errorsReported() == 0) {
-      diags.error("E0101", SourceRange{file, 0, 0}, "the file could not be parsed");
+      diags.error("E0101", sources.insertionPoint(file, 0), "the file could not be parsed");
     }
   }
 

@@ -153,7 +153,7 @@ void SyntaxErrorStrategy::reportUnexpected(antlr4::Parser* parser, antlr4::Token
   if (expected.contains(static_cast<std::size_t>(CbtlParser::SEMI)) && previous != nullptr &&
       (isDeclarationKeyword(offending->getType()) || offending->getLine() > previous->getLine())) {
     const SourceRange prev = tokenRange_(previous);
-    diags_.error("E0102", SourceRange{prev.file, prev.end, prev.end},
+    diags_.error("E0102", sources_.insertionPoint(prev.file, prev.end),
                  fmt::format("expected ';' after {}", where.empty() ? "this declaration" : where));
     return;
   }
@@ -213,7 +213,7 @@ void SyntaxErrorStrategy::reportMissingToken(antlr4::Parser* parser) {
   const std::string what = describeExpected(parser, expected);
   if (previous != nullptr) {
     const SourceRange prev = tokenRange_(previous);
-    diags_.error("E0102", SourceRange{prev.file, prev.end, prev.end},
+    diags_.error("E0102", sources_.insertionPoint(prev.file, prev.end),
                  fmt::format("expected {} after {}", what,
                              where.empty() ? "'" + previous->getText() + "'" : where));
   } else {

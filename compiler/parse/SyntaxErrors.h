@@ -19,8 +19,9 @@ class SyntaxErrorStrategy : public antlr4::DefaultErrorStrategy {
   // Maps an ANTLR token to the byte range it covers in the source file.
   using TokenRange = std::function<SourceRange(antlr4::Token*)>;
 
-  SyntaxErrorStrategy(DiagnosticEngine& diags, TokenRange tokenRange)
-      : diags_(diags), tokenRange_(std::move(tokenRange)) {}
+  // `sources` gives one-byte spans for insertion points (a missing token after the previous one).
+  SyntaxErrorStrategy(DiagnosticEngine& diags, TokenRange tokenRange, const SourceManager& sources)
+      : diags_(diags), tokenRange_(std::move(tokenRange)), sources_(sources) {}
 
   std::size_t errorsReported() const { return reported_; }
 
@@ -37,6 +38,7 @@ class SyntaxErrorStrategy : public antlr4::DefaultErrorStrategy {
 
   DiagnosticEngine& diags_;
   TokenRange tokenRange_;
+  const SourceManager& sources_;
   std::size_t reported_ = 0;
 };
 

@@ -30,13 +30,6 @@ void collectParams(const Expr* e, std::set<int>& out) {
   if (e->binder) collectParams(e->binder->set.get(), out);
 }
 
-const Arg* named(const ModelFactor& f, const std::string& name) {
-  for (const auto& a : f.args) {
-    if (a.name.name == name) return &a;
-  }
-  return nullptr;
-}
-
 class GenChecker {
  public:
   explicit GenChecker(DiagnosticEngine& diags) : diags_(diags) {}
@@ -76,6 +69,8 @@ class GenChecker {
     std::set<int> seen;
     for (auto& p : g.patterns) {
       p.paramIndex = paramIndex(g, p.param.name);
+      // Patterns of a second 'when' clause (E0414 above) are not also reported as second patterns.
+      if (g.whenRanges.size() > 1 && p.param.range.begin >= g.whenRanges[1].begin) continue;
       if (p.paramIndex < 0) {
         std::vector<std::string> names;
         for (const auto& prm : g.params) names.push_back(prm.name.name);
@@ -132,8 +127,9 @@ class GenChecker {
   void realFeature(const ModelFactor& f, const Expr* feature) {
     if (feature == nullptr || feature->type == nullptr || feature->type->isError()) return;
     if (!feature->type->isNumeric()) {
-      diags_.error("E0405", feature->range, fmt::format("the feature of a {} model must be real-valued, but this is {}",
-                                                        f.kind.name, feature->type->spelling))
+      diags_.error("E0405", feature->range, fmt::format("the feature of {} {} model must be real-valued, but this is {}",
+                                                        f.kind.name == "interval" ? "an" : "a", f.kind.name,
+                                                        feature->type->spelling))
           .help("compute a number from the parameters, e.g. distance(p, center) or occlusion(c)");
     }
   }
@@ -161,13 +157,13 @@ class GenChecker {
         needArgs(f, 2, "interval(feature, lo .. hi)");
         realFeature(f, first);
         if (f.args.size() >= 2 && !constantRange(f.args[1].value.get())) {
-          diags_.error("E0406", f.args[1].range, "the prior bounds of an interval model must be a constant range lo .. hi");
+          diags_.error("E0406", f.args[1].range, "the prior bounds of an interval model are a range of literal numbers, lo .. hi");
         }
       } else if (k == "threshold") {
         needArgs(f, 3, "threshold(feature, lo .. hi, above|below)");
         realFeature(f, first);
         if (f.args.size() >= 2 && !constantRange(f.args[1].value.get())) {
-          diags_.error("E0406", f.args[1].range, "the prior bounds of a threshold model must be a constant range lo .. hi");
+          diags_.error("E0406", f.args[1].range, "the prior bounds of a threshold model are a range of literal numbers, lo .. hi");
         }
         if (f.args.size() >= 3) {
           const Expr* dir = f.args[2].value.get();
@@ -270,7 +266,8 @@ class GenChecker {
         bound.insert(b);
       }
     }
-    const bool product = g.factors.size() > 1;
+    // Factors of a second 'model' clause (already an error) do not make the model a product.
+    const bool product = g.modelRanges.size() == 1 && g.factors.size() > 1;
     std::set<std::string> labelled;
     for (auto& label : rule.labels) {
       if (label.value && label.value->type && !label.value->type->isError() && label.value->type->kind != TypeKind::Bool) {
@@ -314,7 +311,9 @@ class GenChecker {
       }
     }
     for (const auto& key : g.perKeys) {
-      if (!bound.count(key.name)) {
+      const bool validKey = std::any_of(g.captures.begin(), g.captures.end(), [&](const Ident& c) { return c.name == key.name; }) ||
+                            paramIndex(g, key.name) >= 0;
+      if (validKey && !bound.count(key.name)) {  // an invalid key is reported once, as E0412
         diags_.error("E0410", rule.range, fmt::format("this rule does not bind the key '{}'", key.name))
             .help(fmt::format("name the event binder '{}' in the position that carries it", key.name));
       }

@@ -524,14 +524,22 @@ class Resolver {
       bindLocal(g.params[i].name, Symbol{RefKind::Param, &g, static_cast<int>(i), g.params[i].name.range});
     }
     for (auto& f : g.factors) {
+      std::size_t positional = 0;
       for (auto& a : f.args) {
-        // Model keywords (below, relative, ...) are interpreted by the generator checker.
-        if (a.value && a.value->kind == ExprKind::Name && isModelKeyword(a.value->text)) continue;
+        // Model keywords (below, relative, ...) are interpreted by the generator checker, and so is any bare
+        // word where a keyword belongs (a threshold's direction, a text model's scale and rating), so that a
+        // wrong word is reported as a wrong model argument (E0406) rather than as an unknown name.
+        const bool bareWord = a.value && a.value->kind == ExprKind::Name;
+        const bool keywordPosition = (f.kind.name == "threshold" && a.name.name.empty() && positional == 2) ||
+                                     (f.kind.name == "text" && (a.name.name == "scale" || a.name.name == "rating"));
+        if (a.name.name.empty()) ++positional;
+        if (bareWord && (isModelKeyword(a.value->text) || keywordPosition)) continue;
         resolveExpr(a.value.get());
       }
     }
     for (auto& a : g.accepts) resolveExpr(a.get());
     for (auto& f : g.fallbacks) resolveExpr(f.get());
+    for (auto& c : g.guards) resolveExpr(c.get());
     for (auto& rule : g.learnRules) {
       rule.eventRef = lookup(rule.event.name, rule.event.range, false);
       if (rule.eventRef.kind != RefKind::Feedback) {
@@ -593,15 +601,18 @@ class Resolver {
   }
 
   void resolveModule(Module& module) {
-    bool sawDomain = false;
+    const Decl* firstDomain = nullptr;
     bool first = true;
     for (auto& declPtr : module.decls) {
       Decl& d = *declPtr;
       if (d.kind == DeclKind::Domain) {
-        if (sawDomain || !first) {
-          diags_.error("E0211", d.range, "the domain header must come first, once per file");
+        if (firstDomain != nullptr) {
+          diags_.error("E0211", d.range, "a file has at most one domain header")
+              .note("the header is here", firstDomain->range);
+        } else if (!first) {
+          diags_.error("E0211", d.range, "the domain header must be the first declaration of the file");
         }
-        sawDomain = true;
+        if (firstDomain == nullptr) firstDomain = &d;
       }
       first = false;
       switch (d.kind) {

@@ -6,7 +6,9 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
+#include <string_view>
 
 namespace cbtl {
 
@@ -126,6 +128,7 @@ class Checker {
                                                      e.text, e.text));
           return err();
         }
+        if (r.kind == RefKind::Const) return constType(e, static_cast<const ConstDecl&>(*r.decl));
         const Type* t = declaredType(*r.decl);
         return t ? t : err();
       }
@@ -149,9 +152,12 @@ class Checker {
                                                    r.index == static_cast<int>(BuiltinId::Box) ? "domain" : "sample statement"));
         return err();
       case RefKind::Function: case RefKind::Sampler: case RefKind::Action: case RefKind::Feedback:
-        diags_.error("E0207", e.range, fmt::format("'{}' is a {} and cannot be used as a value", e.text,
-                                                   toString(r.decl->kind)));
+      {
+        const std::string kind = toString(r.decl->kind);
+        const char* article = std::string_view("aeiou").find(kind.front()) != std::string_view::npos ? "an" : "a";
+        diags_.error("E0207", e.range, fmt::format("'{}' is {} {} and cannot be used as a value", e.text, article, kind));
         return err();
+      }
     }
     return err();
   }
@@ -245,8 +251,8 @@ class Checker {
           continue;
         }
         if (positional >= params.size()) {
-          diags_.error("E0302", a.range, fmt::format("{} '{}' takes {} argument{}, but more were given", what, name,
-                                                     params.size(), params.size() == 1 ? "" : "s"))
+          diags_.error("E0302", a.range, fmt::format("{} '{}' takes {} argument{}, but {} were given", what, name,
+                                                     params.size(), params.size() == 1 ? "" : "s", args.size()))
               .note("declared here", declAt);
           return false;
         }
@@ -353,9 +359,16 @@ class Checker {
     const Type* b = check(e.operands[1].get());
     if (a->isError() || b->isError()) return err();
     const BinaryOp op = e.binaryOp;
+    auto isComparison = [](const Expr& x) {
+      return x.kind == ExprKind::Binary && (x.binaryOp == BinaryOp::Lt || x.binaryOp == BinaryOp::Le ||
+                                            x.binaryOp == BinaryOp::Gt || x.binaryOp == BinaryOp::Ge);
+    };
     auto fail = [&]() {
-      diags_.error("E0303", e.range,
-                   fmt::format("operator '{}' does not apply to {} and {}", toString(op), a->spelling, b->spelling));
+      Diagnostic& d = diags_.error("E0303", e.range, fmt::format("operator '{}' does not apply to {} and {}", toString(op),
+                                                                 a->spelling, b->spelling));
+      if (isComparison(e) && isComparison(*e.operands[0])) {
+        d.help("comparisons do not chain: write 'a < b and b < c' instead of 'a < b < c'");
+      }
       return err();
     };
     switch (op) {
@@ -525,8 +538,55 @@ class Checker {
     }
   }
 
+  // Constants are checked on first use, so a constant may be used before its declaration. One that is
+  // reached again while its own value is being checked is defined in terms of itself (E0316, reported once).
+  const Type* constType(const Expr& use, const ConstDecl& c) {
+    if (c.valueType == nullptr) {
+      if (constsInProgress_.count(&c)) {
+        if (constCyclesReported_.insert(&c).second) {
+          diags_.error("E0316", c.name.range, fmt::format("constant '{}' is defined in terms of itself", c.name.name))
+              .note("through this use", use.range);
+        }
+        return err();
+      }
+      // Name references point at const declarations; the checker owns the AST it annotates.
+      checkConst(const_cast<ConstDecl&>(c));
+    }
+    return c.valueType != nullptr ? c.valueType : err();
+  }
+
   void checkConst(ConstDecl& c) {
-    if (c.valueType != nullptr) return;
+    if (c.valueType != nullptr || constsInProgress_.count(&c)) return;
+    constsInProgress_.insert(&c);
+    checkConstValue(c);
+    constsInProgress_.erase(&c);
+  }
+
+  // The number of members of an index set when it is evident from the source (an enum, an item set, a
+  // list, or a range of integer literals); nullopt otherwise (lowering enumerates the rest).
+  static std::optional<std::size_t> indexSetSize(const Expr* set) {
+    if (set == nullptr) return std::nullopt;
+    if (set->kind == ExprKind::Name && set->ref.kind == RefKind::EnumType) {
+      return static_cast<const EnumDecl*>(set->ref.decl)->members.size();
+    }
+    if (set->kind == ExprKind::Name && set->ref.kind == RefKind::ItemSet) {
+      return static_cast<const ItemsDecl*>(set->ref.decl)->entries.size();
+    }
+    if (set->kind == ExprKind::List) return set->operands.size();
+    if (set->kind == ExprKind::Range) {
+      auto literal = [](const Expr* x) -> std::optional<double> {
+        double sign = 1;
+        if (x->kind == ExprKind::Unary && x->unaryOp == UnaryOp::Neg) { sign = -1; x = x->operands[0].get(); }
+        if (x->kind != ExprKind::Number || x->text.find_first_of(".eE<") != std::string::npos) return std::nullopt;
+        return sign * x->number;
+      };
+      const auto lo = literal(set->operands[0].get()), hi = literal(set->operands[1].get());
+      if (lo && hi && *hi >= *lo && *hi - *lo < 1e9) return static_cast<std::size_t>(*hi - *lo) + 1;
+    }
+    return std::nullopt;
+  }
+
+  void checkConstValue(ConstDecl& c) {
     checkIndex(c.index.get());
     const Type* t = check(c.value.get());
     if (c.value && !isConstantExpr(*c.value, false)) {
@@ -537,6 +597,13 @@ class Checker {
         diags_.error("E0312", c.value->range, "an indexed constant needs a list with one value per index");
         c.valueType = err();
         return;
+      }
+      if (const auto size = indexSetSize(c.index->set.get()); c.value && size && *size != c.value->operands.size()) {
+        diags_.error("E0312", c.value->range,
+                     fmt::format("constant '{}' has {} value{}, but its index set has {} member{}", c.name.name,
+                                 c.value->operands.size(), c.value->operands.size() == 1 ? "" : "s", *size,
+                                 *size == 1 ? "" : "s"))
+            .note("the index set", c.index->set->range);
       }
       t = t->kind == TypeKind::Set ? t->element : err();
     }
@@ -848,6 +915,7 @@ class Checker {
     }
     for (auto& a : g.accepts) check(a.get());
     for (auto& f : g.fallbacks) check(f.get());
+    for (auto& c : g.guards) expect(c.get(), types_.boolean(), "a generator's 'if' guard");
     for (auto& rule : g.learnRules) {
       // Binder types come from the event's parameters (arity is checked by check-generators).
       if (rule.eventRef.kind == RefKind::Feedback) {
@@ -926,10 +994,9 @@ class Checker {
     };
     for (const auto& m : modules) {
       for (const auto& d : m->decls) {
+        if (d->kind != DeclKind::Function) continue;  // only then is the downcast valid
         const auto* f = static_cast<const FuncDecl*>(d.get());
-        if (d->kind == DeclKind::Function && !f->isExtern && state[f] == 0) {
-          visit(f);
-        }
+        if (!f->isExtern && state[f] == 0) visit(f);
       }
     }
   }
@@ -938,6 +1005,8 @@ class Checker {
   const GlobalSymbols& symbols_;
   DiagnosticEngine& diags_;
   bool inDomain_ = false;
+  std::set<const ConstDecl*> constsInProgress_;
+  std::set<const ConstDecl*> constCyclesReported_;
 };
 
 }  // namespace

@@ -53,4 +53,11 @@ std::string_view SourceManager::text(const SourceRange& range) const {
   return std::string_view(f.text).substr(b, e - b);
 }
 
+SourceRange SourceManager::insertionPoint(FileId id, std::uint32_t offset) const {
+  const auto size = static_cast<std::uint32_t>(files_.at(id).text.size());
+  if (size == 0) return SourceRange{id, 0, 0};
+  const std::uint32_t at = std::min(offset, size - 1);
+  return SourceRange{id, at, at + 1};
+}
+
 }  // namespace cbtl

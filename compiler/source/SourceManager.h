@@ -52,6 +52,10 @@ class SourceManager {
   std::string_view lineText(FileId id, std::uint32_t line) const;
   // Text covered by a range.
   std::string_view text(const SourceRange& range) const;
+  // A one-byte range for a diagnostic that points between characters (a missing ';' after a token, the end
+  // of the file): the byte at `offset`, or the file's last byte when `offset` is at (or past) its end. Only
+  // an empty file gives an empty range. Diagnostics never carry empty spans otherwise.
+  SourceRange insertionPoint(FileId id, std::uint32_t offset) const;
 
  private:
   std::vector<SourceFile> files_;

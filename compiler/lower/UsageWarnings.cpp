@@ -1,0 +1,114 @@
+#include "lower/UsageWarnings.h"
+
+#include "ir/Pattern.h"
+
+#include <fmt/format.h>
+
+#include <map>
+#include <set>
+
+namespace cbtl {
+namespace {
+
+void varsOf(const ir::Expr& e, std::set<ir::VarId>& out) {
+  if (e.op == "var" && e.id >= 0) out.insert(static_cast<ir::VarId>(e.id));
+  for (ir::VarId v : e.vars) out.insert(v);
+  for (const auto& c : e.children) varsOf(c, out);
+}
+
+void varsOf(const ir::Action& a, std::set<ir::VarId>& out) {
+  for (const auto& x : a.args) varsOf(x, out);
+  if (a.set) varsOf(*a.set, out);
+  if (a.condition) varsOf(*a.condition, out);
+  for (const auto& b : a.body) varsOf(b, out);
+  for (const auto& b : a.elseBody) varsOf(b, out);
+}
+
+// Marks the variables that a generator's parameter can match (type and pattern; captures are not
+// correlated here): the personalized constraints it creates read them.
+void matchedByGenerators(const ir::ConstraintGraph& g, std::set<ir::VarId>& out) {
+  for (const auto& gen : g.generators) {
+    for (std::size_t i = 0; i < gen.params.size(); ++i) {
+      const ir::Pattern* pat = nullptr;
+      for (const auto& p : gen.patterns) {
+        if (p.paramIndex == i) pat = &p;
+      }
+      std::optional<GlobPattern> glob;
+      std::optional<std::regex> re;
+      std::string error;
+      std::size_t at = 0;
+      if (pat != nullptr && pat->kind == "glob") glob = parseGlob(pat->text, error, at);
+      if (pat != nullptr && pat->kind == "regex") re = compileRegex(pat->text, error);
+      for (const auto& v : g.variables) {
+        if (v.type.spelling != gen.params[i].type.spelling) continue;
+        std::map<std::string, std::string> bindings;
+        if (pat == nullptr || (glob && matchGlob(*glob, v.name, bindings)) || (re && std::regex_match(v.name, *re))) {
+          out.insert(v.id);
+        }
+      }
+    }
+  }
+}
+
+// True when the solver can draw a value for the variable without a sampler: finite types, Conf<R> (joint
+// limits), and any variable whose declaration bounds every component or lists its values.
+bool hasBoundedDomain(const ir::Variable& v) {
+  const std::string& k = v.type.kind;
+  if (k == "bool" || k == "enum" || k == "item" || k == "Conf") return true;
+  if (v.domain.set) return true;
+  if (v.domain.bounds.empty()) return false;
+  for (const auto& b : v.domain.bounds) {
+    if (!b.lo || !b.hi) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void reportUsageWarnings(const ir::ConstraintGraph& graph, const std::vector<const VarDecl*>& declOf,
+                         DiagnosticEngine& diags) {
+  std::set<ir::VarId> read, written;
+  for (const auto& c : graph.constraints) read.insert(c.vars.begin(), c.vars.end());
+  for (const auto& s : graph.samplers) {
+    read.insert(s.reads.begin(), s.reads.end());
+    written.insert(s.writes.begin(), s.writes.end());
+  }
+  for (const auto& c : graph.costs) read.insert(c.vars.begin(), c.vars.end());
+  matchedByGenerators(graph, read);
+  for (const auto& t : graph.tasks) {
+    for (const auto& inst : t.instances) {
+      for (const auto& a : inst.actions) varsOf(a, read);
+    }
+  }
+
+  // Declarations in the order of their first variable, so the warnings come out in a stable order.
+  std::vector<const VarDecl*> order;
+  std::map<const VarDecl*, std::vector<ir::VarId>> members;
+  for (ir::VarId id = 0; id < declOf.size() && id < graph.variables.size(); ++id) {
+    const VarDecl* d = declOf[id];
+    if (d == nullptr) continue;
+    auto& ids = members[d];
+    if (ids.empty()) order.push_back(d);
+    ids.push_back(id);
+  }
+
+  for (const VarDecl* d : order) {
+    bool used = false, unproducible = false;
+    for (ir::VarId id : members[d]) {
+      if (!read.count(id)) continue;
+      used = true;
+      const ir::Variable& v = graph.variables[id];
+      if (!written.count(id) && !v.init && !hasBoundedDomain(v)) unproducible = true;
+    }
+    if (!used) {
+      diags.warning("W0201", d->name.range, fmt::format("variable '{}' is never used", d->name.name))
+          .help("no constraint, sampler, cost or action reads it; use it or remove it");
+    } else if (unproducible) {
+      diags.warning("W0502", d->name.range,
+                    fmt::format("variable '{}' has no sampler, no initial value and an unbounded domain", d->name.name))
+          .help(fmt::format("add 'sample {} ~ ...;', an initial value '= ...', or bound it with 'in ...'", d->name.name));
+    }
+  }
+}
+
+}  // namespace cbtl

@@ -1,0 +1,25 @@
+// UsageWarnings.h — warnings about declared variables that the constraint graph does not use (W0201) or
+// for which the solver has no way to produce values (W0502).
+//
+// Runs at the end of lowering, on the finished graph: "used" means read by a constraint, a sampler's
+// arguments, a cost, an action of a skill instance (all tasks together), or matched by a personalized
+// constraint generator's pattern (its constraints read the variable); "has a way to produce values"
+// means written by a sampler, given an initial value, or declared with a bounded or finite domain (bool,
+// enums, items, Conf<R> and every variable with `in ...`). Each declaration is reported once, however many
+// members (families) or instances (skills run by several tasks) it has: W0201 when none of them is used,
+// W0502 when a used one is unbounded, unsampled and without an initial value.
+#pragma once
+
+#include "ast/Ast.h"
+#include "diag/DiagnosticEngine.h"
+#include "ir/ConstraintGraph.h"
+
+#include <vector>
+
+namespace cbtl {
+
+// `declOf[id]` is the declaration of graph variable `id` (same size as graph.variables).
+void reportUsageWarnings(const ir::ConstraintGraph& graph, const std::vector<const VarDecl*>& declOf,
+                         DiagnosticEngine& diags);
+
+}  // namespace cbtl

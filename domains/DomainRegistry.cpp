@@ -1,0 +1,51 @@
+#include "DomainRegistry.h"
+
+#if defined(CBTL_HAVE_DOMAIN_COOKING)
+#include "cooking/CookingSimulator.h"
+#endif
+
+#include <algorithm>
+
+namespace cbtl::domains {
+
+namespace {
+
+using Factory = std::unique_ptr<sim::DomainSimulator> (*)(const sim::SimulatorOptions&, std::uint64_t);
+
+struct Entry {
+  const char* name;
+  Factory make;
+};
+
+// One line per built domain; a new domain adds its #if block here.
+const std::vector<Entry>& entries() {
+  static const std::vector<Entry> all = [] {
+    std::vector<Entry> e;
+#if defined(CBTL_HAVE_DOMAIN_COOKING)
+    e.push_back({"cooking", [](const sim::SimulatorOptions& o, std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {
+                   return std::make_unique<cooking::CookingSimulator>(o, seed);
+                 }});
+#endif
+    std::sort(e.begin(), e.end(), [](const Entry& a, const Entry& b) { return std::string(a.name) < b.name; });
+    return e;
+  }();
+  return all;
+}
+
+}  // namespace
+
+std::unique_ptr<sim::DomainSimulator> createSimulator(const std::string& domain, const sim::SimulatorOptions& options,
+                                                      std::uint64_t seed) {
+  for (const Entry& e : entries()) {
+    if (domain == e.name) return e.make(options, seed);
+  }
+  return nullptr;
+}
+
+std::vector<std::string> knownDomains() {
+  std::vector<std::string> names;
+  for (const Entry& e : entries()) names.emplace_back(e.name);
+  return names;
+}
+
+}  // namespace cbtl::domains

@@ -1,0 +1,284 @@
+#include "cooking/CookingSimulator.h"
+
+#include <cmath>
+#include <initializer_list>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace cbtl::domains::cooking {
+
+namespace {
+
+using sim::ActionCall;
+using sim::ActionStatus;
+using sim::StepResult;
+using sim::Value;
+
+constexpr double kStockLo = 10, kStockHi = 20;  // a restock draws U(10, 20) per ingredient ("more than enough")
+constexpr double kSpecQuantityMin = 0.9;        // cooking.cbtl's specQtyMin: unsatisfiable stock stays above it
+
+StepResult unknown(std::string message) {
+  StepResult r;
+  r.status = ActionStatus::UnknownAction;
+  r.message = std::move(message);
+  return r;
+}
+
+const char* kindName(Value::Kind kind) {
+  switch (kind) {
+    case Value::Kind::Number: return "a number";
+    case Value::Kind::Vector: return "a vector";
+    case Value::Kind::Name: return "a name";
+  }
+  return "a value";
+}
+
+// Checks the argument count and kinds of `call`; the error message, or empty when they fit.
+std::string checkArgs(const ActionCall& call, std::initializer_list<Value::Kind> kinds) {
+  if (call.args.size() != kinds.size()) {
+    return call.name + " takes " + std::to_string(kinds.size()) + " argument(s), got " +
+           std::to_string(call.args.size());
+  }
+  std::size_t i = 0;
+  for (Value::Kind kind : kinds) {
+    if (call.args[i].kind != kind) {
+      return call.name + ": argument " + std::to_string(i + 1) + " must be " + kindName(kind) + ", got " +
+             kindName(call.args[i].kind);
+    }
+    ++i;
+  }
+  return {};
+}
+
+void validate(const sim::SimulatorOptions& o) {
+  if (o.shiftEvery < 0) throw std::invalid_argument("cooking: shiftEvery must be >= 0");
+  if (!std::isfinite(o.shiftLo) || !std::isfinite(o.shiftHi) || o.shiftLo > o.shiftHi) {
+    throw std::invalid_argument("cooking: the shift factor range [shiftLo, shiftHi] must be finite and ordered");
+  }
+  if (!(o.unsatisfiableStockProbability >= 0 && o.unsatisfiableStockProbability <= 1)) {
+    throw std::invalid_argument("cooking: unsatisfiableStockProbability must be in [0, 1]");
+  }
+}
+
+}  // namespace
+
+std::string potName(std::size_t pot) { return "pot" + std::to_string(pot); }
+
+bool potFromName(std::string_view name, std::optional<std::size_t>& pot) {
+  if (name == kNoPotName) {
+    pot.reset();
+    return true;
+  }
+  for (std::size_t i = 0; i < kPotCount; ++i) {
+    if (name == potName(i)) {
+      pot = i;
+      return true;
+    }
+  }
+  return false;
+}
+
+CookingSimulator::CookingSimulator(const sim::SimulatorOptions& options, std::uint64_t seed)
+    : CookingSimulator(options, seed, CookingUser::paperDefault()) {}
+
+CookingSimulator::CookingSimulator(const sim::SimulatorOptions& options, std::uint64_t seed, CookingUser user)
+    : CookingSimulator(options, std::make_shared<CookingUser>(std::move(user)), true, seed) {}
+
+CookingSimulator::CookingSimulator(const sim::SimulatorOptions& options, std::shared_ptr<CookingUser> user,
+                                   bool shiftsUser, std::uint64_t seed)
+    : options_(options), user_(std::move(user)), shiftsUser_(shiftsUser), shiftRng_(mixSeed(seed)) {
+  validate(options_);
+  reset(seed);
+}
+
+void CookingSimulator::reset(std::uint64_t seed) {
+  rng_.seed(seed);
+  restock();
+}
+
+void CookingSimulator::restock() {
+  Stock stock{};
+  for (Ingredient ingredient : kAllIngredients) stock[indexOf(ingredient)] = uniformReal(rng_, kStockLo, kStockHi);
+  const double p = options_.unsatisfiableStockProbability;
+  // No draw at all when the option is off, so the default stream is the same as without the feature.
+  if (p > 0 && uniform01(rng_) < p) {
+    const std::vector<Ingredient> required = user_->requiredIngredients();
+    if (!required.empty()) {
+      const Ingredient scarce = required[uniformIndex(rng_, required.size())];
+      const double userMin = user_->quantityMin(scarce).value_or(kSpecQuantityMin);
+      double q = kSpecQuantityMin;
+      if (userMin > kSpecQuantityMin) {
+        q = uniformReal(rng_, kSpecQuantityMin, userMin);
+        if (q >= userMin) q = std::nextafter(userMin, kSpecQuantityMin);  // u < 1, but lo + (hi-lo)*u may round up
+      }
+      stock[indexOf(scarce)] = q;
+    }
+  }
+  world_.reinitialize(stock);
+}
+
+sim::Observation CookingSimulator::observe() const {
+  sim::Observation o;
+  for (Ingredient ingredient : kAllIngredients) {
+    o["stock[" + std::string(ingredientName(ingredient)) + "]"] = Value::num(world_.stock(ingredient));
+  }
+  return o;
+}
+
+StepResult CookingSimulator::act(const ActionCall& call) {
+  StepResult result;
+  if (call.name == "movePot") {
+    result = movePot(call);
+  } else if (call.name == "addIngredient") {
+    result = addIngredient(call);
+  } else if (call.name == "endTick") {
+    result = endTick(call);
+  } else if (call.name == "serve") {
+    result = serve(call);
+  } else {
+    return unknown("cooking has no action '" + call.name + "'");
+  }
+  finishStep(result);
+  if (result.taskDone) restock();  // after the shift, so the new kitchen is drawn against the current user
+  return result;
+}
+
+StepResult CookingSimulator::idle() {
+  StepResult result = cookingTick("idle: one cooking tick");
+  finishStep(result);
+  return result;
+}
+
+std::unique_ptr<sim::DomainSimulator> CookingSimulator::makeEvaluationTwin() const {
+  return std::unique_ptr<sim::DomainSimulator>(new CookingSimulator(options_, user_, false, 0));
+}
+
+void CookingSimulator::finishStep(StepResult& result) {
+  if (!result.consumedStep) return;
+  ++steps_;
+  if (shiftsUser_ && options_.shiftEvery > 0 && steps_ % options_.shiftEvery == 0) {
+    user_->shift(shiftRng_, options_.shiftLo, options_.shiftHi);
+    result.preferencesChanged = options_.announceShifts;
+  }
+}
+
+StepResult CookingSimulator::movePot(const ActionCall& call) {
+  if (std::string e = checkArgs(call, {Value::Kind::Name, Value::Kind::Vector}); !e.empty()) return unknown(e);
+  std::optional<std::size_t> pot;
+  if (!potFromName(call.args[0].text, pot)) return unknown("movePot: '" + call.args[0].text + "' is not a Pot");
+  const std::vector<double>& position = call.args[1].vector;
+  if (position.size() != 2) {
+    return unknown("movePot: position must be a vec<2>, got " + std::to_string(position.size()) + " components");
+  }
+  StepResult r;
+  r.consumedStep = true;
+  if (!pot) {
+    r.status = ActionStatus::Ignored;
+    r.message = "movePot: noPot is not a pot";
+    return r;
+  }
+  switch (world_.movePot(*pot, position[0], position[1])) {
+    case MoveOutcome::Moved:
+      r.status = ActionStatus::Applied;
+      break;
+    case MoveOutcome::NoSuchPot:  // potFromName only yields valid indices
+    case MoveOutcome::BadPosition:
+      r.status = ActionStatus::Ignored;
+      r.message = "movePot: " + potName(*pot) + " position is not finite";
+      break;
+    case MoveOutcome::LeavesStove:
+      r.status = ActionStatus::Ignored;
+      r.message = "movePot: " + potName(*pot) + " would not lie on the stove";
+      break;
+    case MoveOutcome::Overlaps:
+      r.status = ActionStatus::Ignored;
+      r.message = "movePot: " + potName(*pot) + " would overlap another pot";
+      break;
+  }
+  return r;
+}
+
+StepResult CookingSimulator::addIngredient(const ActionCall& call) {
+  if (std::string e = checkArgs(call, {Value::Kind::Name, Value::Kind::Name, Value::Kind::Number}); !e.empty()) {
+    return unknown(e);
+  }
+  const std::optional<Ingredient> ingredient = ingredientFromName(call.args[0].text);
+  if (!ingredient) return unknown("addIngredient: '" + call.args[0].text + "' is not an Ingredient");
+  std::optional<std::size_t> pot;
+  if (!potFromName(call.args[1].text, pot)) {
+    return unknown("addIngredient: '" + call.args[1].text + "' is not a Pot");
+  }
+  StepResult r;  // no step: the addition waits for the next cooking tick
+  if (!pot) {
+    r.status = ActionStatus::Ignored;
+    r.message = "addIngredient: noPot is not a pot";
+    return r;
+  }
+  const std::string what = std::string(ingredientName(*ingredient)) + " to " + potName(*pot);
+  switch (world_.queueAddition(*ingredient, *pot, call.args[2].number)) {
+    case AddOutcome::Queued:
+      r.status = ActionStatus::Applied;
+      break;
+    case AddOutcome::NoSuchPot:
+    case AddOutcome::BadQuantity:
+      r.status = ActionStatus::Ignored;
+      r.message = "addIngredient: " + what + ": the quantity must be positive";
+      break;
+    case AddOutcome::PotNotEmpty:
+      r.status = ActionStatus::Ignored;
+      r.message = "addIngredient: " + what + ": the pot is not empty";
+      break;
+    case AddOutcome::NotEnoughStock:
+      r.status = ActionStatus::Ignored;
+      r.message = "addIngredient: " + what + ": not enough " + std::string(ingredientName(*ingredient)) + " left";
+      break;
+  }
+  return r;
+}
+
+StepResult CookingSimulator::endTick(const ActionCall& call) {
+  if (std::string e = checkArgs(call, {}); !e.empty()) return unknown(e);
+  return cookingTick({});
+}
+
+StepResult CookingSimulator::cookingTick(std::string message) {
+  world_.tick();
+  StepResult r;
+  r.consumedStep = true;
+  r.message = std::move(message);
+  return r;
+}
+
+StepResult CookingSimulator::serve(const ActionCall& call) {
+  if (std::string e = checkArgs(call, {Value::Kind::Name}); !e.empty()) return unknown(e);
+  const std::string& mealName = call.args[0].text;
+  const std::vector<PotContent> contents = world_.contents();
+  std::vector<Tasted> tasted;
+  for (const PotContent& c : contents) {
+    tasted.push_back(Tasted{c.ingredient, ticksToTemperature(c.temperatureTicks), c.quantity});
+  }
+  const MealVerdict verdict = user_->judge(mealName, tasted);
+
+  StepResult r;
+  r.consumedStep = true;
+  r.taskDone = true;
+  r.hasSatisfaction = true;
+  r.satisfaction = verdict.satisfied ? 1.0 : -1.0;
+  r.message = verdict.satisfied ? "served " + mealName + ": the user enjoyed it" : "served " + mealName + ": " + verdict.reason;
+  if (!world_.queuedAdditions().empty()) r.message += " (additions queued after the last tick were dropped)";
+  const int total = world_.mealTicks();
+  for (std::size_t i = 0; i < contents.size(); ++i) {
+    if (!verdict.critiques[i]) continue;
+    const Critique& c = *verdict.critiques[i];
+    r.feedback.push_back(sim::FeedbackEvent{
+        "mealCritique",
+        {Value::name(mealName), Value::name(std::string(ingredientName(contents[i].ingredient))),
+         Value::num(contents[i].startTick), Value::num(total), Value::num(contents[i].quantity),
+         Value::name(std::string(critiqueName(c.heat))), Value::name(std::string(critiqueName(c.amount)))}});
+  }
+  return r;
+}
+
+}  // namespace cbtl::domains::cooking

@@ -1,0 +1,116 @@
+#include "ActionPlan.h"
+
+#include "ValueBridge.h"
+
+#include <fmt/format.h>
+
+namespace cbtl::approach {
+
+namespace {
+
+struct Compiler {
+  rt::Program& program;
+  rt::Program::Scope scope;
+  std::uint32_t top = 0;
+
+  CompiledAction compile(const ir::Action& a) {
+    CompiledAction c;
+    c.kind = a.kind;
+    c.name = a.name;
+    const std::string at = rt::Program::where(a.span);
+    if (a.kind == "call") {
+      const ir::Function* f = nullptr;
+      for (const auto& fn : program.graph().functions) {
+        if (fn.name == a.name) f = &fn;
+      }
+      if (f == nullptr || f->kind != "action") throw rt::RuntimeError(at, fmt::format("'{}' is not an action", a.name));
+      for (std::size_t i = 0; i < a.args.size(); ++i) {
+        c.args.push_back(program.compile(a.args[i], scope));
+        c.argTypes.push_back(program.typeOf(a.args[i].type));
+      }
+      return c;
+    }
+    if (a.kind == "for") {
+      if (a.binders.size() != 1 || !a.set) throw rt::RuntimeError(at, "a 'for' in a skill takes one binder and a set");
+      c.binderSlot = top++;
+      const ir::Expr& set = *a.set;
+      if (set.op == "range") {
+        c.lo = program.compile(set.children[0], scope);
+        c.hi = program.compile(set.children[1], scope);
+      } else if (set.op == "enumset") {
+        const auto* e = program.findEnum(set.text);
+        c.memberCount = e ? static_cast<std::uint32_t>(e->members.size()) : 0;
+      } else if (set.op == "itemset") {
+        const auto* s = program.findItemSet(set.text);
+        c.memberCount = s ? static_cast<std::uint32_t>(s->entries.size()) : 0;
+      } else {
+        throw rt::RuntimeError(at, "a 'for' in a skill must range over an enum, an item set or an integer range");
+      }
+      const auto saved = scope.locals;
+      scope.locals[a.binders[0]] = c.binderSlot;
+      for (const auto& b : a.body) c.body.push_back(compile(b));
+      scope.locals = saved;
+      return c;
+    }
+    if (a.kind == "if" && a.condition) c.condition = program.compile(*a.condition, scope);
+    for (const auto& b : a.body) c.body.push_back(compile(b));
+    for (const auto& b : a.elseBody) c.elseBody.push_back(compile(b));
+    return c;
+  }
+};
+
+constexpr std::size_t kMaxCalls = 100000;
+
+void run(const rt::Program& program, const std::vector<CompiledAction>& actions, rt::EvalContext& ctx,
+         std::vector<sim::ActionCall>& out) {
+  const auto& pool = program.pool();
+  for (const auto& a : actions) {
+    if (out.size() >= kMaxCalls) return;
+    if (a.kind == "call") {
+      sim::ActionCall call;
+      call.name = a.name;
+      double v[64];
+      for (std::size_t i = 0; i < a.args.size(); ++i) {
+        pool.eval(a.args[i], ctx, v);
+        call.args.push_back(toSimValue(program, a.argTypes[i], v));
+      }
+      out.push_back(std::move(call));
+    } else if (a.kind == "for") {
+      double lo = 0, hi = static_cast<double>(a.memberCount) - 1;
+      if (a.lo) {
+        lo = pool.evalScalar(*a.lo, ctx);
+        hi = pool.evalScalar(*a.hi, ctx);
+      }
+      for (double i = lo; i <= hi && out.size() < kMaxCalls; i += 1) {
+        ctx.frame[a.binderSlot] = i;
+        run(program, a.body, ctx, out);
+      }
+    } else if (a.kind == "if") {
+      run(program, (!a.condition || pool.evalBool(*a.condition, ctx)) ? a.body : a.elseBody, ctx, out);
+    } else {
+      run(program, a.body, ctx, out);
+    }
+  }
+}
+
+}  // namespace
+
+TaskActions::TaskActions(rt::Program& program, const ir::Task& task) {
+  Compiler c{program, {}, 0};
+  c.scope.frameTop = &c.top;
+  for (const auto& inst : task.instances) {
+    for (const auto& a : inst.actions) actions_.push_back(c.compile(a));
+  }
+  frameWidth_ = c.top + 256;
+}
+
+std::vector<sim::ActionCall> TaskActions::unroll(const rt::Program& program, const std::vector<double>& solution,
+                                                 const std::vector<double>& observation) const {
+  std::vector<double> frame(frameWidth_, 0.0);
+  rt::EvalContext ctx{solution.data(), observation.data(), frame.data()};
+  std::vector<sim::ActionCall> out;
+  run(program, actions_, ctx, out);
+  return out;
+}
+
+}  // namespace cbtl::approach

@@ -1,0 +1,80 @@
+// Experiment.h — the paper's experiment loop (seed-code.md §6, fixed where the reference was wrong).
+//
+// Train for `steps` steps in one world that is never reset (a served meal restocks it); every `evalEvery`
+// steps (and at step 0 and at the end), copy what was learned into an evaluation agent and run `evalTasks`
+// episodes, episode i in a world reset with seed + 100000 + i — the same held-out tasks at every
+// checkpoint (the reference's evaluation tasks drifted between checkpoints). An episode scores the sum of
+// the user's satisfaction over at most `maxEvalEpisodeSteps` steps; an episode whose CSP cannot be solved
+// scores 0 and counts as a failed task.
+//
+// Outputs (when `outDir` is set): train.csv, eval.csv (the reference's columns plus task-success and
+// preferences-met rates), config.json, models/<step>.json at every checkpoint and profile.json at the end.
+#pragma once
+
+#include "Approach.h"
+#include "DomainSimulator.h"
+#include "LoadedProgram.h"
+#include "Solver.h"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cbtl::approach {
+
+// The paper's nonstationary variants (Figure 5): keep everything learned, reset when the user announces a
+// change, or reset every `periodicResetEvery` steps.
+enum class Adaptation { NoAdapt, UserReset, PeriodicReset };
+const char* toString(Adaptation a);
+std::optional<Adaptation> parseAdaptation(const std::string& name);
+
+struct ExperimentConfig {
+  ApproachConfig approach;
+  std::uint64_t seed = 0;
+  std::int64_t steps = 10000;
+  std::int64_t evalEvery = 100;
+  int evalTasks = 10;
+  std::int64_t maxEvalEpisodeSteps = 100;
+  double dt = 0.01;  // execution time per step, for the CSV's time column
+  std::string task;  // empty: the program's first task
+  std::string outDir;
+  bool progress = false;
+  bool nonstationary = false;
+  Adaptation adaptation = Adaptation::NoAdapt;
+  std::int64_t periodicResetEvery = 1000;
+  sim::SimulatorOptions simulator;
+  solver::SolverOptions solverOptions;
+  std::string initialProfile;  // a profile to start from (optional)
+};
+
+struct EvalPoint {
+  std::int64_t step = 0;
+  std::vector<double> satisfaction;  // per episode
+  double mean = 0;
+  double taskSuccessRate = 0;        // episodes that completed their task
+  double preferencesMetRate = 0;     // episodes whose user was satisfied
+  int replans = 0;                   // episodes that had to drop the personalized constraints
+};
+
+struct ExperimentResult {
+  std::vector<EvalPoint> evals;
+  std::int64_t mealsServed = 0;      // tasks completed in training
+  double trainSatisfaction = 0;      // sum over training
+  std::int64_t trainSolves = 0, trainSolveFailures = 0, trainReplans = 0;
+  std::uint64_t solverIterations = 0;
+  double meanEval() const;
+};
+
+using SimulatorFactory = std::function<std::unique_ptr<sim::DomainSimulator>(const sim::SimulatorOptions&, std::uint64_t)>;
+
+// Runs one trial. Throws rt::RuntimeError / model::ProfileError / std::runtime_error for bad input or a
+// simulator that breaks the contract; never hangs (every loop is bounded by the configured budgets).
+ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& factory, const ExperimentConfig& config);
+
+// Seeds for independent components derived from one run seed.
+std::uint64_t deriveSeed(std::uint64_t seed, std::uint64_t stream);
+
+}  // namespace cbtl::approach

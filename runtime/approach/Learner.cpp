@@ -1,0 +1,89 @@
+#include "Learner.h"
+
+#include "ValueBridge.h"
+
+#include <fmt/format.h>
+
+namespace cbtl::approach {
+
+Learner::Learner(const rt::Program& program) : program_(program) {
+  for (const auto& g : program_.generators()) {
+    std::vector<std::vector<std::size_t>> perRule;
+    for (const auto& r : g.rules) {
+      std::vector<std::size_t> binders;
+      for (const auto& key : g.source->perKeys) {
+        std::size_t found = SIZE_MAX;
+        for (std::size_t i = 0; i < r.source->binds.size(); ++i) {
+          if (r.source->binds[i] == key) found = i;
+        }
+        if (found == SIZE_MAX) {
+          throw rt::RuntimeError(rt::Program::where(r.source->span),
+                                 fmt::format("learning rule '{}' does not bind '{}', a 'per' key of '{}'", r.source->event, key,
+                                             g.source->name));
+        }
+        binders.push_back(found);
+      }
+      perRule.push_back(std::move(binders));
+    }
+    keyBinders_.push_back(std::move(perRule));
+  }
+}
+
+LearnReport Learner::learn(const std::vector<sim::FeedbackEvent>& events, model::UserModel& user) const {
+  LearnReport report;
+  const auto& pool = program_.pool();
+  std::vector<double> frame;
+  for (const auto& ev : events) {
+    for (std::size_t gi = 0; gi < program_.generators().size(); ++gi) {
+      const auto& g = program_.generators()[gi];
+      for (std::size_t ri = 0; ri < g.rules.size(); ++ri) {
+        const auto& r = g.rules[ri];
+        if (r.source->event != ev.name) continue;
+        if (ev.args.size() != r.binderTypes.size()) {
+          report.problems.push_back(fmt::format("event '{}' has {} arguments, its declaration {}", ev.name, ev.args.size(),
+                                                r.binderTypes.size()));
+          continue;
+        }
+        frame.assign(r.frameWidth + 256, 0.0);
+        bool ok = true;
+        for (std::size_t i = 0; i < ev.args.size() && ok; ++i) {
+          std::string error;
+          if (!fromSimValue(program_, r.binderTypes[i], ev.args[i], frame.data() + r.binderFrame[i], error)) {
+            report.problems.push_back(fmt::format("event '{}' argument {}: {}", ev.name, i + 1, error));
+            ok = false;
+          }
+        }
+        if (!ok) continue;
+        rt::EvalContext ctx{nullptr, nullptr, frame.data()};
+        if (r.condition && !pool.evalBool(*r.condition, ctx)) continue;
+        std::string key;
+        const auto& binders = keyBinders_[gi][ri];
+        for (std::size_t k = 0; k < binders.size(); ++k) {
+          const std::size_t b = binders[k];
+          key += (k ? "|" : "") + program_.render(r.binderTypes[b], frame.data() + r.binderFrame[b]);
+        }
+        auto& factors = user.generator(gi).mutableFactors(key);
+        for (std::size_t l = 0; l < r.labels.size(); ++l) {
+          const auto [factor, labelNode] = r.labels[l];
+          const bool holds = pool.evalBool(labelNode, ctx);
+          auto& f = factors[static_cast<std::size_t>(factor)];
+          const std::uint32_t feature = r.features[l];
+          if (f.isTable()) {
+            if (feature == UINT32_MAX) continue;
+            double v[64];
+            pool.eval(feature, ctx, v);
+            const auto& spec = *g.factors[static_cast<std::size_t>(factor)].source;
+            f.observe(program_.render(program_.typeOf(spec.feature->type), v), holds);
+          } else {
+            if (feature == UINT32_MAX) continue;
+            f.observe(pool.evalScalar(feature, ctx), holds);
+          }
+          ++report.labels;
+        }
+      }
+    }
+  }
+  return report;
+}
+
+}  // namespace cbtl::approach

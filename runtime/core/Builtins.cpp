@@ -1,0 +1,171 @@
+#include "Builtins.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cbtl::rt {
+
+namespace {
+
+using Args = std::span<const double>;
+using Widths = std::span<const std::uint16_t>;
+using Out = std::span<double>;
+
+#define CBTL_UNARY(NAME, EXPR) \
+  void NAME(Args a, Widths, Out o) { const double x = a[0]; o[0] = (EXPR); }
+#define CBTL_BINARY(NAME, EXPR) \
+  void NAME(Args a, Widths, Out o) { const double x = a[0], y = a[1]; o[0] = (EXPR); }
+
+CBTL_UNARY(fAbs, std::fabs(x))
+CBTL_UNARY(fSign, x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0))
+CBTL_UNARY(fSqrt, std::sqrt(x))
+CBTL_UNARY(fExp, std::exp(x))
+CBTL_UNARY(fLn, std::log(x))
+CBTL_UNARY(fFloor, std::floor(x))
+CBTL_UNARY(fCeil, std::ceil(x))
+CBTL_UNARY(fRound, std::round(x))
+CBTL_UNARY(fSin, std::sin(x))
+CBTL_UNARY(fCos, std::cos(x))
+CBTL_UNARY(fTan, std::tan(x))
+CBTL_UNARY(fAsin, std::asin(x))
+CBTL_UNARY(fAcos, std::acos(x))
+CBTL_UNARY(fWrap, std::remainder(x, 2 * M_PI))
+CBTL_BINARY(fMin, std::min(x, y))
+CBTL_BINARY(fMax, std::max(x, y))
+CBTL_BINARY(fAtan2, std::atan2(x, y))
+#undef CBTL_UNARY
+#undef CBTL_BINARY
+
+void fClamp(Args a, Widths, Out o) { o[0] = std::clamp(a[0], std::min(a[1], a[2]), std::max(a[1], a[2])); }
+void fVec2(Args a, Widths, Out o) { o[0] = a[0]; o[1] = a[1]; }
+void fVec3(Args a, Widths, Out o) { o[0] = a[0]; o[1] = a[1]; o[2] = a[2]; }
+void fNorm(Args a, Widths, Out o) {
+  double s = 0;
+  for (double x : a) s += x * x;
+  o[0] = std::sqrt(s);
+}
+void fDistance(Args a, Widths w, Out o) {
+  double s = 0;
+  for (std::size_t i = 0; i < w[0]; ++i) s += (a[i] - a[w[0] + i]) * (a[i] - a[w[0] + i]);
+  o[0] = std::sqrt(s);
+}
+void fDot(Args a, Widths w, Out o) {
+  double s = 0;
+  for (std::size_t i = 0; i < w[0]; ++i) s += a[i] * a[w[0] + i];
+  o[0] = s;
+}
+void fCross(Args a, Widths, Out o) {
+  o[0] = a[1] * a[5] - a[2] * a[4];
+  o[1] = a[2] * a[3] - a[0] * a[5];
+  o[2] = a[0] * a[4] - a[1] * a[3];
+}
+void fNormalize(Args a, Widths, Out o) {
+  double s = 0;
+  for (double x : a) s += x * x;
+  s = std::sqrt(s);
+  for (std::size_t i = 0; i < a.size(); ++i) o[i] = s > 0 ? a[i] / s : 0;
+}
+void fXy(Args a, Widths, Out o) { o[0] = a[0]; o[1] = a[1]; }
+void fSe2(Args a, Widths, Out o) { o[0] = a[0]; o[1] = a[1]; o[2] = a[2]; }
+void fSe2Distance(Args a, Widths, Out o) { o[0] = std::hypot(a[0] - a[3], a[1] - a[4]); }
+
+bool sUniformInt(Args a, Widths, Rng& rng, Out o) {
+  const auto lo = static_cast<std::int64_t>(std::ceil(a[0])), hi = static_cast<std::int64_t>(std::floor(a[1]));
+  if (lo > hi) return false;
+  o[0] = static_cast<double>(rng.uniformInt(lo, hi));
+  return true;
+}
+bool sUniformReal(Args a, Widths, Rng& rng, Out o) {
+  if (!(a[0] <= a[1])) return false;
+  o[0] = rng.uniform(a[0], a[1]);
+  return true;
+}
+bool sBernoulli(Args a, Widths, Rng& rng, Out o) {
+  o[0] = rng.coin(a[0]) ? 1 : 0;
+  return true;
+}
+bool sUniformInBox(Args a, Widths w, Rng& rng, Out o) {
+  const std::size_t n = w[0];
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(a[i] <= a[n + i])) return false;
+  }
+  for (std::size_t i = 0; i < n; ++i) o[i] = rng.uniform(a[i], a[n + i]);
+  return true;
+}
+// A point of the rectangle [lo, hi] at least `margin` from its edges (e.g. a pot's centre on the stove).
+bool sPointInRectInset(Args a, Widths, Rng& rng, Out o) {
+  const double m = a[4];
+  const double x0 = a[0] + m, y0 = a[1] + m, x1 = a[2] - m, y1 = a[3] - m;
+  if (!(x0 <= x1 && y0 <= y1)) return false;
+  o[0] = rng.uniform(x0, x1);
+  o[1] = rng.uniform(y0, y1);
+  return true;
+}
+
+}  // namespace
+
+Builtins Builtins::standard() {
+  Builtins b;
+  b.addFunction("abs", fAbs);
+  b.addFunction("absInt", fAbs);
+  b.addFunction("min", fMin);
+  b.addFunction("max", fMax);
+  b.addFunction("minInt", fMin);
+  b.addFunction("maxInt", fMax);
+  b.addFunction("clamp", fClamp);
+  b.addFunction("clampInt", fClamp);
+  b.addFunction("sign", fSign);
+  b.addFunction("sqrt", fSqrt);
+  b.addFunction("exp", fExp);
+  b.addFunction("ln", fLn);
+  b.addFunction("floor", fFloor);
+  b.addFunction("ceil", fCeil);
+  b.addFunction("round", fRound);
+  b.addFunction("sin", fSin);
+  b.addFunction("cos", fCos);
+  b.addFunction("tan", fTan);
+  b.addFunction("asin", fAsin);
+  b.addFunction("acos", fAcos);
+  b.addFunction("atan2", fAtan2);
+  b.addFunction("wrapAngle", fWrap);
+  b.addFunction("vec2", fVec2);
+  b.addFunction("vec3", fVec3);
+  b.addFunction("norm", fNorm);
+  b.addFunction("distance", fDistance);
+  b.addFunction("dot", fDot);
+  b.addFunction("cross", fCross);
+  b.addFunction("normalize", fNormalize);
+  b.addFunction("xy", fXy);
+  b.addFunction("se2", fSe2);
+  b.addFunction("se2Distance", fSe2Distance);
+  b.addSampler("uniformInt", sUniformInt);
+  b.addSampler("uniformReal", sUniformReal);
+  b.addSampler("bernoulli", sBernoulli);
+  b.addSampler("uniformInBox", sUniformInBox);
+  b.addSampler("pointInRectInset", sPointInRectInset);
+  return b;
+}
+
+FunctionImpl Builtins::function(const std::string& name) const {
+  auto it = functions_.find(name);
+  return it == functions_.end() ? nullptr : it->second;
+}
+
+SamplerImpl Builtins::sampler(const std::string& name) const {
+  auto it = samplers_.find(name);
+  return it == samplers_.end() ? nullptr : it->second;
+}
+
+std::vector<std::string> Builtins::functionNames() const {
+  std::vector<std::string> out;
+  for (const auto& [n, f] : functions_) out.push_back(n);
+  return out;
+}
+
+std::vector<std::string> Builtins::samplerNames() const {
+  std::vector<std::string> out;
+  for (const auto& [n, s] : samplers_) out.push_back(n);
+  return out;
+}
+
+}  // namespace cbtl::rt

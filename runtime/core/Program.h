@@ -1,0 +1,159 @@
+// Program.h — a constraint graph prepared for execution: the value layout of every variable and
+// observation, interned strings, and every constraint, sampler, cost and generator expression compiled
+// once into an ExprPool.
+//
+// Built once per graph; read-only afterwards, so any number of solvers may share it. Everything the solve
+// loop touches is an index or an offset.
+#pragma once
+
+#include "Builtins.h"
+#include "Expression.h"
+#include "Values.h"
+
+#include "ir/ConstraintGraph.h"
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace cbtl::rt {
+
+struct VarSlot {
+  std::uint32_t offset = 0;
+  ValueType type;
+};
+
+// How a variable is drawn by `sample x ~ uniform`: one entry per component.
+struct UniformPlan {
+  enum class Kind { Real, Int, Bool, Choice } kind = Kind::Real;
+  std::vector<std::uint32_t> lo, hi;  // Real/Int: one bound node per component (absent bound: no node)
+  std::vector<double> choices;        // Choice: the allowed values (enum indices, text ids, ...)
+  bool bounded = true;
+};
+
+struct CompiledSampler {
+  const ir::Sampler* source = nullptr;
+  std::vector<ir::VarId> writes;
+  SamplerImpl impl = nullptr;         // extern sampler; null for `uniform`
+  std::vector<std::uint32_t> args;    // argument nodes
+  std::vector<std::uint16_t> argWidths;
+  std::vector<UniformPlan> uniform;   // per written variable, for `uniform`
+};
+
+struct CompiledConstraint {
+  const ir::Constraint* source = nullptr;
+  std::uint32_t root = 0;
+};
+
+struct CompiledFactor {
+  const ir::ModelFactor* source = nullptr;
+  bool hasFeature = false;
+};
+
+// A learning rule compiled against its frame: the event's arguments laid out one after another, binders
+// and the generator parameters they bind read from there.
+struct CompiledLearnRule {
+  const ir::LearnRule* source = nullptr;
+  std::uint32_t eventIndex = 0;                        // into graph.feedback
+  std::vector<std::uint32_t> binderFrame;              // frame offset of each event argument
+  std::vector<ValueType> binderTypes;
+  std::vector<std::pair<int, std::uint32_t>> labels;   // (factor index, label node)
+  std::vector<std::uint32_t> features;                 // per label: the factor's feature node, or UINT32_MAX
+  std::optional<std::uint32_t> condition;
+  std::uint32_t frameWidth = 0;
+};
+
+struct CompiledGenerator {
+  const ir::Generator* source = nullptr;
+  std::vector<ValueType> paramTypes;
+  std::vector<CompiledFactor> factors;
+  std::vector<CompiledLearnRule> rules;
+};
+
+class Program {
+ public:
+  // Throws RuntimeError (with the offending source location) for anything it cannot execute.
+  Program(const ir::ConstraintGraph& graph, Builtins builtins);
+
+  const ir::ConstraintGraph& graph() const { return graph_; }
+  const ExprPool& pool() const { return pool_; }
+  ExprPool& pool() { return pool_; }
+  StringTable& strings() const { return strings_; }
+  const Builtins& builtins() const { return builtins_; }
+
+  const VarSlot& slot(ir::VarId v) const { return slots_.at(v); }
+  std::size_t assignmentWidth() const { return assignmentWidth_; }
+  // Initial values of every variable (declared `= init`, else the domain's first value or zero).
+  const std::vector<double>& initialAssignment() const { return initial_; }
+
+  // Observations: "name" or "name[member]" -> offset; width of the whole observation vector.
+  std::optional<std::uint32_t> observationOffset(const std::string& key) const;
+  const std::map<std::string, VarSlot>& observationSlots() const { return obsSlots_; }
+  std::size_t observationWidth() const { return obsWidth_; }
+
+  const std::vector<CompiledConstraint>& constraints() const { return constraints_; }
+  const std::vector<CompiledSampler>& samplers() const { return samplers_; }
+  const std::vector<CompiledGenerator>& generators() const { return generators_; }
+  const std::vector<std::uint32_t>& costs() const { return costs_; }
+
+  // Type facts.
+  ValueType typeOf(const ir::TypeDesc& t) const;
+  const ir::Enum* findEnum(const std::string& name) const;
+  const ir::ItemSet* findItemSetOfType(const std::string& itemType) const;
+  const ir::ItemSet* findItemSet(const std::string& name) const;
+  const ir::Task* findTask(const std::string& name) const;
+
+  // Compiles an expression. `params` maps a generator parameter index to a node that yields it (instance
+  // variables or frame reads); `locals` maps binder names to frame offsets (extended as binders appear).
+  struct Scope {
+    std::vector<std::uint32_t> params;
+    std::map<std::string, std::uint32_t> locals;
+    std::uint32_t* frameTop = nullptr;  // next free frame slot; binders allocate from here
+  };
+  std::uint32_t compile(const ir::Expr& e, Scope& scope);
+
+  // Renders a value (width doubles) for people: enum member names, strings, vectors "(x, y)".
+  std::string render(const ValueType& t, const double* v) const;
+  // Converts a value to the form the simulator boundary uses and back (enum members and texts by name).
+  // Returns false when a name is not a member of its type.
+  bool parseName(const ValueType& t, const std::string& name, double& out) const;
+
+  static std::string where(const ir::Span& s);
+
+ private:
+  void layoutVariables();
+  void layoutObservations();
+  void compileConstraints();
+  void compileSamplers();
+  void compileGenerators();
+  std::uint32_t constNode(std::vector<double> values, std::uint16_t width);
+  std::uint32_t compileConstRef(const ir::Expr& e, Scope& scope);
+  std::uint32_t compileCall(const ir::Expr& e, Scope& scope);
+  std::uint32_t compileQuantifier(const ir::Expr& e, Scope& scope, std::size_t binder);
+  std::uint32_t compileIn(const ir::Expr& e, Scope& scope);
+  std::vector<double> constantValue(const ir::Expr& e);
+  std::vector<double> setMembers(const ir::Expr& set, ValueType& elem, Scope& scope);
+  double memberIndex(const std::string& typeName, const std::string& member) const;
+
+  const ir::ConstraintGraph& graph_;
+  Builtins builtins_;
+  ExprPool pool_;
+  mutable StringTable strings_;
+  std::vector<VarSlot> slots_;
+  std::size_t assignmentWidth_ = 0;
+  std::vector<double> initial_;
+  std::map<std::string, VarSlot> obsSlots_;
+  std::size_t obsWidth_ = 0;
+  std::vector<CompiledConstraint> constraints_;
+  std::vector<CompiledSampler> samplers_;
+  std::vector<CompiledGenerator> generators_;
+  std::vector<std::uint32_t> costs_;
+  std::map<std::string, const ir::Constant*> constants_;
+  std::map<std::string, const ir::Function*> functions_;
+  const ir::Span* currentSpan_ = nullptr;
+  int inlineDepth_ = 0;
+};
+
+}  // namespace cbtl::rt

@@ -1,0 +1,38 @@
+#include "Factor.h"
+
+namespace cbtl::model {
+
+Factor Factor::fromSpec(const ir::ModelFactor& spec) {
+  if (spec.kind == "threshold") {
+    const auto dir = spec.direction == "below" ? ThresholdModel::Direction::Below : ThresholdModel::Direction::Above;
+    return Factor(spec.label, ThresholdModel(spec.lo, spec.hi, dir));
+  }
+  if (spec.kind == "table") return Factor(spec.label, TableModel{});
+  return Factor(spec.label, IntervalModel(spec.lo, spec.hi));
+}
+
+double Factor::probability(double feature) const {
+  if (const auto* i = std::get_if<IntervalModel>(&model_)) return i->probability(feature);
+  if (const auto* t = std::get_if<ThresholdModel>(&model_)) return t->probability(feature);
+  return 0.5;
+}
+
+double Factor::probability(const std::string& key) const {
+  if (const auto* t = std::get_if<TableModel>(&model_)) return t->probability(key);
+  return 0.5;
+}
+
+void Factor::observe(double feature, bool holds) {
+  if (auto* i = std::get_if<IntervalModel>(&model_)) i->observe(feature, holds);
+  else if (auto* t = std::get_if<ThresholdModel>(&model_)) t->observe(feature, holds);
+}
+
+void Factor::observe(const std::string& key, bool holds) {
+  if (auto* t = std::get_if<TableModel>(&model_)) t->observe(key, holds);
+}
+
+void Factor::reset() {
+  std::visit([](auto& m) { m.reset(); }, model_);
+}
+
+}  // namespace cbtl::model

@@ -1,0 +1,57 @@
+#include "IntervalModel.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace cbtl::model {
+
+IntervalModel::IntervalModel(double lo, double hi) : lo_(std::min(lo, hi)), hi_(std::max(lo, hi)) { refit(); }
+
+void IntervalModel::observe(double x, bool holds) {
+  data_.emplace_back(x, holds);
+  refit();
+}
+
+void IntervalModel::reset() {
+  data_.clear();
+  refit();
+}
+
+void IntervalModel::refit() {
+  double minP = std::numeric_limits<double>::infinity(), maxP = -minP;
+  for (const auto& [x, y] : data_) {
+    if (y) {
+      minP = std::min(minP, x);
+      maxP = std::max(maxP, x);
+    }
+  }
+  hasPositive_ = minP <= maxP;
+  if (!hasPositive_) {
+    x1_ = x2_ = lo_;
+    x3_ = x4_ = hi_;
+    return;
+  }
+  x2_ = std::clamp(minP, lo_, hi_);
+  x3_ = std::clamp(maxP, lo_, hi_);
+  x1_ = lo_;
+  x4_ = hi_;
+  for (const auto& [x, y] : data_) {
+    if (y) continue;
+    if (x < x2_) x1_ = std::max(x1_, x);
+    else if (x > x3_) x4_ = std::min(x4_, x);
+  }
+}
+
+double IntervalModel::probability(double x) const {
+  double pa;  // P(a <= x), a ~ U[x1, x2]
+  if (x >= x2_) pa = 1;
+  else if (x < x1_) pa = 0;
+  else pa = (x - x1_) / (x2_ - x1_);
+  double pb;  // P(b >= x), b ~ U[x3, x4]
+  if (x <= x3_) pb = 1;
+  else if (x > x4_) pb = 0;
+  else pb = (x4_ - x) / (x4_ - x3_);
+  return std::clamp(pa * pb, 0.0, 1.0);
+}
+
+}  // namespace cbtl::model

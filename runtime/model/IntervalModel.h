@@ -1,0 +1,48 @@
+// IntervalModel.h — the bounded 1-D interval model: the constraint holds iff a <= x <= b, with the public
+// outer bounds lo <= a <= b <= hi and independent uniform priors on a and b.
+//
+// With positives P and negatives N the version space is a product of two intervals, so the posterior
+// predictive is exact: P(holds | x) = P(a <= x) * P(b >= x) with a ~ U[x1, x2], b ~ U[x3, x4], where
+// x2 = min P, x3 = max P, x1 = the largest negative below x2 (else lo), x4 = the smallest negative above x3
+// (else hi) — a trapezoid. Before the first positive the model predicts 1 on [lo, hi] and 0 outside (as the
+// reference does: no uncertainty until something is liked).
+//
+// Differences from the reference, on purpose: the hypothesis is closed (x = hi is inside the known range,
+// the reference's half-open test made the top of the range impossible); negatives lying between positives
+// contradict them (noisy or shifted preferences) and are left out of the fit instead of pushing x1 above x2,
+// so probabilities always stay within [0, 1].
+#pragma once
+
+#include <utility>
+#include <vector>
+
+namespace cbtl::model {
+
+class IntervalModel {
+ public:
+  IntervalModel(double lo, double hi);
+
+  void observe(double x, bool holds);
+  void reset();
+  double probability(double x) const;
+
+  double lo() const { return lo_; }
+  double hi() const { return hi_; }
+  // The trapezoid's corners x1 <= x2 <= x3 <= x4 (x1 = x2 = lo, x3 = x4 = hi before any positive).
+  double x1() const { return x1_; }
+  double x2() const { return x2_; }
+  double x3() const { return x3_; }
+  double x4() const { return x4_; }
+  bool hasPositive() const { return hasPositive_; }
+  const std::vector<std::pair<double, bool>>& data() const { return data_; }
+
+ private:
+  void refit();
+
+  double lo_, hi_;
+  double x1_, x2_, x3_, x4_;
+  bool hasPositive_ = false;
+  std::vector<std::pair<double, bool>> data_;
+};
+
+}  // namespace cbtl::model

@@ -1,0 +1,69 @@
+// UserModel.h — everything the robot has learned about one user: for every generator, its factors per
+// model key ("seasoning|salt"). Keys never seen read the prior. Saved and loaded as the user profile.
+//
+// Profile file (JSON, documented in docs/profile.md):
+//   {"format": "cbtl-profile", "version": 1, "domain": "cooking",
+//    "generators": {"userEnjoysMeal": {"seasoning|salt": {"temp": {"kind": "interval", "lo": 25, "hi": 35,
+//                                                                  "data": [[30, true], [34, false]]}, ...}}}}
+// Only the data is stored; the fitted state is recomputed on load, so a profile can never disagree with
+// itself. Loading validates everything and reports the first problem with its JSON path.
+#pragma once
+
+#include "Factor.h"
+
+#include "ir/ConstraintGraph.h"
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace cbtl::model {
+
+struct ProfileError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class GeneratorState {
+ public:
+  explicit GeneratorState(const ir::Generator& spec);
+  const ir::Generator& spec() const { return *spec_; }
+  // The factors for a key; the prior when the key has no data. The reference stays valid until reset().
+  const std::vector<Factor>& factors(const std::string& key) const;
+  std::vector<Factor>& mutableFactors(const std::string& key);
+  const std::map<std::string, std::vector<Factor>>& keys() const { return byKey_; }
+  void reset() { byKey_.clear(); }
+  // Bumped on every change, so evaluators can cache per-key look-ups.
+  std::uint64_t version() const { return version_; }
+  void touch() { ++version_; }
+
+ private:
+  const ir::Generator* spec_;
+  std::vector<Factor> prior_;
+  std::map<std::string, std::vector<Factor>> byKey_;
+  std::uint64_t version_ = 0;
+};
+
+class UserModel {
+ public:
+  explicit UserModel(const ir::ConstraintGraph& graph);
+
+  std::size_t size() const { return generators_.size(); }
+  GeneratorState& generator(std::size_t i) { return generators_[i]; }
+  const GeneratorState& generator(std::size_t i) const { return generators_[i]; }
+  void reset();
+  // Total number of labelled examples held.
+  std::size_t dataCount() const;
+
+  std::string toJson() const;
+  // Throws ProfileError naming `source` and the JSON path of the first problem.
+  void fromJson(const std::string& text, const std::string& source);
+  void save(const std::string& path) const;  // atomic: written to a temporary file, then renamed
+  void load(const std::string& path);
+
+ private:
+  std::string domain_;
+  std::vector<GeneratorState> generators_;
+};
+
+}  // namespace cbtl::model

@@ -1,0 +1,99 @@
+// DomainSimulator.h — the contract between the runtime and a domain's simulated world and user.
+//
+// The runtime executes a solved CSP's skill actions one call at a time; the simulator applies them to its
+// world, advances its clock when a call consumes a step, and reports what the (simulated) user said as
+// feedback events whose names and argument lists match the `feedback` declarations of the domain's .cbtl
+// file. Values cross this boundary by kind, not by the runtime's internal layout: enum members and items
+// travel by name, so a simulator never depends on declaration order.
+//
+// Determinism: a simulator owns its RNG; reset(seed) reseeds it completely, so the same seed gives the same
+// task. A simulator is used by one thread.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace cbtl::sim {
+
+// One argument or observation value. `kind` tells which member is meaningful:
+//   Number: real, int and bool (0/1) in `number`;  Vector: vec<N>, SE2 (x y yaw), SE3 (x y z qx qy qz qw),
+//   Conf (joint angles, rad) in `vector`;  Name: enum member, item entry or text in `text`.
+struct Value {
+  enum class Kind { Number, Vector, Name };
+  Kind kind = Kind::Number;
+  double number = 0;
+  std::vector<double> vector;
+  std::string text;
+
+  static Value num(double v) { return Value{Kind::Number, v, {}, {}}; }
+  static Value vec(std::vector<double> v) { return Value{Kind::Vector, 0, std::move(v), {}}; }
+  static Value name(std::string s) { return Value{Kind::Name, 0, {}, std::move(s)}; }
+};
+
+struct ActionCall {
+  std::string name;           // the extern action's name in the .cbtl file
+  std::vector<Value> args;    // in declaration order
+};
+
+struct FeedbackEvent {
+  std::string name;           // a declared `feedback` event
+  std::vector<Value> args;    // in declaration order
+};
+
+enum class ActionStatus {
+  Applied,        // the world changed as asked
+  Ignored,        // legal call the world refused (e.g. a pot that would overlap); the step still passes
+  UnknownAction,  // the simulator has no action of that name or the arguments do not fit: a domain bug
+};
+
+struct StepResult {
+  ActionStatus status = ActionStatus::Applied;
+  bool consumedStep = false;              // did the world's clock advance by one step?
+  bool taskDone = false;                  // the episode's task ended (e.g. the meal was served)
+  bool hasSatisfaction = false;           // the user scored the outcome on this step
+  double satisfaction = 0;                // +1 / -1 when hasSatisfaction
+  bool preferencesChanged = false;        // the user announced that their preferences changed
+  std::vector<FeedbackEvent> feedback;    // what the user said on this step
+  std::string message;                    // human-readable detail (why an action was ignored, ...)
+};
+
+// Observations by the name declared with `observe`; families by "name[member]" (e.g. "stock[salt]").
+using Observation = std::map<std::string, Value>;
+
+class DomainSimulator {
+ public:
+  virtual ~DomainSimulator() = default;
+
+  // Starts a new episode from a fresh random world drawn with `seed` (the RNG is reseeded).
+  virtual void reset(std::uint64_t seed) = 0;
+
+  // The world state that a CSP reads when it is generated.
+  virtual Observation observe() const = 0;
+
+  // Applies one action call of a skill.
+  virtual StepResult act(const ActionCall& call) = 0;
+
+  // Lets one step pass without an action (the robot had no plan, e.g. its CSP was infeasible).
+  virtual StepResult idle() = 0;
+
+  // A second world for evaluation that shares this world's simulated user (so an evaluation sees the
+  // user's current, possibly shifted, preferences) but has its own world state and RNG.
+  virtual std::unique_ptr<DomainSimulator> makeEvaluationTwin() const = 0;
+};
+
+// Experiment switches a domain may honour; a domain ignores those that do not apply to it.
+struct SimulatorOptions {
+  // Paper's Figure 5: every `shiftEvery` steps of the training world, each preference range of the user
+  // is rescaled around its centre by a factor drawn from U[shiftLo, shiftHi]. 0 disables.
+  std::int64_t shiftEvery = 0;
+  double shiftLo = 0.9, shiftHi = 1.1;
+  // The user says so when their preferences shift (enables the "User Reset" variant).
+  bool announceShifts = false;
+  // Paper's Table 1: after every restock, with this probability the stock cannot satisfy the user.
+  double unsatisfiableStockProbability = 0;
+};
+
+}  // namespace cbtl::sim

@@ -1,0 +1,44 @@
+#include "Csp.h"
+
+namespace cbtl::solver {
+
+Csp makeCsp(const rt::Program& program, std::uint32_t taskIndex, const std::vector<rt::PersonalInstance>& instances,
+            const model::UserModel& user, std::vector<double> observation, PersonalMode personal, CostKind cost) {
+  Csp csp;
+  csp.program = &program;
+  csp.task = &program.graph().tasks.at(taskIndex);
+  csp.taskIndex = taskIndex;
+  csp.instances = &instances;
+  csp.user = &user;
+  csp.observation = std::move(observation);
+  csp.initial = program.initialAssignment();
+  csp.cost = cost;
+  // Personalized constraints first: they are cheap and reject most candidates once learned.
+  if (personal == PersonalMode::Include) {
+    for (std::uint32_t i = 0; i < instances.size(); ++i) {
+      csp.constraints.push_back({true, i, (std::uint64_t{1} << 63) | (std::uint64_t{taskIndex} << 32) | i});
+    }
+  }
+  for (std::uint32_t c : csp.task->constraints) csp.constraints.push_back({false, c, c});
+  if (cost == CostKind::Entropy) {
+    for (std::uint32_t i = 0; i < instances.size(); ++i) csp.entropyTerms.push_back(i);
+  }
+  if (cost == CostKind::Declared && csp.task->costs.empty()) csp.cost = CostKind::None;
+  csp.samplers = csp.task->samplers;
+  return csp;
+}
+
+std::string constraintName(const Csp& csp, const ConstraintRef& c) {
+  if (c.personal) return (*csp.instances)[c.index].name;
+  return csp.program->graph().constraints.at(c.index).name;
+}
+
+std::string constraintLocation(const Csp& csp, const ConstraintRef& c) {
+  if (c.personal) {
+    const auto& inst = (*csp.instances)[c.index];
+    return rt::Program::where(csp.program->graph().generators.at(inst.generator).span);
+  }
+  return rt::Program::where(csp.program->graph().constraints.at(c.index).span);
+}
+
+}  // namespace cbtl::solver

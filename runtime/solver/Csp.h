@@ -1,0 +1,55 @@
+// Csp.h — one constraint satisfaction problem: a task of a program instantiated against an observation,
+// with the approach's choice of which personalized constraints are hard and what the cost is.
+//
+// Constraint identities (for statistics and the solver's memory) are stable across regenerated CSPs of
+// the same program: a hard constraint is its index in the graph, a personalized one its task and instance.
+#pragma once
+
+#include "Personalization.h"
+#include "Program.h"
+#include "UserModel.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cbtl::solver {
+
+enum class CostKind {
+  None,      // first feasible assignment wins
+  Entropy,   // CBTL exploration: minimize 1 - mean Bernoulli entropy (bits) of the personalized constraints
+  Declared,  // the task's `minimize` / `maximize` expressions, summed
+};
+
+struct ConstraintRef {
+  bool personal = false;
+  std::uint32_t index = 0;  // graph constraint index, or index into Csp::instances
+  std::uint64_t identity = 0;
+};
+
+struct Csp {
+  const rt::Program* program = nullptr;
+  const ir::Task* task = nullptr;
+  std::uint32_t taskIndex = 0;
+  const std::vector<rt::PersonalInstance>* instances = nullptr;  // all of the task's instances
+  const model::UserModel* user = nullptr;
+  std::vector<double> observation;
+  std::vector<double> initial;
+
+  std::vector<ConstraintRef> constraints;       // checked in this order (personalized first)
+  std::vector<std::uint32_t> entropyTerms;      // instance indices entering the entropy cost
+  std::vector<std::uint32_t> samplers;          // program sampler indices
+  CostKind cost = CostKind::None;
+};
+
+// Which personalized constraints a CSP contains: none (hard constraints only) or all of the task's.
+enum class PersonalMode { Exclude, Include };
+
+// Builds a CSP for `task`. `observation` is laid out as Program::observationSlots() says.
+Csp makeCsp(const rt::Program& program, std::uint32_t taskIndex, const std::vector<rt::PersonalInstance>& instances,
+            const model::UserModel& user, std::vector<double> observation, PersonalMode personal, CostKind cost);
+
+std::string constraintName(const Csp& csp, const ConstraintRef& c);
+std::string constraintLocation(const Csp& csp, const ConstraintRef& c);
+
+}  // namespace cbtl::solver

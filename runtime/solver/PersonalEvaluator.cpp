@@ -1,0 +1,78 @@
+#include "PersonalEvaluator.h"
+
+#include <cmath>
+
+namespace cbtl::solver {
+
+PersonalEvaluator::PersonalEvaluator(const rt::Program& program, const std::vector<rt::PersonalInstance>& instances,
+                                     const model::UserModel& user)
+    : program_(program), instances_(instances), user_(user), cache_(instances.size()) {
+  for (const auto& inst : instances_) {
+    const double accept = program_.graph().generators.at(inst.generator).accept;
+    acceptThreshold_.push_back(accept * std::exp(-1e-3));
+    std::size_t dynamic = 0;
+    for (const auto& part : inst.key) dynamic += part.fromValue ? part.type.width : 0;
+    cache_[acceptThreshold_.size() - 1].keyValues.assign(dynamic, std::nan(""));
+  }
+}
+
+std::string PersonalEvaluator::key(std::uint32_t instance, const rt::EvalContext& ctx) const {
+  const auto& inst = instances_[instance];
+  std::string key;
+  double v[64];
+  for (std::size_t i = 0; i < inst.key.size(); ++i) {
+    const auto& part = inst.key[i];
+    if (i) key += "|";
+    if (part.fromValue) {
+      program_.pool().eval(part.node, ctx, v);
+      key += program_.render(part.type, v);
+    } else {
+      key += part.text;
+    }
+  }
+  return key;
+}
+
+PersonalValue PersonalEvaluator::evaluate(std::uint32_t instance, const rt::EvalContext& ctx) {
+  const auto& inst = instances_[instance];
+  const auto& pool = program_.pool();
+  if (inst.guard && !pool.evalBool(*inst.guard, ctx)) return PersonalValue{false, 1.0};
+  const auto& state = user_.generator(inst.generator);
+  Cache& c = cache_[instance];
+  bool stale = c.factors == nullptr || c.version != state.version();
+  double v[64];
+  std::size_t at = 0;
+  for (const auto& part : inst.key) {
+    if (!part.fromValue) continue;
+    pool.eval(part.node, ctx, v);
+    for (std::size_t i = 0; i < part.type.width; ++i, ++at) {
+      if (c.keyValues[at] != v[i]) {
+        c.keyValues[at] = v[i];
+        stale = true;
+      }
+    }
+  }
+  if (stale) {
+    c.factors = &state.factors(key(instance, ctx));
+    c.version = state.version();
+  }
+  double p = 1.0;
+  const auto& factors = *c.factors;
+  for (std::size_t k = 0; k < factors.size(); ++k) {
+    const std::uint32_t feature = inst.features[k];
+    if (factors[k].isTable()) {
+      if (feature == UINT32_MAX) continue;
+      pool.eval(feature, ctx, v);
+      p *= factors[k].probability(program_.render(inst.featureTypes[k], v));
+    } else {
+      p *= feature == UINT32_MAX ? 1.0 : factors[k].probability(pool.evalScalar(feature, ctx));
+    }
+  }
+  return PersonalValue{true, p};
+}
+
+bool PersonalEvaluator::holds(std::uint32_t instance, const PersonalValue& v) const {
+  return !v.applies || v.probability >= acceptThreshold_[instance];
+}
+
+}  // namespace cbtl::solver

@@ -1,0 +1,298 @@
+#include "Solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "Entropy.h"
+
+namespace cbtl::solver {
+
+const char* toString(SolveOutcome o) {
+  switch (o) {
+    case SolveOutcome::Solved: return "Solved";
+    case SolveOutcome::InfeasibleWithinBudget: return "InfeasibleWithinBudget";
+    case SolveOutcome::SamplersStuck: return "SamplersStuck";
+    case SolveOutcome::NoSamplers: return "NoSamplers";
+  }
+  return "?";
+}
+
+std::size_t Solver::memoryEntries() const {
+  std::size_t n = 0;
+  for (const auto& [k, m] : memory_) n += m.size();
+  return n;
+}
+
+namespace {
+
+inline double* copySmall(const double* from, std::size_t n, double* to) {
+  for (std::size_t i = 0; i < n; ++i) to[i] = from[i];
+  return to + n;
+}
+
+// The variables (and their layout) a constraint reads.
+struct Edge {
+  std::vector<ir::VarId> vars;
+  std::vector<std::uint32_t> offsets, widths;
+  std::uint32_t width = 0;
+};
+
+}  // namespace
+
+SolveResult Solver::solve(const Csp& csp) {
+  const rt::Program& program = *csp.program;
+  const rt::ExprPool& pool = program.pool();
+  const auto& graph = program.graph();
+  PersonalEvaluator personal(program, *csp.instances, *csp.user);
+
+  std::vector<double> x = csp.initial;
+  std::vector<double> frame(256, 0.0);
+  rt::EvalContext ctx{x.data(), csp.observation.data(), frame.data()};
+
+  const std::size_t nc = csp.constraints.size();
+  std::vector<Edge> edges(nc);
+  for (std::size_t i = 0; i < nc; ++i) {
+    const auto& ref = csp.constraints[i];
+    edges[i].vars = ref.personal ? (*csp.instances)[ref.index].hyperedge : graph.constraints[ref.index].vars;
+    for (ir::VarId v : edges[i].vars) {
+      const auto& slot = program.slot(v);
+      edges[i].offsets.push_back(slot.offset);
+      edges[i].widths.push_back(slot.type.width);
+      edges[i].width += slot.type.width;
+    }
+  }
+  // Which constraints and entropy terms read each variable, for invalidation after a move.
+  std::vector<std::vector<std::uint32_t>> readersOf(graph.variables.size());
+  for (std::size_t i = 0; i < nc; ++i) {
+    for (ir::VarId v : edges[i].vars) readersOf[v].push_back(static_cast<std::uint32_t>(i));
+  }
+  const std::size_t ni = csp.instances->size();
+  std::vector<std::vector<std::uint32_t>> termsOf(graph.variables.size());
+  for (std::uint32_t t : csp.entropyTerms) {
+    for (ir::VarId v : (*csp.instances)[t].hyperedge) termsOf[v].push_back(t);
+  }
+
+  enum : std::uint8_t { Dirty, Holds, Fails };
+  std::vector<std::uint8_t> state(nc, Dirty);
+  std::vector<std::uint8_t> termDirty(ni, 1);
+  std::vector<PersonalValue> termValue(ni);
+
+  SolveResult result;
+  result.constraints.resize(nc);
+  for (std::size_t i = 0; i < nc; ++i) result.constraints[i].ref = csp.constraints[i];
+
+  // Memory samplers: one per constraint that already has memory when the solve starts.
+  std::vector<std::uint32_t> memorySamplers;
+  std::vector<Memory*> memories(nc, nullptr);
+  if (options_.useMemory) {
+    for (std::size_t i = 0; i < nc; ++i) {
+      Memory& m = memory_[csp.constraints[i].identity];
+      if (m.capacity == 0 || m.width != edges[i].width) {
+        m = Memory{};
+        m.width = edges[i].width;
+        m.capacity = std::max<std::size_t>(options_.memorySize, 1);
+        m.ring.assign(m.width * m.capacity, 0.0);
+      }
+      memories[i] = &m;
+      if (!m.empty()) memorySamplers.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  const std::size_t userSamplers = csp.samplers.size();
+  std::vector<std::uint32_t> order(userSamplers + memorySamplers.size());
+
+  auto remember = [&](std::size_t i) {
+    if (memories[i] == nullptr) return;
+    double* slot = memories[i]->pushSlot();
+    for (std::size_t k = 0; k < edges[i].vars.size(); ++k) {
+      slot = copySmall(x.data() + edges[i].offsets[k], edges[i].widths[k], slot);
+    }
+  };
+
+  auto check = [&](std::size_t i) -> bool {
+    if (state[i] != Dirty) return state[i] == Holds;
+    const auto& ref = csp.constraints[i];
+    ++result.constraints[i].evaluations;
+    bool ok;
+    if (ref.personal) {
+      const PersonalValue v = personal.evaluate(ref.index, ctx);
+      ok = personal.holds(ref.index, v);
+    } else {
+      ok = pool.evalBool(program.constraints()[ref.index].root, ctx);
+    }
+    state[i] = ok ? Holds : Fails;
+    if (ok) remember(i);
+    return ok;
+  };
+
+  auto costOf = [&]() -> double {
+    if (csp.cost == CostKind::Entropy) {
+      double sum = 0;
+      std::size_t active = 0;
+      for (std::uint32_t t : csp.entropyTerms) {
+        if (termDirty[t]) {
+          termValue[t] = personal.evaluate(t, ctx);
+          termDirty[t] = 0;
+        }
+        if (!termValue[t].applies) continue;
+        sum += model::bernoulliEntropyBits(termValue[t].probability);
+        ++active;
+      }
+      return active == 0 ? 1.0 : 1.0 - sum / static_cast<double>(active);
+    }
+    if (csp.cost == CostKind::Declared) {
+      double sum = 0;
+      for (std::uint32_t c : csp.task->costs) sum += pool.evalScalar(program.costs()[c], ctx);
+      return sum;
+    }
+    return 0;
+  };
+
+  auto markWritten = [&](ir::VarId v) {
+    for (std::uint32_t c : readersOf[v]) state[c] = Dirty;
+    for (std::uint32_t t : termsOf[v]) termDirty[t] = 1;
+  };
+
+  double scratch[512];
+  auto runSampler = [&](std::uint32_t s) -> bool {
+    const rt::CompiledSampler& cs = program.samplers()[s];
+    if (cs.impl != nullptr) {
+      double args[512];
+      std::size_t at = 0;
+      for (std::uint32_t a : cs.args) {
+        pool.eval(a, ctx, args + at);
+        at += pool.width(a);
+      }
+      std::size_t outWidth = 0;
+      for (ir::VarId v : cs.writes) outWidth += program.slot(v).type.width;
+      if (!cs.impl(std::span<const double>(args, at), std::span<const std::uint16_t>(cs.argWidths), rng_,
+                   std::span<double>(scratch, outWidth))) {
+        return false;
+      }
+      std::size_t from = 0;
+      for (ir::VarId v : cs.writes) {
+        const auto& slot = program.slot(v);
+        copySmall(scratch + from, slot.type.width, x.data() + slot.offset);
+        from += slot.type.width;
+        markWritten(v);
+      }
+      return true;
+    }
+    // `uniform`: draw every component first, so a failure leaves the assignment untouched.
+    std::size_t at = 0;
+    for (std::size_t k = 0; k < cs.writes.size(); ++k) {
+      const auto& plan = cs.uniform[k];
+      const auto& slot = program.slot(cs.writes[k]);
+      for (std::size_t c = 0; c < slot.type.width; ++c, ++at) {
+        switch (plan.kind) {
+          case rt::UniformPlan::Kind::Bool: scratch[at] = rng_.coin() ? 1 : 0; break;
+          case rt::UniformPlan::Kind::Choice: scratch[at] = plan.choices[rng_.index(plan.choices.size())]; break;
+          case rt::UniformPlan::Kind::Int: {
+            const double lo = std::ceil(pool.evalScalar(plan.lo[c], ctx)), hi = std::floor(pool.evalScalar(plan.hi[c], ctx));
+            if (!(lo <= hi)) return false;
+            scratch[at] = static_cast<double>(rng_.uniformInt(static_cast<std::int64_t>(lo), static_cast<std::int64_t>(hi)));
+            break;
+          }
+          case rt::UniformPlan::Kind::Real: {
+            const double lo = pool.evalScalar(plan.lo[c], ctx), hi = pool.evalScalar(plan.hi[c], ctx);
+            if (!(lo <= hi)) return false;
+            scratch[at] = rng_.uniform(lo, hi);
+            break;
+          }
+        }
+      }
+    }
+    at = 0;
+    for (ir::VarId v : cs.writes) {
+      const auto& slot = program.slot(v);
+      copySmall(scratch + at, slot.type.width, x.data() + slot.offset);
+      at += slot.type.width;
+      markWritten(v);
+    }
+    return true;
+  };
+
+  auto runMemorySampler = [&](std::uint32_t i) -> bool {
+    const Memory& m = *memories[i];
+    if (m.empty()) return false;
+    const double* sub = m.at(rng_.index(m.size()));
+    std::size_t at = 0;
+    for (std::size_t k = 0; k < edges[i].vars.size(); ++k) {
+      copySmall(sub + at, edges[i].widths[k], x.data() + edges[i].offsets[k]);
+      at += edges[i].widths[k];
+      markWritten(edges[i].vars[k]);
+    }
+    return true;
+  };
+
+  bool found = false;
+  double bestCost = std::numeric_limits<double>::infinity();
+  std::vector<double> best;
+  std::uint64_t attempts = 0;
+  for (std::uint64_t iter = 0; iter < options_.maxIters; ++iter) {
+    if (found && (attempts >= options_.maxImprovementAttempts || result.improvements >= options_.numImprovements)) break;
+    if (found) ++attempts;
+    ++result.iterations;
+    bool prune = false;
+    double cost = 0;
+    if (csp.cost != CostKind::None) {
+      cost = costOf();
+      prune = cost > bestCost;
+    }
+    if (prune) {
+      ++result.prunedByCost;
+    } else {
+      ++result.candidatesChecked;
+      bool ok = true;
+      for (std::size_t i = 0; i < nc; ++i) {
+        if (!check(i)) {
+          ++result.constraints[i].rejections;
+          ok = false;
+          break;
+        }
+      }
+      if (ok) {
+        if (found) ++result.improvements;
+        found = true;
+        if (csp.cost == CostKind::None) {
+          result.outcome = SolveOutcome::Solved;
+          result.assignment = x;
+          result.cost = 0;
+          return result;
+        }
+        best = x;
+        bestCost = cost;
+      }
+    }
+    // Move.
+    if (order.empty()) {
+      result.outcome = found ? SolveOutcome::Solved : SolveOutcome::NoSamplers;
+      break;
+    }
+    // A uniformly random order, drawn lazily (Fisher-Yates one position at a time): the first sampler
+    // usually succeeds, so most moves cost one draw instead of a full shuffle.
+    for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+    bool moved = false;
+    for (std::size_t pos = 0; pos < order.size() && !moved; ++pos) {
+      std::swap(order[pos], order[pos + rng_.index(order.size() - pos)]);
+      const std::uint32_t k = order[pos];
+      moved = k < userSamplers ? runSampler(csp.samplers[k]) : runMemorySampler(memorySamplers[k - userSamplers]);
+    }
+    if (!moved) {
+      result.outcome = found ? SolveOutcome::Solved : SolveOutcome::SamplersStuck;
+      break;
+    }
+  }
+  if (found) {
+    result.outcome = SolveOutcome::Solved;
+    result.assignment = std::move(best);
+    result.cost = bestCost;
+  } else {
+    if (result.outcome == SolveOutcome::Solved) result.outcome = SolveOutcome::InfeasibleWithinBudget;
+    result.assignment = x;
+  }
+  return result;
+}
+
+}  // namespace cbtl::solver

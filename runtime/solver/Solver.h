@@ -1,0 +1,106 @@
+// Solver.h — the paper's sampling solver: a random walk of partial resamples with a memory of satisfying
+// sub-assignments (the reference's "lifelong" wrapper), made explicit and deterministic.
+//
+// Per iteration (the first one checks the CSP's initial assignment unchanged):
+//   1. stop if a solution is known and either `maxImprovementAttempts` iterations have passed since the
+//      first one or `numImprovements` further satisfying candidates (ties included) were found;
+//   2. with a cost, evaluate it first and skip the constraint check when it is worse than the best
+//      solution's (ties are checked, and the latest tied solution wins);
+//   3. check the constraints in order, stopping at the first that fails (it is charged with the rejection);
+//      without a cost the first satisfying candidate is returned;
+//   4. move: try the samplers (the CSP's own, then one memory sampler per constraint that has memory) in a
+//      freshly shuffled order until one produces values, and overwrite the variables it writes.
+// After `maxIters` iterations the best satisfying candidate, if any, is returned.
+//
+// Constraint results are cached per candidate and recomputed only for constraints that read a variable
+// the last move changed: the outcome is exactly that of re-checking everything, for a fraction of the cost.
+// Every time a constraint is found satisfied its sub-assignment enters its memory (FIFO, `memorySize`),
+// which lives as long as the Solver, so later CSPs of the same program start from past solutions.
+// Budgets are iteration counts; the same seed gives the same result.
+#pragma once
+
+#include "Csp.h"
+#include "PersonalEvaluator.h"
+#include "Rng.h"
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace cbtl::solver {
+
+struct SolverOptions {
+  std::uint64_t maxIters = 100000;
+  std::uint64_t numImprovements = 500;
+  std::uint64_t maxImprovementAttempts = 10000;
+  std::size_t memorySize = 100;
+  bool useMemory = true;
+};
+
+enum class SolveOutcome {
+  Solved,                  // a satisfying assignment (the best found, with a cost)
+  InfeasibleWithinBudget,  // no satisfying assignment within maxIters
+  SamplersStuck,           // every sampler failed to produce a value for the current assignment
+  NoSamplers,              // the CSP has no sampler and its initial assignment does not satisfy it
+};
+
+const char* toString(SolveOutcome o);
+
+struct ConstraintStats {
+  ConstraintRef ref;
+  std::uint64_t evaluations = 0;
+  std::uint64_t rejections = 0;  // candidates this constraint was the first to reject
+};
+
+struct SolveResult {
+  SolveOutcome outcome = SolveOutcome::InfeasibleWithinBudget;
+  std::vector<double> assignment;  // the solution (Solved), else the last candidate
+  double cost = 0;
+  std::uint64_t iterations = 0;
+  std::uint64_t candidatesChecked = 0;  // candidates whose constraints were checked (not pruned by cost)
+  std::uint64_t improvements = 0;
+  std::uint64_t prunedByCost = 0;
+  std::vector<ConstraintStats> constraints;  // in the CSP's check order
+  bool solved() const { return outcome == SolveOutcome::Solved; }
+};
+
+class Solver {
+ public:
+  Solver(SolverOptions options, std::uint64_t seed) : options_(options), rng_(seed) {}
+
+  SolveResult solve(const Csp& csp);
+
+  const SolverOptions& options() const { return options_; }
+  std::size_t memoryEntries() const;
+
+ private:
+  // A FIFO of satisfying sub-assignments of one constraint, in one preallocated ring (no allocation per
+  // remembered value).
+  struct Memory {
+    std::size_t width = 0, capacity = 0, count = 0, head = 0;
+    std::vector<double> ring;
+    bool empty() const { return count == 0; }
+    std::size_t size() const { return count; }
+    std::size_t last = 0;  // slot of the newest entry
+    const double* at(std::size_t i) const {
+      const std::size_t k = head + i;
+      return ring.data() + (k >= capacity ? k - capacity : k) * width;
+    }
+    double* pushSlot() {
+      if (count < capacity) {
+        const std::size_t k = head + count++;
+        last = k >= capacity ? k - capacity : k;
+      } else {
+        last = head;  // overwrite the oldest
+        head = head + 1 == capacity ? 0 : head + 1;
+      }
+      return ring.data() + last * width;
+    }
+  };
+  SolverOptions options_;
+  rt::Rng rng_;
+  std::map<std::uint64_t, Memory> memory_;
+};
+
+}  // namespace cbtl::solver

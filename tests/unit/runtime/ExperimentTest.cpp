@@ -1,0 +1,153 @@
+// The experiment loop on Cooking: end to end, deterministic, learning, and the paper's switches.
+#include "TestPrograms.h"
+
+#include "DomainRegistry.h"
+#include "Experiment.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+using namespace cbtl;
+
+namespace {
+
+approach::SimulatorFactory cooking() {
+  return [](const sim::SimulatorOptions& o, std::uint64_t seed) { return domains::createSimulator("cooking", o, seed); };
+}
+
+approach::ExperimentConfig shortRun(approach::ApproachKind kind, std::uint64_t seed, const std::string& out = "") {
+  approach::ExperimentConfig c;
+  c.approach.kind = kind;
+  c.seed = seed;
+  c.steps = 600;
+  c.evalEvery = 200;
+  c.evalTasks = 3;
+  c.outDir = out;
+  return c;
+}
+
+std::string tempDir(const std::string& name) {
+  const auto p = std::filesystem::temp_directory_path() / ("cbtl_test_" + name);
+  std::filesystem::remove_all(p);
+  return p.string();
+}
+
+}  // namespace
+
+TEST(Experiment, ShortCookingRunLearnsAndWritesItsFiles) {
+  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  ASSERT_TRUE(lp->ok()) << lp->errors();
+  const std::string out = tempDir("short");
+  const auto r = approach::runExperiment(*lp, cooking(), shortRun(approach::ApproachKind::Cbtl, 0, out));
+  ASSERT_EQ(r.evals.size(), 4u);  // steps 0, 200, 400, 600
+  EXPECT_EQ(r.evals.front().step, 0);
+  EXPECT_EQ(r.evals.back().step, 600);
+  EXPECT_GT(r.mealsServed, 10);
+  EXPECT_EQ(r.trainSolveFailures, 0);
+  for (const char* f : {"train.csv", "eval.csv", "config.json", "profile.json", "models/0.json", "models/600.json"}) {
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / f)) << f;
+  }
+  const std::string train = test::readFile(out + "/train.csv");
+  EXPECT_EQ(train.rfind("step,execution_time,user_satisfaction", 0), 0u);
+  EXPECT_EQ(std::count(train.begin(), train.end(), '\n'), 601);
+  model::UserModel learned(lp->graph());
+  learned.load(out + "/profile.json");
+  EXPECT_GT(learned.dataCount(), 20u) << "every served meal labels two ingredients on two axes";
+}
+
+TEST(Experiment, SameSeedGivesIdenticalCsvs) {
+  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  ASSERT_TRUE(lp->ok());
+  const std::string a = tempDir("det_a"), b = tempDir("det_b"), c = tempDir("det_c");
+  approach::runExperiment(*lp, cooking(), shortRun(approach::ApproachKind::EpsilonGreedy, 4, a));
+  approach::runExperiment(*lp, cooking(), shortRun(approach::ApproachKind::EpsilonGreedy, 4, b));
+  approach::runExperiment(*lp, cooking(), shortRun(approach::ApproachKind::EpsilonGreedy, 5, c));
+  EXPECT_EQ(test::readFile(a + "/train.csv"), test::readFile(b + "/train.csv"));
+  EXPECT_EQ(test::readFile(a + "/eval.csv"), test::readFile(b + "/eval.csv"));
+  EXPECT_EQ(test::readFile(a + "/profile.json"), test::readFile(b + "/profile.json"));
+  EXPECT_NE(test::readFile(a + "/train.csv"), test::readFile(c + "/train.csv"));
+}
+
+TEST(Experiment, NoPersonalizationNeverLearns) {
+  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  ASSERT_TRUE(lp->ok());
+  const std::string out = tempDir("nolearn");
+  approach::runExperiment(*lp, cooking(), shortRun(approach::ApproachKind::NoPersonalization, 1, out));
+  model::UserModel learned(lp->graph());
+  learned.load(out + "/profile.json");
+  EXPECT_EQ(learned.dataCount(), 0u);
+}
+
+TEST(Experiment, CbtlLearnsTheHiddenRangesWithinFifteenHundredSteps) {
+  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  ASSERT_TRUE(lp->ok());
+  const std::string out = tempDir("learns");
+  auto c = shortRun(approach::ApproachKind::Cbtl, 2, out);
+  c.steps = 1500;
+  c.evalEvery = 1500;
+  c.evalTasks = 10;
+  const auto r = approach::runExperiment(*lp, cooking(), c);
+  EXPECT_EQ(r.evals.front().mean, -1.0) << "nothing is known at step 0";
+  EXPECT_GT(r.evals.back().mean, 0.0);
+  // The hidden user likes 28 .. 32 ticks and 0.95 .. 1.0 of each seasoning. Entropy-driven exploration
+  // bisects the ramps: each boundary is pinned between a negative and a positive example.
+  model::UserModel learned(lp->graph());
+  learned.load(out + "/profile.json");
+  for (const char* ing : {"salt", "pepper"}) {
+    const auto& f = learned.generator(0).factors(std::string("seasoning|") + ing);
+    const auto& temp = std::get<model::IntervalModel>(f[0].model());
+    const auto& qty = std::get<model::IntervalModel>(f[1].model());
+    EXPECT_TRUE(temp.x1() < 28 && 28 <= temp.x2() && temp.x2() - temp.x1() <= 1) << ing;
+    EXPECT_TRUE(temp.x3() <= 32 && 32 < temp.x4() && temp.x4() - temp.x3() <= 1) << ing;
+    EXPECT_TRUE(qty.x1() < 0.95 && 0.95 <= qty.x2() && qty.x2() - qty.x1() < 0.01) << ing;
+    EXPECT_TRUE(qty.x3() <= 1.0 && 1.0 < qty.x4() && qty.x4() - qty.x3() < 0.01) << ing;
+  }
+}
+
+TEST(Experiment, UnsatisfiableStockWithAndWithoutReplanning) {
+  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  ASSERT_TRUE(lp->ok());
+  auto c = shortRun(approach::ApproachKind::Cbtl, 3);
+  c.steps = 1500;
+  c.evalEvery = 1500;
+  c.evalTasks = 10;
+  c.simulator.unsatisfiableStockProbability = 0.5;
+  const auto noReplan = approach::runExperiment(*lp, cooking(), c);
+  c.approach.replan = true;
+  const auto replan = approach::runExperiment(*lp, cooking(), c);
+  EXPECT_LT(noReplan.evals.back().taskSuccessRate, 1.0);
+  EXPECT_EQ(noReplan.evals.back().replans, 0);
+  EXPECT_EQ(replan.evals.back().taskSuccessRate, 1.0);
+  EXPECT_GT(replan.evals.back().replans, 0);
+}
+
+TEST(Experiment, NonstationaryUserResetForgetsOnAnnouncedShifts) {
+  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  ASSERT_TRUE(lp->ok());
+  const std::string out = tempDir("reset");
+  auto c = shortRun(approach::ApproachKind::Cbtl, 6, out);
+  c.steps = 700;
+  c.nonstationary = true;
+  c.adaptation = approach::Adaptation::UserReset;
+  c.simulator.shiftEvery = 650;
+  approach::runExperiment(*lp, cooking(), c);
+  model::UserModel at600(lp->graph()), at700(lp->graph());
+  at600.load(out + "/models/600.json");
+  at700.load(out + "/profile.json");
+  EXPECT_LT(at700.dataCount(), at600.dataCount()) << "the models were reset at step 650";
+}
+
+TEST(Experiment, BadConfigurationIsRejected) {
+  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  ASSERT_TRUE(lp->ok());
+  auto c = shortRun(approach::ApproachKind::Cbtl, 0);
+  c.task = "nope";
+  EXPECT_THROW(approach::runExperiment(*lp, cooking(), c), std::runtime_error);
+  c.task = "";
+  c.evalEvery = 0;
+  EXPECT_THROW(approach::runExperiment(*lp, cooking(), c), std::runtime_error);
+  c.evalEvery = 10;
+  c.initialProfile = "/nonexistent.json";
+  EXPECT_THROW(approach::runExperiment(*lp, cooking(), c), std::exception);
+}

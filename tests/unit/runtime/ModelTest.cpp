@@ -1,0 +1,141 @@
+// The learned models: interval (exact trapezoid), threshold, table, entropy, products of factors.
+#include "Entropy.h"
+#include "Factor.h"
+#include "IntervalModel.h"
+#include "TableModel.h"
+#include "ThresholdModel.h"
+
+#include <gtest/gtest.h>
+
+using namespace cbtl::model;
+
+TEST(IntervalModel, ReferenceVector) {
+  IntervalModel m(0, 1);
+  m.observe(0.2, false);
+  m.observe(0.4, true);
+  m.observe(0.6, true);
+  m.observe(0.8, false);
+  EXPECT_NEAR(m.probability(0.1), 0.0, 1e-12);
+  EXPECT_NEAR(m.probability(0.3), 0.5, 1e-12);
+  EXPECT_NEAR(m.probability(0.5), 1.0, 1e-12);
+  EXPECT_NEAR(m.probability(0.7), 0.5, 1e-12);
+  EXPECT_NEAR(m.probability(0.9), 0.0, 1e-12);
+}
+
+TEST(IntervalModel, PriorAcceptsTheWholeKnownRangeWithNoUncertainty) {
+  IntervalModel m(2.5, 3.5);
+  for (double x : {2.5, 3.0, 3.5}) {
+    EXPECT_EQ(m.probability(x), 1.0) << x;
+    EXPECT_EQ(bernoulliEntropyBits(m.probability(x)), 0.0);
+  }
+  EXPECT_EQ(m.probability(2.4), 0.0);
+  EXPECT_EQ(m.probability(3.6), 0.0);
+  m.observe(3.4, false);  // negatives alone do not move the prior (as in the reference)
+  EXPECT_EQ(m.probability(3.45), 1.0);
+}
+
+TEST(IntervalModel, EntropyIsMaximalAtTheRampMidpoints) {
+  IntervalModel m(0, 1);
+  m.observe(0.2, false);
+  m.observe(0.4, true);
+  m.observe(0.6, true);
+  m.observe(0.8, false);
+  EXPECT_NEAR(bernoulliEntropyBits(m.probability(0.3)), 1.0, 1e-12);
+  EXPECT_LT(bernoulliEntropyBits(m.probability(0.25)), 1.0);
+  EXPECT_EQ(bernoulliEntropyBits(m.probability(0.5)), 0.0);
+}
+
+TEST(IntervalModel, StaysInUnitIntervalOnInconsistentData) {
+  IntervalModel m(0, 1);
+  m.observe(0.5, true);
+  m.observe(0.5, false);
+  m.observe(0.3, true);
+  m.observe(0.4, false);  // between two positives: contradicts them
+  m.observe(0.9, true);
+  m.observe(0.1, false);
+  for (int i = -10; i <= 110; ++i) {
+    const double p = m.probability(i / 100.0);
+    EXPECT_GE(p, 0.0);
+    EXPECT_LE(p, 1.0);
+  }
+  EXPECT_LE(m.x1(), m.x2());
+  EXPECT_LE(m.x2(), m.x3());
+  EXPECT_LE(m.x3(), m.x4());
+}
+
+TEST(IntervalModel, ResetForgetsEverything) {
+  IntervalModel m(0, 1);
+  m.observe(0.5, true);
+  m.observe(0.7, false);
+  m.reset();
+  EXPECT_TRUE(m.data().empty());
+  EXPECT_EQ(m.probability(0.8), 1.0);
+}
+
+TEST(ThresholdModel, AboveNarrowsAndInterpolates) {
+  ThresholdModel m(0, 1, ThresholdModel::Direction::Above);
+  EXPECT_NEAR(m.probability(0.25), 0.25, 1e-12);
+  m.observe(0.8, true);   // theta <= 0.8
+  m.observe(0.2, false);  // theta > 0.2
+  EXPECT_EQ(m.probability(0.1), 0.0);
+  EXPECT_EQ(m.probability(0.9), 1.0);
+  EXPECT_NEAR(m.probability(0.5), 0.5, 1e-12);
+}
+
+TEST(ThresholdModel, BelowIsTheMirror) {
+  ThresholdModel m(0, 1, ThresholdModel::Direction::Below);
+  m.observe(0.2, true);   // theta >= 0.2
+  m.observe(0.8, false);  // theta < 0.8
+  EXPECT_EQ(m.probability(0.1), 1.0);
+  EXPECT_EQ(m.probability(0.9), 0.0);
+  EXPECT_NEAR(m.probability(0.5), 0.5, 1e-12);
+}
+
+TEST(ThresholdModel, ContradictionGivesOneHalf) {
+  ThresholdModel m(0, 1, ThresholdModel::Direction::Above);
+  m.observe(0.3, true);
+  m.observe(0.6, false);
+  EXPECT_EQ(m.probability(0.0), 0.5);
+  EXPECT_EQ(m.probability(1.0), 0.5);
+  EXPECT_EQ(bernoulliEntropyBits(m.probability(0.5)), 1.0);
+}
+
+TEST(TableModel, TriStateWithLatestLabel) {
+  TableModel t;
+  EXPECT_EQ(t.probability("table"), 0.5);
+  t.observe("table", true);
+  EXPECT_EQ(t.probability("table"), 1.0);
+  t.observe("table", false);
+  EXPECT_EQ(t.probability("table"), 0.0);
+  EXPECT_EQ(t.probability("shelf"), 0.5);
+}
+
+TEST(Entropy, Bits) {
+  EXPECT_EQ(bernoulliEntropyBits(0.0), 0.0);
+  EXPECT_EQ(bernoulliEntropyBits(1.0), 0.0);
+  EXPECT_NEAR(bernoulliEntropyBits(0.5), 1.0, 1e-15);
+  EXPECT_NEAR(bernoulliEntropyBits(0.25), 0.8112781244591328, 1e-12);
+  EXPECT_EQ(bernoulliEntropyBits(-0.2), 0.0);
+  EXPECT_EQ(bernoulliEntropyBits(1.5), 0.0);
+}
+
+TEST(Factor, FromSpecBuildsEachKind) {
+  cbtl::ir::ModelFactor spec;
+  spec.label = "t";
+  spec.kind = "interval";
+  spec.lo = 0;
+  spec.hi = 1;
+  Factor f = Factor::fromSpec(spec);
+  f.observe(0.5, true);
+  EXPECT_EQ(f.probability(0.5), 1.0);
+  spec.kind = "threshold";
+  spec.direction = "below";
+  Factor g = Factor::fromSpec(spec);
+  g.observe(0.5, false);
+  EXPECT_EQ(g.probability(0.6), 0.0);
+  spec.kind = "table";
+  Factor h = Factor::fromSpec(spec);
+  EXPECT_TRUE(h.isTable());
+  h.observe("a", true);
+  EXPECT_EQ(h.probability("a"), 1.0);
+}

@@ -1,0 +1,129 @@
+// `cbtl solve FILE [--task T] [--seed S] [--explain]`: one CSP of a task against the domain simulator's
+// world for that seed, its solution and action plan, or why there is none. Exit codes: 0 solved, 3 no
+// solution within the budget, 1 bad input, 2 usage, 70 internal error.
+#include "CommandRegistry.h"
+#include "RuntimeSupport.h"
+
+#include "Planner.h"
+#include "UserModel.h"
+#include "ValueBridge.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <exception>
+#include <string>
+
+namespace {
+
+struct SolveArgs {
+  std::string file, task, csp = "exploit", profile, stdlibDir;
+  std::uint64_t seed = 0;
+  bool explain = false, replan = false;
+  cbtl::solver::SolverOptions solver;
+};
+
+std::string renderCall(const cbtl::sim::ActionCall& c) {
+  std::string s = c.name + "(";
+  for (std::size_t i = 0; i < c.args.size(); ++i) {
+    const auto& a = c.args[i];
+    if (i) s += ", ";
+    if (a.kind == cbtl::sim::Value::Kind::Name) s += a.text;
+    else if (a.kind == cbtl::sim::Value::Kind::Number) s += fmt::format("{:.6g}", a.number);
+    else {
+      s += "(";
+      for (std::size_t k = 0; k < a.vector.size(); ++k) s += fmt::format("{}{:.6g}", k ? ", " : "", a.vector[k]);
+      s += ")";
+    }
+  }
+  return s + ")";
+}
+
+void explain(const cbtl::approach::Plan& plan) {
+  using namespace cbtl::solver;
+  auto print = [&](const Csp& csp, const SolveResult& r, const char* title) {
+    fmt::print("{}: {} after {} iterations ({} candidates checked, {} pruned by cost, {} improvements)\n", title,
+               toString(r.outcome), r.iterations, r.candidatesChecked, r.prunedByCost, r.improvements);
+    std::vector<ConstraintStats> stats = r.constraints;
+    std::stable_sort(stats.begin(), stats.end(), [](const auto& a, const auto& b) { return a.rejections > b.rejections; });
+    fmt::print("  {:>10} {:>11}  {:<48} {}\n", "rejected", "evaluated", "constraint", "declared at");
+    for (const auto& s : stats) {
+      if (s.evaluations == 0 && s.rejections == 0) continue;
+      fmt::print("  {:>10} {:>11}  {:<48} {}\n", s.rejections, s.evaluations, constraintName(csp, s.ref),
+                 constraintLocation(csp, s.ref));
+    }
+  };
+  if (plan.failedFull) print(plan.csp, *plan.failedFull, "with personalized constraints");
+  print(plan.csp, plan.solve, plan.failedFull ? "replanned without personalized constraints" : "solve");
+}
+
+int runSolve(const SolveArgs& a) {
+  using namespace cbtl;
+  approach::CspChoice choice;
+  if (a.csp == "exploit") choice = approach::evaluationChoice();
+  else if (a.csp == "explore") choice = {solver::PersonalMode::Exclude, solver::CostKind::Entropy};
+  else if (a.csp == "hard") choice = {solver::PersonalMode::Exclude, solver::CostKind::Declared};
+  else {
+    fmt::print(stderr, "cbtl solve: error: unknown --csp '{}' (exploit, explore, hard)\n", a.csp);
+    return 2;
+  }
+  auto lp = cli::loadForRun("solve", a.file, a.stdlibDir);
+  if (!lp) return 1;
+  const int task = lp->taskIndex(a.task);
+  if (task < 0) {
+    fmt::print(stderr, "cbtl solve: error: {}: no task named '{}'\n", a.file, a.task);
+    return 1;
+  }
+  model::UserModel user(lp->graph());
+  if (!a.profile.empty()) user.load(a.profile);
+  std::vector<double> observation(lp->program().observationWidth(), 0.0);
+  if (auto world = domains::createSimulator(lp->graph().domain, {}, a.seed)) {
+    observation = approach::observationVector(lp->program(), world->observe());
+  } else if (lp->program().observationWidth() > 0) {
+    fmt::print(stderr, "cbtl solve: note: no simulator for domain '{}'; observations are zero\n", lp->graph().domain);
+  }
+  solver::Solver solver(a.solver, approach::deriveSeed(a.seed, 1));
+  const approach::Plan plan = approach::makePlan(*lp, static_cast<std::size_t>(task), observation, choice, a.replan, solver, user);
+  const auto& program = lp->program();
+  const ir::Task& t = lp->graph().tasks[static_cast<std::size_t>(task)];
+  fmt::print("task {}: {}{}\n", t.name, solver::toString(plan.solve.outcome),
+             plan.replanned ? " (replanned without personalized constraints: the user's preferences cannot be met)" : "");
+  if (plan.ok) {
+    for (ir::VarId v : t.vars) {
+      const auto& slot = program.slot(v);
+      fmt::print("  {} = {}\n", lp->graph().variables[v].name, program.render(slot.type, plan.solve.assignment.data() + slot.offset));
+    }
+    fmt::print("plan ({} calls):\n", plan.calls.size());
+    for (const auto& c : plan.calls) fmt::print("  {}\n", renderCall(c));
+  }
+  if (a.explain || !plan.ok) explain(plan);
+  return plan.ok ? 0 : 3;
+}
+
+void addSolve(CLI::App& app, int& exitCode) {
+  auto args = std::make_shared<SolveArgs>();
+  CLI::App* cmd = app.add_subcommand("solve", "solve one CSP of a task and print its solution and plan, or why there is none");
+  cmd->add_option("file", args->file, "the domain's .cbtl file")->required();
+  cmd->add_option("--task", args->task, "task to solve (default: the first)");
+  cmd->add_option("--seed", args->seed, "seed of the world and the solver")->capture_default_str();
+  cmd->add_option("--csp", args->csp,
+                  "exploit: hard + personalized constraints; explore: hard constraints, maximize entropy; hard: hard only")
+      ->capture_default_str();
+  cmd->add_option("--profile", args->profile, "the user profile to personalize with");
+  cmd->add_flag("--replan", args->replan, "if unsatisfiable, replan without personalized constraints");
+  cmd->add_flag("--explain", args->explain, "which constraints rejected candidates, how often, and where they are declared");
+  cmd->add_option("--stdlib", args->stdlibDir, "standard library folder (default: embedded)");
+  cbtl::cli::addSolverOptions(cmd, args->solver);
+  cmd->callback([args, &exitCode]() {
+    try {
+      exitCode = runSolve(*args);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "cbtl solve: error: {}\n", e.what());
+      exitCode = 1;
+    }
+  });
+}
+
+const cbtl::cli::RegisterCommand registerSolve(20, addSolve);
+
+}  // namespace

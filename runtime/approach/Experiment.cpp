@@ -41,6 +41,10 @@ double ExperimentResult::meanEval() const {
   return s / static_cast<double>(evals.size());
 }
 
+std::uint64_t evaluationTaskSeed(std::uint64_t seed, int task) {
+  return deriveSeed(seed + 100000, 1000 + static_cast<std::uint64_t>(task));
+}
+
 std::uint64_t deriveSeed(std::uint64_t seed, std::uint64_t stream) {
   // splitmix64 of the pair: well-mixed, independent streams from one run seed.
   std::uint64_t z = seed + 0x9E3779B97F4A7C15ull * (stream + 1);
@@ -117,7 +121,7 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
   auto evalWorld = trainWorld->makeEvaluationTwin();
 
   const rt::Program& program = lp.program();
-  model::UserModel user(lp.graph());
+  model::UserModel user(lp.graph(), config.textBackend);
   if (!config.initialProfile.empty()) user.load(config.initialProfile);
   solver::Solver trainSolver(config.solverOptions, deriveSeed(config.seed, 1));
   solver::Solver evalSolver(config.solverOptions, deriveSeed(config.seed + 100000, 1));
@@ -159,7 +163,7 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
     model::UserModel evalUser = user;  // the evaluation agent loads the training agent's models
     int successes = 0, satisfied = 0;
     for (int i = 0; i < config.evalTasks; ++i) {
-      evalWorld->reset(config.seed + 100000 + static_cast<std::uint64_t>(i));
+      evalWorld->reset(evaluationTaskSeed(config.seed, i));
       double satisfaction = 0;
       bool done = false;
       std::int64_t steps = 0;
@@ -225,6 +229,8 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
       const LearnReport report = lp.learner().learn(r.feedback, user);
       labels = report.labels;
       if (!report.problems.empty()) throw std::runtime_error("feedback does not fit its declaration: " + report.problems.front());
+      if (!report.modelErrors.empty() && result.textModelErrors == 0) result.firstTextModelError = report.modelErrors.front();
+      result.textModelErrors += static_cast<std::int64_t>(report.modelErrors.size());
     }
     if (r.preferencesChanged && config.nonstationary && config.adaptation == Adaptation::UserReset) user.reset();
     if (r.taskDone) ++result.mealsServed;

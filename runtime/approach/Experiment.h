@@ -2,8 +2,10 @@
 //
 // Train for `steps` steps in one world that is never reset (a served meal restocks it); every `evalEvery`
 // steps (and at step 0 and at the end), copy what was learned into an evaluation agent and run `evalTasks`
-// episodes, episode i in a world reset with seed + 100000 + i — the same held-out tasks at every
-// checkpoint (the reference's evaluation tasks drifted between checkpoints). An episode scores the sum of
+// episodes, episode i in a world reset with evaluationTaskSeed(seed, i) — the same held-out tasks at every
+// checkpoint (the reference's evaluation tasks drifted between checkpoints), and different tasks for
+// different run seeds (the reference's seed + 100000 + i made seeds s and s + 1 share nine of ten tasks,
+// so ten seeds were far from ten independent samples). An episode scores the sum of
 // the user's satisfaction over at most `maxEvalEpisodeSteps` steps; an episode whose CSP cannot be solved
 // scores 0 and counts as a failed task.
 //
@@ -22,6 +24,10 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+namespace cbtl::textpref {
+class TextBackend;
+}
 
 namespace cbtl::approach {
 
@@ -48,6 +54,8 @@ struct ExperimentConfig {
   sim::SimulatorOptions simulator;
   solver::SolverOptions solverOptions;
   std::string initialProfile;  // a profile to start from (optional)
+  // Makes the models of text factors (`model text(...)`); null: the offline descriptor model (no network).
+  std::shared_ptr<const textpref::TextBackend> textBackend;
 };
 
 struct EvalPoint {
@@ -65,6 +73,9 @@ struct ExperimentResult {
   double trainSatisfaction = 0;      // sum over training
   std::int64_t trainSolves = 0, trainSolveFailures = 0, trainReplans = 0;
   std::uint64_t solverIterations = 0;
+  // Learning steps whose text model kept its old theta (e.g. a language-model server failed), and the first one.
+  std::int64_t textModelErrors = 0;
+  std::string firstTextModelError;
   double meanEval() const;
 };
 
@@ -73,6 +84,9 @@ using SimulatorFactory = std::function<std::unique_ptr<sim::DomainSimulator>(con
 // Runs one trial. Throws rt::RuntimeError / model::ProfileError / std::runtime_error for bad input or a
 // simulator that breaks the contract; never hangs (every loop is bounded by the configured budgets).
 ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& factory, const ExperimentConfig& config);
+
+// The world seed of held-out evaluation task `task` of run `seed`.
+std::uint64_t evaluationTaskSeed(std::uint64_t seed, int task);
 
 // Seeds for independent components derived from one run seed.
 std::uint64_t deriveSeed(std::uint64_t seed, std::uint64_t stream);

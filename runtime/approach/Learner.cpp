@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <optional>
+
 namespace cbtl::approach {
 
 Learner::Learner(const rt::Program& program) : program_(program) {
@@ -74,6 +76,26 @@ LearnReport Learner::learn(const std::vector<sim::FeedbackEvent>& events, model:
             pool.eval(feature, ctx, v);
             const auto& spec = *g.factors[static_cast<std::size_t>(factor)].source;
             f.observe(program_.render(program_.typeOf(spec.feature->type), v), holds);
+          } else if (f.isText()) {
+            if (feature == UINT32_MAX) continue;
+            const auto& spec = *g.factors[static_cast<std::size_t>(factor)].source;
+            const rt::ValueType type = program_.typeOf(spec.feature->type);
+            const double value = pool.evalScalar(feature, ctx);
+            std::optional<textpref::Item> subject;
+            if (const textpref::Item* item = program_.itemDescriptors().item(type, value)) {
+              subject = *item;
+            } else if (type.kind == rt::ValueKind::Text) {
+              subject = textpref::Item{program_.render(type, &value), {}};
+            }
+            if (!subject) {
+              report.problems.push_back(fmt::format("event '{}': the subject of '{}' ({} value {}) is not a value of its type",
+                                                    ev.name, g.source->name, type.typeName, value));
+              continue;
+            }
+            if (const textpref::Status s = f.observe(*subject, holds); !s.ok()) {
+              report.modelErrors.push_back(fmt::format("{}: learning from '{}' about '{}': {}", g.source->name, ev.name,
+                                                       subject->name, s.error().describe()));
+            }
           } else {
             if (feature == UINT32_MAX) continue;
             f.observe(pool.evalScalar(feature, ctx), holds);

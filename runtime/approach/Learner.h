@@ -4,6 +4,11 @@
 // `if` condition is checked, and each label is added to its factor's data under the model key the rule's
 // binders give (the same key the constraint instances compute from their variables). Malformed events
 // (wrong arity or kinds) are reported, never applied.
+//
+// A text factor learns (subject, label) with the subject as the same textpref::Item the evaluator shows it
+// (the Program's ItemDescriptors; a text subject becomes an item named by the text). A text model that cannot
+// rewrite theta (a language-model server that fails) keeps the record and its old theta; that is a model error,
+// reported apart from malformed events because the feedback itself was fine.
 #pragma once
 
 #include "DomainSimulator.h"
@@ -18,6 +23,7 @@ namespace cbtl::approach {
 struct LearnReport {
   std::size_t labels = 0;                 // labelled examples added
   std::vector<std::string> problems;      // events that did not fit their declaration
+  std::vector<std::string> modelErrors;   // text models that kept their old theta (the record was kept)
 };
 
 class Learner {

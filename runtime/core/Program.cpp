@@ -69,6 +69,7 @@ Program::Program(const ir::ConstraintGraph& graph, Builtins builtins) : graph_(g
   compileConstraints();
   compileSamplers();
   compileGenerators();
+  itemDescriptors_ = ItemDescriptors(graph_, [this](const ir::Expr& e) { return constantStrings(e); });
   for (const auto& c : graph_.costs) {
     Scope scope;
     std::uint32_t top = 0;
@@ -263,6 +264,24 @@ std::vector<double> Program::constantValue(const ir::Expr& e) {
   EvalContext ctx{nullptr, nullptr, frame.data()};
   std::vector<double> out(std::max<std::size_t>(pool_.width(node), 1));
   pool_.eval(node, ctx, out.data());
+  return out;
+}
+
+// A constant item field that is not a literal, as the strings a text-preference model is shown: one per set
+// member for a set, otherwise the rendered value.
+std::vector<std::string> Program::constantStrings(const ir::Expr& e) {
+  const ValueType t = typeOf(e.type);
+  std::vector<std::string> out;
+  if (t.kind == ValueKind::Set) {
+    Scope scope;
+    std::uint32_t top = 0;
+    scope.frameTop = &top;
+    ValueType elem;
+    for (double m : setMembers(e, elem, scope)) out.push_back(render(elem, &m));
+    return out;
+  }
+  const auto v = constantValue(e);
+  out.push_back(render(t, v.data()));
   return out;
 }
 

@@ -8,6 +8,7 @@
 
 #include "Builtins.h"
 #include "Expression.h"
+#include "ItemDescriptors.h"
 #include "Values.h"
 
 #include "ir/ConstraintGraph.h"
@@ -97,6 +98,8 @@ class Program {
   const std::vector<CompiledSampler>& samplers() const { return samplers_; }
   const std::vector<CompiledGenerator>& generators() const { return generators_; }
   const std::vector<std::uint32_t>& costs() const { return costs_; }
+  // The textpref::Item of every subject value a text factor can be asked about (ItemDescriptors.h).
+  const ItemDescriptors& itemDescriptors() const { return itemDescriptors_; }
 
   // Type facts.
   ValueType typeOf(const ir::TypeDesc& t) const;
@@ -134,6 +137,7 @@ class Program {
   std::uint32_t compileQuantifier(const ir::Expr& e, Scope& scope, std::size_t binder);
   std::uint32_t compileIn(const ir::Expr& e, Scope& scope);
   std::vector<double> constantValue(const ir::Expr& e);
+  std::vector<std::string> constantStrings(const ir::Expr& e);
   std::vector<double> setMembers(const ir::Expr& set, ValueType& elem, Scope& scope);
   double memberIndex(const std::string& typeName, const std::string& member) const;
 
@@ -150,6 +154,7 @@ class Program {
   std::vector<CompiledSampler> samplers_;
   std::vector<CompiledGenerator> generators_;
   std::vector<std::uint32_t> costs_;
+  ItemDescriptors itemDescriptors_;
   std::map<std::string, const ir::Constant*> constants_;
   std::map<std::string, const ir::Function*> functions_;
   const ir::Span* currentSpan_ = nullptr;

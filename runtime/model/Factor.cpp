@@ -1,14 +1,21 @@
 #include "Factor.h"
 
+#include <fmt/format.h>
+
+#include <stdexcept>
+
 namespace cbtl::model {
 
-Factor Factor::fromSpec(const ir::ModelFactor& spec) {
+Factor Factor::fromSpec(const ir::ModelFactor& spec, double fallback,
+                        const std::shared_ptr<const textpref::TextBackend>& textBackend) {
+  if (spec.kind == "interval") return Factor(spec.label, IntervalModel(spec.lo, spec.hi));
   if (spec.kind == "threshold") {
     const auto dir = spec.direction == "below" ? ThresholdModel::Direction::Below : ThresholdModel::Direction::Above;
     return Factor(spec.label, ThresholdModel(spec.lo, spec.hi, dir));
   }
   if (spec.kind == "table") return Factor(spec.label, TableModel{});
-  return Factor(spec.label, IntervalModel(spec.lo, spec.hi));
+  if (spec.kind == "text") return Factor(spec.label, TextFactor(spec, fallback, textBackend));
+  throw std::invalid_argument(fmt::format("model kind '{}' of factor '{}' is not supported", spec.kind, spec.label));
 }
 
 double Factor::probability(double feature) const {
@@ -22,6 +29,11 @@ double Factor::probability(const std::string& key) const {
   return 0.5;
 }
 
+double Factor::probability(const textpref::Item& subject, std::span<const textpref::Item> available) const {
+  if (const auto* t = std::get_if<TextFactor>(&model_)) return t->probability(subject, available);
+  return 0.5;
+}
+
 void Factor::observe(double feature, bool holds) {
   if (auto* i = std::get_if<IntervalModel>(&model_)) i->observe(feature, holds);
   else if (auto* t = std::get_if<ThresholdModel>(&model_)) t->observe(feature, holds);
@@ -29,6 +41,11 @@ void Factor::observe(double feature, bool holds) {
 
 void Factor::observe(const std::string& key, bool holds) {
   if (auto* t = std::get_if<TableModel>(&model_)) t->observe(key, holds);
+}
+
+textpref::Status Factor::observe(const textpref::Item& subject, bool holds) {
+  if (auto* t = std::get_if<TextFactor>(&model_)) return t->learn(subject, holds);
+  return {};
 }
 
 void Factor::reset() {

@@ -1,14 +1,20 @@
-// Factor.h — one learned factor of a generator's model for one key: an interval, a threshold or a table.
+// Factor.h — one learned factor of a generator's model for one key: an interval, a threshold, a table or a text
+// (text-preference) model.
 //
-// A generator's model is the product of its factors: P(holds) = prod_k P_k(holds | feature_k).
+// A generator's model is the product of its factors: P(holds) = prod_k P_k(holds | feature_k). Interval and
+// threshold factors read a real feature, tables the rendered value of their key, and text factors the subject as
+// a textpref::Item (ItemDescriptors.h).
 #pragma once
 
 #include "IntervalModel.h"
 #include "TableModel.h"
+#include "TextFactor.h"
 #include "ThresholdModel.h"
 
 #include "ir/ConstraintGraph.h"
 
+#include <memory>
+#include <span>
 #include <string>
 #include <variant>
 
@@ -16,26 +22,35 @@ namespace cbtl::model {
 
 class Factor {
  public:
-  // A fresh (prior) factor as the generator declares it.
-  static Factor fromSpec(const ir::ModelFactor& spec);
+  using Model = std::variant<IntervalModel, ThresholdModel, TableModel, TextFactor>;
+
+  // A fresh (prior) factor as the generator declares it. A text factor gets its model from `textBackend`
+  // (null: the offline default) and falls back to the generator's `fallback`. Throws std::invalid_argument for a
+  // model kind the runtime does not know (Program rejects those before a user model is made).
+  static Factor fromSpec(const ir::ModelFactor& spec, double fallback = 0.5,
+                         const std::shared_ptr<const textpref::TextBackend>& textBackend = nullptr);
 
   const std::string& label() const { return label_; }
   bool isTable() const { return std::holds_alternative<TableModel>(model_); }
+  bool isText() const { return std::holds_alternative<TextFactor>(model_); }
 
   double probability(double feature) const;          // interval / threshold
   double probability(const std::string& key) const;  // table
+  // text: see TextFactor::probability (`available` is the subject's domain for relative scaling)
+  double probability(const textpref::Item& subject, std::span<const textpref::Item> available) const;
   void observe(double feature, bool holds);
   void observe(const std::string& key, bool holds);
+  // text: learns one (subject, liked) record; the status says whether theta could be updated
+  textpref::Status observe(const textpref::Item& subject, bool holds);
   void reset();
 
-  const std::variant<IntervalModel, ThresholdModel, TableModel>& model() const { return model_; }
-  std::variant<IntervalModel, ThresholdModel, TableModel>& model() { return model_; }
+  const Model& model() const { return model_; }
+  Model& model() { return model_; }
 
  private:
-  Factor(std::string label, std::variant<IntervalModel, ThresholdModel, TableModel> m)
-      : label_(std::move(label)), model_(std::move(m)) {}
+  Factor(std::string label, Model m) : label_(std::move(label)), model_(std::move(m)) {}
   std::string label_;
-  std::variant<IntervalModel, ThresholdModel, TableModel> model_;
+  Model model_;
 };
 
 }  // namespace cbtl::model

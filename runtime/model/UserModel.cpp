@@ -11,8 +11,9 @@ namespace cbtl::model {
 
 using nlohmann::json;
 
-GeneratorState::GeneratorState(const ir::Generator& spec) : spec_(&spec) {
-  for (const auto& f : spec.factors) prior_.push_back(Factor::fromSpec(f));
+GeneratorState::GeneratorState(const ir::Generator& spec, const std::shared_ptr<const textpref::TextBackend>& textBackend)
+    : spec_(&spec) {
+  for (const auto& f : spec.factors) prior_.push_back(Factor::fromSpec(f, spec.fallback, textBackend));
 }
 
 const std::vector<Factor>& GeneratorState::factors(const std::string& key) const {
@@ -27,8 +28,10 @@ std::vector<Factor>& GeneratorState::mutableFactors(const std::string& key) {
   return it->second;
 }
 
-UserModel::UserModel(const ir::ConstraintGraph& graph) : domain_(graph.domain) {
-  for (const auto& g : graph.generators) generators_.emplace_back(g);
+UserModel::UserModel(const ir::ConstraintGraph& graph, std::shared_ptr<const textpref::TextBackend> textBackend)
+    : domain_(graph.domain) {
+  if (!textBackend) textBackend = defaultTextBackend();
+  for (const auto& g : graph.generators) generators_.emplace_back(g, textBackend);
 }
 
 void UserModel::reset() {
@@ -46,6 +49,7 @@ std::size_t UserModel::dataCount() const {
         if (const auto* i = std::get_if<IntervalModel>(&f.model())) n += i->data().size();
         else if (const auto* t = std::get_if<ThresholdModel>(&f.model())) n += t->data().size();
         else if (const auto* tb = std::get_if<TableModel>(&f.model())) n += tb->entries().size();
+        else if (const auto* tx = std::get_if<TextFactor>(&f.model())) n += tx->historySize();
       }
     }
   }
@@ -68,6 +72,8 @@ std::string UserModel::toJson() const {
                {"direction", t->direction() == ThresholdModel::Direction::Above ? "above" : "below"}};
         } else if (const auto* tb = std::get_if<TableModel>(&f.model())) {
           j = {{"kind", "table"}, {"entries", tb->entries()}};
+        } else if (const auto* tx = std::get_if<TextFactor>(&f.model())) {
+          j = {{"kind", "text"}, {"backend", tx->backendId()}, {"state", tx->saveState()}};
         }
         fs[f.label()] = j;
       }
@@ -117,6 +123,17 @@ void UserModel::fromJson(const std::string& text, const std::string& source) {
         if (!factors.contains(f.label())) fail(fpath, "missing factor");
         const json& j = factors[f.label()];
         if (!j.is_object()) fail(fpath, "expected an object");
+        if (auto* textFactor = std::get_if<TextFactor>(&f.model())) {
+          if (!j.contains("kind") || j["kind"] != "text") fail(fpath + ".kind", "expected \"text\" (the program declares a text model)");
+          if (!j.contains("backend") || !j["backend"].is_string()) fail(fpath + ".backend", "expected the text backend's id");
+          const std::string backend = j["backend"].get<std::string>();
+          if (backend != textFactor->backendId()) {
+            fail(fpath + ".backend", fmt::format("saved by the '{}' text backend, this run uses '{}'", backend, textFactor->backendId()));
+          }
+          if (!j.contains("state") || !j["state"].is_object()) fail(fpath + ".state", "expected the text model's state object");
+          if (const textpref::Status s = textFactor->loadState(j["state"]); !s.ok()) fail(fpath + ".state", s.error().message);
+          continue;
+        }
         if (f.isTable()) {
           if (!j.contains("entries") || !j["entries"].is_object()) fail(fpath + ".entries", "expected an object");
           for (const auto& [k, v] : j["entries"].items()) {

@@ -4,9 +4,15 @@
 // Profile file (JSON, documented in docs/profile.md):
 //   {"format": "cbtl-profile", "version": 1, "domain": "cooking",
 //    "generators": {"userEnjoysMeal": {"seasoning|salt": {"temp": {"kind": "interval", "lo": 25, "hi": 35,
-//                                                                  "data": [[30, true], [34, false]]}, ...}}}}
+//                                                                  "data": [[30, true], [34, false]]}, ...}},
+//                   "userEnjoysBook": {"": {"text": {"kind": "text", "backend": "offline-descriptor-bayes-v1",
+//                                                    "state": {...the text model's saveState()...}}}}}}
 // Only the data is stored; the fitted state is recomputed on load, so a profile can never disagree with
-// itself. Loading validates everything and reports the first problem with its JSON path.
+// itself (a text model's state is its feedback history, plus theta for a language model). Loading validates
+// everything and reports the first problem with its JSON path; a text factor's state must come from the backend
+// this run uses.
+//
+// Copying a UserModel deep-copies every factor, text models included (TextFactor.h): the copy learns alone.
 #pragma once
 
 #include "Factor.h"
@@ -14,6 +20,7 @@
 #include "ir/ConstraintGraph.h"
 
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,7 +33,9 @@ struct ProfileError : std::runtime_error {
 
 class GeneratorState {
  public:
-  explicit GeneratorState(const ir::Generator& spec);
+  // `textBackend` makes the models of text factors (null: the offline default).
+  explicit GeneratorState(const ir::Generator& spec,
+                          const std::shared_ptr<const textpref::TextBackend>& textBackend = nullptr);
   const ir::Generator& spec() const { return *spec_; }
   // The factors for a key; the prior when the key has no data. The reference stays valid until reset().
   const std::vector<Factor>& factors(const std::string& key) const;
@@ -46,13 +55,16 @@ class GeneratorState {
 
 class UserModel {
  public:
-  explicit UserModel(const ir::ConstraintGraph& graph);
+  // Text factors get their models from `textBackend`; null means the offline descriptor model
+  // (defaultTextBackend()), which needs no network and no key.
+  explicit UserModel(const ir::ConstraintGraph& graph,
+                     std::shared_ptr<const textpref::TextBackend> textBackend = nullptr);
 
   std::size_t size() const { return generators_.size(); }
   GeneratorState& generator(std::size_t i) { return generators_[i]; }
   const GeneratorState& generator(std::size_t i) const { return generators_[i]; }
   void reset();
-  // Total number of labelled examples held.
+  // Total number of labelled examples held (a text factor counts its feedback records).
   std::size_t dataCount() const;
 
   std::string toJson() const;

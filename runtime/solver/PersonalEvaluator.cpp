@@ -12,8 +12,34 @@ PersonalEvaluator::PersonalEvaluator(const rt::Program& program, const std::vect
     acceptThreshold_.push_back(accept * std::exp(-1e-3));
     std::size_t dynamic = 0;
     for (const auto& part : inst.key) dynamic += part.fromValue ? part.type.width : 0;
-    cache_[acceptThreshold_.size() - 1].keyValues.assign(dynamic, std::nan(""));
+    Cache& c = cache_[acceptThreshold_.size() - 1];
+    c.keyValues.assign(dynamic, std::nan(""));
+    const auto& factors = program_.generators().at(inst.generator).factors;
+    for (std::size_t k = 0; k < factors.size(); ++k) {
+      if (factors[k].source->kind != "text") continue;
+      c.text.resize(factors.size());
+      c.text[k].domain = program_.itemDescriptors().domain(inst.featureTypes[k]);
+    }
   }
+}
+
+double PersonalEvaluator::textProbability(const rt::PersonalInstance& inst, std::size_t factor, const model::Factor& f,
+                                          TextSubject& subject, double value) {
+  const textpref::Item* item = nullptr;
+  std::span<const textpref::Item> available;
+  if (subject.domain != nullptr) {
+    available = *subject.domain;
+    if (value >= 0 && value < static_cast<double>(available.size())) item = &available[static_cast<std::size_t>(value)];
+  } else if (inst.featureTypes[factor].kind == rt::ValueKind::Text) {
+    if (!(value == subject.last)) {
+      const bool interned = value >= 0 && value < static_cast<double>(program_.strings().size());
+      subject.owned = textpref::Item{interned ? program_.strings().name(static_cast<std::uint32_t>(value)) : std::string(), {}};
+      subject.last = value;
+    }
+    item = &subject.owned;
+  }
+  if (item == nullptr) return program_.graph().generators.at(inst.generator).fallback;
+  return f.probability(*item, available);
 }
 
 std::string PersonalEvaluator::key(std::uint32_t instance, const rt::EvalContext& ctx) const {
@@ -64,6 +90,9 @@ PersonalValue PersonalEvaluator::evaluate(std::uint32_t instance, const rt::Eval
       if (feature == UINT32_MAX) continue;
       pool.eval(feature, ctx, v);
       p *= factors[k].probability(program_.render(inst.featureTypes[k], v));
+    } else if (factors[k].isText()) {
+      if (feature == UINT32_MAX || k >= c.text.size()) continue;
+      p *= textProbability(inst, k, factors[k], c.text[k], pool.evalScalar(feature, ctx));
     } else {
       p *= feature == UINT32_MAX ? 1.0 : factors[k].probability(pool.evalScalar(feature, ctx));
     }

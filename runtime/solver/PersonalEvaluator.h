@@ -3,13 +3,20 @@
 // An instance whose guard is false does not apply: it holds, with probability 1 and no entropy. Otherwise
 // P = the product of the generator's factors for the instance's model key. The factors for a key are looked
 // up once and cached until the key's value or the user model changes, so evaluation in the solve loop
-// allocates nothing.
+// allocates nothing for interval, threshold and table factors.
+//
+// A text factor is handed its subject as a textpref::Item: item entries and enum members index the Program's
+// precomputed ItemDescriptors (and their whole domain is what `scale: relative` divides by); a text subject is
+// converted when its value changes, which allocates only then. A subject value with no item (an index out of
+// range) reads the generator's `fallback`. The text factor caches its own assessments (TextFactor.h).
 #pragma once
 
 #include "Personalization.h"
 #include "Program.h"
 #include "UserModel.h"
 
+#include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -34,11 +41,20 @@ class PersonalEvaluator {
   bool holds(std::uint32_t instance, const PersonalValue& v) const;
 
  private:
+  // Where a text factor's subject items come from, per instance and factor.
+  struct TextSubject {
+    const std::vector<textpref::Item>* domain = nullptr;  // item / enum subjects: the item of every value
+    double last = std::numeric_limits<double>::quiet_NaN();  // text subjects: the text id `owned` holds
+    textpref::Item owned;
+  };
   struct Cache {
     std::vector<double> keyValues;
     std::uint64_t version = ~std::uint64_t{0};
     const std::vector<model::Factor>* factors = nullptr;
+    std::vector<TextSubject> text;  // per factor; empty when the generator has no text factor
   };
+  double textProbability(const rt::PersonalInstance& inst, std::size_t factor, const model::Factor& f,
+                         TextSubject& subject, double value);
   const rt::Program& program_;
   const std::vector<rt::PersonalInstance>& instances_;
   const model::UserModel& user_;

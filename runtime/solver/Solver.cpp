@@ -155,6 +155,16 @@ SolveResult Solver::solve(const Csp& csp) {
   };
 
   double scratch[512];
+  // Writes a sampler's drawn values (laid out variable after variable in `scratch`) into the candidate.
+  auto writeDrawn = [&](const std::vector<ir::VarId>& writes) {
+    std::size_t from = 0;
+    for (ir::VarId v : writes) {
+      const auto& slot = program.slot(v);
+      copySmall(scratch + from, slot.type.width, x.data() + slot.offset);
+      from += slot.type.width;
+      markWritten(v);
+    }
+  };
   auto runSampler = [&](std::uint32_t s) -> bool {
     const rt::CompiledSampler& cs = program.samplers()[s];
     if (cs.impl != nullptr) {
@@ -170,13 +180,7 @@ SolveResult Solver::solve(const Csp& csp) {
                    std::span<double>(scratch, outWidth))) {
         return false;
       }
-      std::size_t from = 0;
-      for (ir::VarId v : cs.writes) {
-        const auto& slot = program.slot(v);
-        copySmall(scratch + from, slot.type.width, x.data() + slot.offset);
-        from += slot.type.width;
-        markWritten(v);
-      }
+      writeDrawn(cs.writes);
       return true;
     }
     // `uniform`: draw every component first, so a failure leaves the assignment untouched.
@@ -203,13 +207,7 @@ SolveResult Solver::solve(const Csp& csp) {
         }
       }
     }
-    at = 0;
-    for (ir::VarId v : cs.writes) {
-      const auto& slot = program.slot(v);
-      copySmall(scratch + at, slot.type.width, x.data() + slot.offset);
-      at += slot.type.width;
-      markWritten(v);
-    }
+    writeDrawn(cs.writes);
     return true;
   };
 

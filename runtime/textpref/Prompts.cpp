@@ -75,6 +75,31 @@ std::optional<PromptTemplates> builtinPrompts(std::string_view constraintName) {
   return t;
 }
 
+PromptTemplates generatorPrompts(std::string_view question, std::string_view learningInstruction) {
+  PromptTemplates t;
+  if (question.find("{item}") != std::string_view::npos) {
+    t.constraint = std::string(question);
+  } else {
+    t.constraint = fmt::format(
+        "The item: {{item}}. Situation: {{context}}. What we know about the user: {{theta}}. {} "
+        "Rate it on a scale from 0 (the user would not want it at all) to 10 (exactly what the user wants).",
+        question.empty() ? std::string_view("How much would the user like this item?") : question);
+  }
+  if (learningInstruction.find("{feedback}") != std::string_view::npos) {
+    t.learning = std::string(learningInstruction);
+  } else {
+    t.learning = fmt::format(
+        "You work out what a person prefers from how they reacted. Your description of their preferences so far: "
+        "{{theta}}. Their reactions, oldest first:\n{{feedback}}\n{} Write the updated description exactly in this "
+        "form: \"Liked so far: [list]. Disliked so far: [list]. Possible summaries of the preferences: "
+        "1. [summary] 2. [summary] 3. [summary].\" Reply with that description only and explain nothing.",
+        learningInstruction.empty()
+            ? std::string_view("Using all of these reactions, describe what the person likes and dislikes.")
+            : learningInstruction);
+  }
+  return t;
+}
+
 std::vector<std::string> builtinPromptNames() {
   return {"userEnjoysBook", "dipPreferred", "signalPreferred", "verbosityPreferred"};
 }

@@ -30,6 +30,15 @@ struct PromptTemplates {
 std::optional<PromptTemplates> builtinPrompts(std::string_view constraintName);
 std::vector<std::string> builtinPromptNames();
 
+// Templates from a `.cbtl` generator's `model text(subject, prompt: "...", learning: "...")`. The generator's words
+// are a question about one subject and an instruction for the summary, without placeholders, so they are framed
+// here: the ConstraintPrompt shows the item, the context and theta before the question and asks for a rating from
+// 0 to 10; the LearningPrompt shows theta and the reactions before the instruction and asks for the same fixed
+// form as the built-in templates (liked, disliked, three possible summaries). A question that already contains
+// "{item}", or an instruction that already contains "{feedback}", is a complete template and is used as written.
+// An empty question or instruction (both are optional in the language) gets a generic one.
+PromptTemplates generatorPrompts(std::string_view question, std::string_view learningInstruction);
+
 // The answer-format instruction of a scale: digits ask for one number 0..10; options list "1. 0" .. "11. 10"
 // and ask for the option number only.
 std::string ratingInstruction(RatingScale scale);

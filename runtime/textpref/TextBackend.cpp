@@ -108,9 +108,12 @@ LlmModelOptions TextBackend::llmOptions(const PromptTemplates& prompts) const {
   return o;
 }
 
-std::unique_ptr<TextPreferenceModel> TextBackend::makeModel(const PromptTemplates& prompts) const {
+std::unique_ptr<TextPreferenceModel> TextBackend::makeModel(const PromptTemplates& prompts,
+                                                            std::optional<RatingScale> scale) const {
   if (config_.kind == BackendKind::OfflineDescriptor) return std::make_unique<OfflineDescriptorModel>(config_.offline);
-  return std::make_unique<LlmPreferenceModel>(client_, llmOptions(prompts));
+  LlmModelOptions options = llmOptions(prompts);
+  if (scale) options.scale = *scale;
+  return std::make_unique<LlmPreferenceModel>(client_, std::move(options));
 }
 
 std::shared_ptr<LlmPreferenceModel> TextBackend::makeJudge(const PromptTemplates& prompts) const {

@@ -53,8 +53,10 @@ class TextBackend {
   explicit TextBackend(TextBackendConfig config, WarningSink warn = {}, SleepFunction sleep = realSleep());
 
   const TextBackendConfig& config() const { return config_; }
-  // A fresh model for one constraint generator. Never null.
-  std::unique_ptr<TextPreferenceModel> makeModel(const PromptTemplates& prompts) const;
+  // A fresh model for one constraint generator. Never null. `scale` overrides the configured rating scale for
+  // this model (a `.cbtl` generator declares its own `rating:`); the offline backend has no rating scale.
+  std::unique_ptr<TextPreferenceModel> makeModel(const PromptTemplates& prompts,
+                                                 std::optional<RatingScale> scale = std::nullopt) const;
   // The language-model judge for simulated users (null with the offline backend).
   std::shared_ptr<LlmPreferenceModel> makeJudge(const PromptTemplates& prompts) const;
   // The shared cache (null with the offline backend).

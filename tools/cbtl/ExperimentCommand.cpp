@@ -55,7 +55,7 @@ bool parseSeeds(const std::string& text, std::vector<std::uint64_t>& seeds) {
 }
 
 struct Stat {
-  double mean = 0, se = 0;
+  double mean = 0, se = 0, sd = 0;
 };
 Stat stat(const std::vector<double>& v) {
   Stat s;
@@ -65,7 +65,8 @@ Stat stat(const std::vector<double>& v) {
   if (v.size() > 1) {
     double ss = 0;
     for (double x : v) ss += (x - s.mean) * (x - s.mean);
-    s.se = std::sqrt(ss / static_cast<double>(v.size() - 1)) / std::sqrt(static_cast<double>(v.size()));
+    s.sd = std::sqrt(ss / static_cast<double>(v.size() - 1));
+    s.se = s.sd / std::sqrt(static_cast<double>(v.size()));
   }
   return s;
 }
@@ -117,6 +118,7 @@ int runExperiments(const ExperimentArgs& a) {
   struct Summary {
     std::map<std::int64_t, std::vector<double>> bySteps, success, prefs;
     std::vector<double> meanOverCheckpoints, seconds;
+    std::vector<double> finalSuccess, finalPrefs, finalPrefsWhenServed;  // per seed, at the last checkpoint
   };
   std::map<std::string, Summary> summaries;
   for (auto kind : kinds) {
@@ -135,6 +137,12 @@ int runExperiments(const ExperimentArgs& a) {
         s.prefs[e.step].push_back(e.preferencesMetRate);
       }
       s.meanOverCheckpoints.push_back(r.meanEval());
+      if (!r.evals.empty()) {
+        const auto& last = r.evals.back();
+        s.finalSuccess.push_back(last.taskSuccessRate);
+        s.finalPrefs.push_back(last.preferencesMetRate);
+        if (last.taskSuccessRate > 0) s.finalPrefsWhenServed.push_back(last.preferencesMetRate / last.taskSuccessRate);
+      }
       if (!a.quiet) {
         fmt::print(stderr, "{} seed {}: mean eval {:+.3f}, final {:+.2f} ({:.2f} s)\n", approach::toString(kind), seed, r.meanEval(),
                    r.evals.empty() ? 0.0 : r.evals.back().mean, s.seconds.back());
@@ -169,7 +177,7 @@ int runExperiments(const ExperimentArgs& a) {
              seeds.size() == 1 ? "" : "s", a.evalTasks);
   fmt::print("{:<20}", "approach");
   for (auto c : cols) fmt::print(" {:>14}", fmt::format("step {}", c));
-  fmt::print(" {:>14} {:>9} {:>9} {:>8}\n", "all checkpts", "success", "prefs met", "s/trial");
+  fmt::print(" {:>14} {:>12} {:>12} {:>12} {:>8}\n", "all checkpts", "success", "prefs met", "met|served", "s/trial");
   for (auto kind : kinds) {
     const Summary& s = summaries.at(approach::toString(kind));
     fmt::print("{:<20}", approach::toString(kind));
@@ -182,11 +190,14 @@ int runExperiments(const ExperimentArgs& a) {
       }
     }
     const Stat all = stat(s.meanOverCheckpoints);
-    const std::int64_t last = s.bySteps.empty() ? 0 : s.bySteps.rbegin()->first;
-    fmt::print(" {:>14} {:>9.2f} {:>9.2f} {:>8.2f}\n", fmt::format("{:+.3f} ± {:.3f}", all.mean, all.se),
-               s.success.empty() ? 0.0 : stat(s.success.at(last)).mean, s.prefs.empty() ? 0.0 : stat(s.prefs.at(last)).mean,
-               stat(s.seconds).mean);
+    const Stat success = stat(s.finalSuccess), prefs = stat(s.finalPrefs), served = stat(s.finalPrefsWhenServed);
+    fmt::print(" {:>14} {:>12} {:>12} {:>12} {:>8.2f}\n", fmt::format("{:+.3f} ± {:.3f}", all.mean, all.se),
+               fmt::format("{:.2f} ± {:.2f}", success.mean, success.sd), fmt::format("{:.2f} ± {:.2f}", prefs.mean, prefs.sd),
+               fmt::format("{:.2f} ± {:.2f}", served.mean, served.sd), stat(s.seconds).mean);
   }
+  fmt::print("columns: eval satisfaction per checkpoint and over all checkpoints (mean ± standard error over seeds); task\n"
+             "success, preferences met (of all tasks) and preferences met of the served meals at the last checkpoint\n"
+             "(mean ± standard deviation over seeds); wall-clock seconds per trial\n");
   if (!a.out.empty()) fmt::print("wrote {}/summary.csv and one folder per approach and seed\n", a.out);
   return 0;
 }

@@ -21,6 +21,7 @@ struct RunArgs {
   double epsilon = 0.5, unsatisfiable = 0;
   bool replan = false, quiet = false;
   cbtl::solver::SolverOptions solver;
+  cbtl::cli::TextBackendArgs text;
 };
 
 int runTrial(const RunArgs& a) {
@@ -43,6 +44,9 @@ int runTrial(const RunArgs& a) {
     c.adaptation = *mode;
     c.simulator.shiftEvery = a.shiftEvery;
   }
+  const auto textBackend = cli::makeTextBackend("run", a.text);
+  if (!textBackend) return 2;
+  c.textBackend = *textBackend;
   auto lp = cli::loadForRun("run", a.file, a.stdlibDir);
   if (!lp) return 1;
   c.approach.kind = *kind;
@@ -76,6 +80,10 @@ int runTrial(const RunArgs& a) {
                r.evals.empty() ? 0.0 : r.evals.front().mean, r.evals.empty() ? 0.0 : r.evals.back().mean, r.evals.size(),
                r.meanEval());
     fmt::print("{:.2f} s wall clock; {} training solver iterations\n", seconds, r.solverIterations);
+    if (r.textModelErrors > 0) {
+      fmt::print("{} text-model updates failed (the old theta was kept); the first: {}\n", r.textModelErrors,
+                 r.firstTextModelError);
+    }
     if (!a.out.empty()) fmt::print("wrote {}/train.csv, eval.csv, config.json, profile.json, models/\n", a.out);
   }
   return 0;
@@ -106,6 +114,7 @@ void addRun(CLI::App& app, int& exitCode) {
   cmd->add_option("--stdlib", args->stdlibDir, "standard library folder (default: embedded)");
   cmd->add_flag("--quiet,-q", args->quiet, "no progress bar or summary");
   cbtl::cli::addSolverOptions(cmd, args->solver);
+  cbtl::cli::addTextBackendOptions(cmd, args->text);
   cmd->callback([args, &exitCode]() {
     try {
       exitCode = runTrial(*args);

@@ -21,6 +21,7 @@ struct SolveArgs {
   std::uint64_t seed = 0;
   bool explain = false, replan = false;
   cbtl::solver::SolverOptions solver;
+  cbtl::cli::TextBackendArgs text;
 };
 
 std::string renderCall(const cbtl::sim::ActionCall& c) {
@@ -67,6 +68,8 @@ int runSolve(const SolveArgs& a) {
     fmt::print(stderr, "cbtl solve: error: unknown --csp '{}' (exploit, explore, hard)\n", a.csp);
     return 2;
   }
+  const auto textBackend = cli::makeTextBackend("solve", a.text);
+  if (!textBackend) return 2;
   auto lp = cli::loadForRun("solve", a.file, a.stdlibDir);
   if (!lp) return 1;
   const int task = lp->taskIndex(a.task);
@@ -74,7 +77,7 @@ int runSolve(const SolveArgs& a) {
     fmt::print(stderr, "cbtl solve: error: {}: no task named '{}'\n", a.file, a.task);
     return 1;
   }
-  model::UserModel user(lp->graph());
+  model::UserModel user(lp->graph(), *textBackend);
   if (!a.profile.empty()) user.load(a.profile);
   std::vector<double> observation(lp->program().observationWidth(), 0.0);
   if (auto world = domains::createSimulator(lp->graph().domain, {}, a.seed)) {
@@ -114,6 +117,7 @@ void addSolve(CLI::App& app, int& exitCode) {
   cmd->add_flag("--explain", args->explain, "which constraints rejected candidates, how often, and where they are declared");
   cmd->add_option("--stdlib", args->stdlibDir, "standard library folder (default: embedded)");
   cbtl::cli::addSolverOptions(cmd, args->solver);
+  cbtl::cli::addTextBackendOptions(cmd, args->text);
   cmd->callback([args, &exitCode]() {
     try {
       exitCode = runSolve(*args);

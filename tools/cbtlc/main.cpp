@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <exception>
@@ -34,7 +35,9 @@ int report(const cbtl::TranslationUnit& tu, const cbtl::PipelineResult& result, 
            const std::string& path, bool missing) {
   if (missing) {
     if (o.format == "json") {
-      fmt::print(stderr, "{{\"severity\":\"error\",\"code\":\"E0204\",\"message\":\"cannot read file '{}'\"}}\n", path);
+      // Built with the JSON library so that any path (quotes, backslashes, invalid UTF-8) stays valid JSON.
+      const nlohmann::json j{{"severity", "error"}, {"code", "E0204"}, {"message", "cannot read file '" + path + "'"}};
+      fmt::print(stderr, "{}\n", j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
     } else {
       fmt::print(stderr, "cbtlc: error: cannot read file '{}'\n", path);
     }

@@ -32,12 +32,28 @@ inline double* copySmall(const double* from, std::size_t n, double* to) {
   return to + n;
 }
 
-// The variables (and their layout) a constraint reads.
-struct Edge {
-  std::vector<ir::VarId> vars;
-  std::vector<std::uint32_t> offsets, widths;
-  std::uint32_t width = 0;
+// Lists of lists in two flat arrays (compressed rows): the solve loop walks them for every move.
+struct Rows {
+  std::vector<std::uint32_t> start{0}, items;
+  void endRow() { start.push_back(static_cast<std::uint32_t>(items.size())); }
+  const std::uint32_t* begin(std::size_t r) const { return items.data() + start[r]; }
+  const std::uint32_t* end(std::size_t r) const { return items.data() + start[r + 1]; }
+  std::size_t size(std::size_t r) const { return start[r + 1] - start[r]; }
 };
+
+// Inverts rows over [0, n): for every item, the rows that contain it.
+Rows invert(const Rows& rows, std::size_t rowCount, std::size_t n) {
+  std::vector<std::vector<std::uint32_t>> lists(n);
+  for (std::size_t r = 0; r < rowCount; ++r) {
+    for (const auto* it = rows.begin(r); it != rows.end(r); ++it) lists[*it].push_back(static_cast<std::uint32_t>(r));
+  }
+  Rows out;
+  for (const auto& l : lists) {
+    out.items.insert(out.items.end(), l.begin(), l.end());
+    out.endRow();
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -51,28 +67,31 @@ SolveResult Solver::solve(const Csp& csp) {
   std::vector<double> frame(256, 0.0);
   rt::EvalContext ctx{x.data(), csp.observation.data(), frame.data()};
 
+  // Per constraint: the variables it reads, and the positions in the assignment of their values (the
+  // sub-assignment its memory stores). Per variable: the constraints and entropy terms that read it.
   const std::size_t nc = csp.constraints.size();
-  std::vector<Edge> edges(nc);
+  Rows edgeVars, edgeSlots;
   for (std::size_t i = 0; i < nc; ++i) {
     const auto& ref = csp.constraints[i];
-    edges[i].vars = ref.personal ? (*csp.instances)[ref.index].hyperedge : graph.constraints[ref.index].vars;
-    for (ir::VarId v : edges[i].vars) {
+    const auto& vars = ref.personal ? (*csp.instances)[ref.index].hyperedge : graph.constraints[ref.index].vars;
+    for (ir::VarId v : vars) {
+      edgeVars.items.push_back(v);
       const auto& slot = program.slot(v);
-      edges[i].offsets.push_back(slot.offset);
-      edges[i].widths.push_back(slot.type.width);
-      edges[i].width += slot.type.width;
+      for (std::uint32_t w = 0; w < slot.type.width; ++w) edgeSlots.items.push_back(slot.offset + w);
     }
+    edgeVars.endRow();
+    edgeSlots.endRow();
   }
-  // Which constraints and entropy terms read each variable, for invalidation after a move.
-  std::vector<std::vector<std::uint32_t>> readersOf(graph.variables.size());
-  for (std::size_t i = 0; i < nc; ++i) {
-    for (ir::VarId v : edges[i].vars) readersOf[v].push_back(static_cast<std::uint32_t>(i));
-  }
+  const Rows readersOf = invert(edgeVars, nc, graph.variables.size());
   const std::size_t ni = csp.instances->size();
-  std::vector<std::vector<std::uint32_t>> termsOf(graph.variables.size());
-  for (std::uint32_t t : csp.entropyTerms) {
-    for (ir::VarId v : (*csp.instances)[t].hyperedge) termsOf[v].push_back(t);
+  Rows termVars;
+  for (std::size_t t = 0; t < ni; ++t) {
+    if (std::find(csp.entropyTerms.begin(), csp.entropyTerms.end(), t) != csp.entropyTerms.end()) {
+      for (ir::VarId v : (*csp.instances)[t].hyperedge) termVars.items.push_back(v);
+    }
+    termVars.endRow();
   }
+  const Rows termsOf = invert(termVars, ni, graph.variables.size());
 
   enum : std::uint8_t { Dirty, Holds, Fails };
   std::vector<std::uint8_t> state(nc, Dirty);
@@ -89,9 +108,9 @@ SolveResult Solver::solve(const Csp& csp) {
   if (options_.useMemory) {
     for (std::size_t i = 0; i < nc; ++i) {
       Memory& m = memory_[csp.constraints[i].identity];
-      if (m.capacity == 0 || m.width != edges[i].width) {
+      if (m.capacity == 0 || m.width != edgeSlots.size(i)) {
         m = Memory{};
-        m.width = edges[i].width;
+        m.width = edgeSlots.size(i);
         m.capacity = std::max<std::size_t>(options_.memorySize, 1);
         m.ring.assign(m.width * m.capacity, 0.0);
       }
@@ -105,9 +124,7 @@ SolveResult Solver::solve(const Csp& csp) {
   auto remember = [&](std::size_t i) {
     if (memories[i] == nullptr) return;
     double* slot = memories[i]->pushSlot();
-    for (std::size_t k = 0; k < edges[i].vars.size(); ++k) {
-      slot = copySmall(x.data() + edges[i].offsets[k], edges[i].widths[k], slot);
-    }
+    for (const auto* at = edgeSlots.begin(i); at != edgeSlots.end(i); ++at) *slot++ = x[*at];
   };
 
   auto check = [&](std::size_t i) -> bool {
@@ -122,7 +139,7 @@ SolveResult Solver::solve(const Csp& csp) {
       ok = pool.evalBool(program.constraints()[ref.index].root, ctx);
     }
     state[i] = ok ? Holds : Fails;
-    if (ok) remember(i);
+    if (ok && options_.memoryPolicy == MemoryPolicy::EverySatisfiedCheck) remember(i);
     return ok;
   };
 
@@ -150,8 +167,8 @@ SolveResult Solver::solve(const Csp& csp) {
   };
 
   auto markWritten = [&](ir::VarId v) {
-    for (std::uint32_t c : readersOf[v]) state[c] = Dirty;
-    for (std::uint32_t t : termsOf[v]) termDirty[t] = 1;
+    for (const auto* c = readersOf.begin(v); c != readersOf.end(v); ++c) state[*c] = Dirty;
+    for (const auto* t = termsOf.begin(v); t != termsOf.end(v); ++t) termDirty[*t] = 1;
   };
 
   double scratch[512];
@@ -215,12 +232,8 @@ SolveResult Solver::solve(const Csp& csp) {
     const Memory& m = *memories[i];
     if (m.empty()) return false;
     const double* sub = m.at(rng_.index(m.size()));
-    std::size_t at = 0;
-    for (std::size_t k = 0; k < edges[i].vars.size(); ++k) {
-      copySmall(sub + at, edges[i].widths[k], x.data() + edges[i].offsets[k]);
-      at += edges[i].widths[k];
-      markWritten(edges[i].vars[k]);
-    }
+    for (const auto* at = edgeSlots.begin(i); at != edgeSlots.end(i); ++at) x[*at] = *sub++;
+    for (const auto* v = edgeVars.begin(i); v != edgeVars.end(i); ++v) markWritten(*v);
     return true;
   };
 
@@ -251,6 +264,9 @@ SolveResult Solver::solve(const Csp& csp) {
         }
       }
       if (ok) {
+        if (options_.memoryPolicy == MemoryPolicy::Solutions) {
+          for (std::size_t i = 0; i < nc; ++i) remember(i);
+        }
         if (found) ++result.improvements;
         found = true;
         if (csp.cost == CostKind::None) {

@@ -14,8 +14,9 @@
 //
 // Constraint results are cached per candidate and recomputed only for constraints that read a variable
 // the last move changed: the outcome is exactly that of re-checking everything, for a fraction of the cost.
-// Every time a constraint is found satisfied its sub-assignment enters its memory (FIFO, `memorySize`),
-// which lives as long as the Solver, so later CSPs of the same program start from past solutions.
+// Every time a constraint is found satisfied its sub-assignment enters its memory (FIFO, `memorySize`;
+// see MemoryPolicy), which lives as long as the Solver, so later CSPs of the same program start from
+// values that worked before.
 // Budgets are iteration counts; the same seed gives the same result.
 #pragma once
 
@@ -30,12 +31,18 @@
 
 namespace cbtl::solver {
 
+// What enters a constraint's memory: its values whenever it is found satisfied (the reference), or only
+// its values in accepted solutions (a memory of jointly consistent values; about 3x fewer iterations in
+// Cooking, but the baselines explore less — docs/runtime.md has the measurements).
+enum class MemoryPolicy { EverySatisfiedCheck, Solutions };
+
 struct SolverOptions {
   std::uint64_t maxIters = 100000;
   std::uint64_t numImprovements = 500;
   std::uint64_t maxImprovementAttempts = 10000;
   std::size_t memorySize = 100;
   bool useMemory = true;
+  MemoryPolicy memoryPolicy = MemoryPolicy::EverySatisfiedCheck;
 };
 
 enum class SolveOutcome {

@@ -11,6 +11,7 @@
 
 #include <fmt/core.h>
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -41,6 +42,12 @@ inline void addSolverOptions(CLI::App* cmd, solver::SolverOptions& o) {
   cmd->add_option("--max-improvement-attempts", o.maxImprovementAttempts,
                   "stop this many iterations after the first solution")->capture_default_str();
   cmd->add_option("--memory-size", o.memorySize, "remembered satisfying values per constraint")->capture_default_str();
+  static const std::map<std::string, solver::MemoryPolicy> policies = {
+      {"checks", solver::MemoryPolicy::EverySatisfiedCheck}, {"solutions", solver::MemoryPolicy::Solutions}};
+  cmd->add_option("--memory", o.memoryPolicy,
+                  "what the solver remembers: checks (every satisfied constraint check, as the reference) | solutions")
+      ->transform(CLI::CheckedTransformer(policies, CLI::ignore_case))
+      ->default_str("checks");
 }
 
 // `--text-backend offline|openai`, `--llm-base-url`, `--llm-model`: which model text factors use. The offline

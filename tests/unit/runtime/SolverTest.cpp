@@ -114,3 +114,18 @@ TEST(Solver, SameSeedSameResult) {
   EXPECT_EQ(ra.iterations, rb.iterations);
   EXPECT_NE(ra.assignment, rc.assignment);
 }
+
+TEST(Solver, SolutionsMemoryRemembersOnlyAcceptedSolutions) {
+  Tiny t;
+  solver::SolverOptions o;
+  o.memoryPolicy = solver::MemoryPolicy::Solutions;
+  solver::Solver s(o, 3);
+  ASSERT_TRUE(s.solve(t.csp(solver::PersonalMode::Include)).solved());
+  EXPECT_EQ(s.memoryEntries(), 2u) << "one solution: one entry for each of the two constraints";
+  solver::Csp again = t.csp(solver::PersonalMode::Include);
+  again.samplers.clear();
+  const auto r = s.solve(again);
+  ASSERT_TRUE(r.solved());
+  // The initial candidate (x = y = 0) fails; one move from memory restores solution values that satisfy both.
+  EXPECT_EQ(r.iterations, 2u);
+}

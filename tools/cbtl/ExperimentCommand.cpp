@@ -19,13 +19,9 @@
 
 namespace {
 
-struct ExperimentArgs {
-  std::string file, approaches = "cbtl,no-personalization", seeds = "0..9", out, nonstationary = "none", stdlibDir, columns;
-  std::int64_t steps = 10000, evalEvery = 100, maxEvalSteps = 100, shiftEvery = 3000, periodicEvery = 1000;
-  int evalTasks = 10;
-  double epsilon = 0.5, unsatisfiable = 0;
-  bool replan = false, quiet = false;
-  cbtl::solver::SolverOptions solver;
+struct ExperimentArgs : cbtl::cli::TrialArgs {
+  std::string approaches = "cbtl,no-personalization", seeds = "0..9", out, columns;
+  bool quiet = false;
 };
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -88,32 +84,12 @@ int runExperiments(const ExperimentArgs& a) {
     return 2;
   }
   approach::ExperimentConfig base;
-  if (a.nonstationary != "none") {
-    const auto mode = approach::parseAdaptation(a.nonstationary);
-    if (!mode) {
-      fmt::print(stderr, "cbtl experiment: error: unknown --nonstationary mode '{}'\n", a.nonstationary);
-      return 2;
-    }
-    base.nonstationary = true;
-    base.adaptation = *mode;
-    base.simulator.shiftEvery = a.shiftEvery;
-  }
+  if (!cli::configureTrial("experiment", a, base)) return 2;
   auto lp = cli::loadForRun("experiment", a.file, a.stdlibDir);
   if (!lp) return 1;
-  base.steps = a.steps;
-  base.evalEvery = a.evalEvery;
-  base.evalTasks = a.evalTasks;
-  base.maxEvalEpisodeSteps = a.maxEvalSteps;
-  base.periodicResetEvery = a.periodicEvery;
-  base.simulator.unsatisfiableStockProbability = a.unsatisfiable;
-  base.solverOptions = a.solver;
-  base.approach.epsilon = a.epsilon;
-  base.approach.replan = a.replan;
-  const auto factory = cli::simulatorFactory(lp->graph().domain);
-  if (!factory(base.simulator, 0)) {
-    fmt::print(stderr, "cbtl experiment: error: no simulator for domain '{}'\n", lp->graph().domain);
-    return 1;
-  }
+  const auto factoryOrNone = cli::domainSimulator("experiment", *lp, base.simulator);
+  if (!factoryOrNone) return 1;
+  const approach::SimulatorFactory& factory = *factoryOrNone;
 
   struct Summary {
     std::map<std::int64_t, std::vector<double>> bySteps, success, prefs;
@@ -205,25 +181,12 @@ int runExperiments(const ExperimentArgs& a) {
 void addExperiment(CLI::App& app, int& exitCode) {
   auto args = std::make_shared<ExperimentArgs>();
   CLI::App* cmd = app.add_subcommand("experiment", "run approaches x seeds and summarize (mean ± standard error over seeds)");
-  cmd->add_option("file", args->file, "the domain's .cbtl file")->required();
+  cbtl::cli::addTrialOptions(cmd, *args);
   cmd->add_option("--approaches", args->approaches, "comma-separated approaches")->capture_default_str();
   cmd->add_option("--seeds", args->seeds, "LO..HI or a comma-separated list")->capture_default_str();
-  cmd->add_option("--steps", args->steps, "training steps per trial")->capture_default_str();
-  cmd->add_option("--eval-every", args->evalEvery, "evaluate every K steps")->capture_default_str();
-  cmd->add_option("--eval-tasks", args->evalTasks, "held-out tasks per evaluation")->capture_default_str();
-  cmd->add_option("--max-eval-steps", args->maxEvalSteps, "step limit of one evaluation episode")->capture_default_str();
   cmd->add_option("--columns", args->columns, "checkpoints to show in the table, comma-separated");
   cmd->add_option("--out", args->out, "write every trial's files and summary.csv here");
-  cmd->add_flag("--replan", args->replan, "replan without personalized constraints when the full CSP is unsatisfiable");
-  cmd->add_option("--epsilon", args->epsilon, "epsilon-greedy's exploration probability")->capture_default_str();
-  cmd->add_option("--nonstationary", args->nonstationary, "none | no-adapt | user-reset | periodic-reset")->capture_default_str();
-  cmd->add_option("--shift-every", args->shiftEvery, "steps between preference shifts")->capture_default_str();
-  cmd->add_option("--periodic-reset-every", args->periodicEvery, "steps between model resets")->capture_default_str();
-  cmd->add_option("--unsatisfiable-stock", args->unsatisfiable, "probability that a restock cannot satisfy the user")
-      ->capture_default_str();
-  cmd->add_option("--stdlib", args->stdlibDir, "standard library folder (default: embedded)");
   cmd->add_flag("--quiet,-q", args->quiet, "no per-trial lines");
-  cbtl::cli::addSolverOptions(cmd, args->solver);
   cmd->callback([args, &exitCode]() {
     try {
       exitCode = runExperiments(*args);

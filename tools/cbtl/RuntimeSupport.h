@@ -1,4 +1,4 @@
-// RuntimeSupport.h — what `cbtl run` and `cbtl solve` share: loading a .cbtl file for execution with its
+// RuntimeSupport.h — what `cbtl run`, `cbtl experiment` and `cbtl solve` share: the trial options, loading a .cbtl file for execution with its
 // errors printed, the domain simulators by name, and the text-preference backend of `model text(...)` factors.
 #pragma once
 
@@ -86,6 +86,78 @@ inline std::optional<std::shared_ptr<const textpref::TextBackend>> makeTextBacke
   if (!a.model.empty()) config.chat.model = a.model;
   auto warn = [command](const std::string& message) { fmt::print(stderr, "cbtl {}: warning: {}\n", command, message); };
   return std::make_shared<const textpref::TextBackend>(std::move(config), warn);
+}
+
+// The options of one trial of the experiment protocol, shared by `cbtl run` and `cbtl experiment`.
+struct TrialArgs {
+  std::string file, task, nonstationary = "none", stdlibDir;
+  std::int64_t steps = 10000, evalEvery = 100, maxEvalSteps = 100, shiftEvery = 3000, periodicEvery = 1000;
+  int evalTasks = 10;
+  double epsilon = 0.5, unsatisfiable = 0;
+  bool replan = false;
+  solver::SolverOptions solver;
+  TextBackendArgs text;
+};
+
+inline void addTrialOptions(CLI::App* cmd, TrialArgs& a) {
+  cmd->add_option("file", a.file, "the domain's .cbtl file")->required();
+  cmd->add_option("--steps", a.steps, "training steps")->capture_default_str();
+  cmd->add_option("--eval-every", a.evalEvery, "evaluate every K steps")->capture_default_str();
+  cmd->add_option("--eval-tasks", a.evalTasks, "held-out tasks per evaluation")->capture_default_str();
+  cmd->add_option("--max-eval-steps", a.maxEvalSteps, "step limit of one evaluation episode")->capture_default_str();
+  cmd->add_option("--task", a.task, "task to run (default: the first)");
+  cmd->add_flag("--replan", a.replan, "when the full CSP is unsatisfiable, replan without personalized constraints");
+  cmd->add_option("--epsilon", a.epsilon, "epsilon-greedy's exploration probability")->capture_default_str();
+  cmd->add_option("--nonstationary", a.nonstationary,
+                  "shift the user's preferences: none | no-adapt | user-reset | periodic-reset")->capture_default_str();
+  cmd->add_option("--shift-every", a.shiftEvery, "steps between preference shifts")->capture_default_str();
+  cmd->add_option("--periodic-reset-every", a.periodicEvery, "steps between model resets (periodic-reset)")
+      ->capture_default_str();
+  cmd->add_option("--unsatisfiable-stock", a.unsatisfiable, "probability that a restock cannot satisfy the user (Cooking)")
+      ->capture_default_str();
+  cmd->add_option("--stdlib", a.stdlibDir, "standard library folder (default: embedded)");
+  addSolverOptions(cmd, a.solver);
+  addTextBackendOptions(cmd, a.text);
+}
+
+// Fills everything but the approach, seed and outputs; false after printing a usage error.
+inline bool configureTrial(const std::string& command, const TrialArgs& a, approach::ExperimentConfig& c) {
+  if (a.nonstationary != "none") {
+    const auto mode = approach::parseAdaptation(a.nonstationary);
+    if (!mode) {
+      fmt::print(stderr, "cbtl {}: error: unknown --nonstationary mode '{}' (none, no-adapt, user-reset, periodic-reset)\n",
+                 command, a.nonstationary);
+      return false;
+    }
+    c.nonstationary = true;
+    c.adaptation = *mode;
+    c.simulator.shiftEvery = a.shiftEvery;
+  }
+  const auto textBackend = makeTextBackend(command, a.text);
+  if (!textBackend) return false;
+  c.textBackend = *textBackend;
+  c.steps = a.steps;
+  c.evalEvery = a.evalEvery;
+  c.evalTasks = a.evalTasks;
+  c.maxEvalEpisodeSteps = a.maxEvalSteps;
+  c.task = a.task;
+  c.periodicResetEvery = a.periodicEvery;
+  c.simulator.unsatisfiableStockProbability = a.unsatisfiable;
+  c.solverOptions = a.solver;
+  c.approach.epsilon = a.epsilon;
+  c.approach.replan = a.replan;
+  return true;
+}
+
+// A factory for the program's domain, or nullopt after printing which domains exist.
+inline std::optional<approach::SimulatorFactory> domainSimulator(const std::string& command, const approach::LoadedProgram& lp,
+                                                                 const sim::SimulatorOptions& options) {
+  const std::string& domain = lp.graph().domain;
+  if (domains::createSimulator(domain, options, 0) != nullptr) return simulatorFactory(domain);
+  fmt::print(stderr, "cbtl {}: error: {}: no simulator for domain '{}' (known:", command, lp.path(), domain);
+  for (const auto& d : domains::knownDomains()) fmt::print(stderr, " {}", d);
+  fmt::print(stderr, ")\n");
+  return std::nullopt;
 }
 
 }  // namespace cbtl::cli

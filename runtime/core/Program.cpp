@@ -66,6 +66,7 @@ Program::Program(const ir::ConstraintGraph& graph, Builtins builtins) : graph_(g
   for (const auto& f : graph_.functions) functions_[f.name] = &f;
   layoutVariables();
   layoutObservations();
+  compileInitialValues();
   compileConstraints();
   compileSamplers();
   compileGenerators();
@@ -210,15 +211,33 @@ void Program::layoutVariables() {
     s.offset = static_cast<std::uint32_t>(assignmentWidth_);
     assignmentWidth_ += s.type.width;
   }
-  initial_.assign(assignmentWidth_, 0.0);
+}
+
+void Program::compileInitialValues() {
   for (const auto& v : graph_.variables) {
     if (!v.init) continue;
     currentSpan_ = &v.span;
-    const auto value = constantValue(*v.init);
-    const VarSlot& s = slots_[v.id];
-    for (std::size_t i = 0; i < s.type.width && i < value.size(); ++i) initial_[s.offset + i] = value[i];
+    Scope scope;
+    std::uint32_t top = 0;
+    scope.frameTop = &top;
+    inits_.emplace_back(v.id, compile(*v.init, scope));
   }
   currentSpan_ = nullptr;
+}
+
+std::vector<double> Program::initialAssignment(const std::vector<double>& observation) const {
+  std::vector<double> x(assignmentWidth_, 0.0);
+  std::vector<double> obs = observation;
+  obs.resize(std::max(obsWidth_, std::size_t{1}), 0.0);
+  std::vector<double> frame(256, 0.0);
+  EvalContext ctx{x.data(), obs.data(), frame.data()};
+  double value[64];
+  for (const auto& [var, node] : inits_) {
+    const VarSlot& s = slots_[var];
+    pool_.eval(node, ctx, value);
+    std::copy_n(value, s.type.width, x.begin() + s.offset);
+  }
+  return x;
 }
 
 void Program::layoutObservations() {

@@ -86,8 +86,10 @@ class Program {
 
   const VarSlot& slot(ir::VarId v) const { return slots_.at(v); }
   std::size_t assignmentWidth() const { return assignmentWidth_; }
-  // Initial values of every variable (declared `= init`, else the domain's first value or zero).
-  const std::vector<double>& initialAssignment() const { return initial_; }
+  // Initial values of every variable for a CSP whose world reads `observation` (laid out as
+  // observationSlots() says): declared `= init` (which may read observations), else zero (false, the first
+  // enum member or item, the empty text).
+  std::vector<double> initialAssignment(const std::vector<double>& observation = {}) const;
 
   // Observations: "name" or "name[member]" -> offset; width of the whole observation vector.
   std::optional<std::uint32_t> observationOffset(const std::string& key) const;
@@ -128,6 +130,7 @@ class Program {
  private:
   void layoutVariables();
   void layoutObservations();
+  void compileInitialValues();
   void compileConstraints();
   void compileSamplers();
   void compileGenerators();
@@ -147,7 +150,7 @@ class Program {
   mutable StringTable strings_;
   std::vector<VarSlot> slots_;
   std::size_t assignmentWidth_ = 0;
-  std::vector<double> initial_;
+  std::vector<std::pair<ir::VarId, std::uint32_t>> inits_;  // variable, its initial value's node
   std::map<std::string, VarSlot> obsSlots_;
   std::size_t obsWidth_ = 0;
   std::vector<CompiledConstraint> constraints_;

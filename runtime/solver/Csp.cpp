@@ -10,8 +10,8 @@ Csp makeCsp(const rt::Program& program, std::uint32_t taskIndex, const std::vect
   csp.taskIndex = taskIndex;
   csp.instances = &instances;
   csp.user = &user;
+  csp.initial = program.initialAssignment(observation);
   csp.observation = std::move(observation);
-  csp.initial = program.initialAssignment();
   csp.cost = cost;
   // Personalized constraints first: they are cheap and reject most candidates once learned.
   if (personal == PersonalMode::Include) {

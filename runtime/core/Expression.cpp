@@ -10,6 +10,8 @@ namespace {
 inline void copySmall(const double* from, std::size_t n, double* to) {
   for (std::size_t i = 0; i < n; ++i) to[i] = from[i];
 }
+// Calls whose arguments are all scalars and at most this many take the direct path.
+constexpr std::size_t kMaxScalarArgs = 8;
 // Values wider than this do not occur (Conf<robot> is at most 64 joints, SE3 is 7).
 constexpr std::size_t kMaxWidth = 64;
 }  // namespace
@@ -23,8 +25,19 @@ bool ExprPool::scalarPath(const PackedNode& n) const {
       return true;
     case Op::Add: case Op::Sub: case Op::Mul:
       return nodes_[kid(n, 0)].width == 1 && nodes_[kid(n, 1)].width == 1;
-    case Op::Eq: case Op::Ne:
+    case Op::Eq: case Op::Ne: case Op::InSet:
       return nodes_[kid(n, 0)].width == 1;
+    case Op::Member: {
+      const Op base = nodes_[kid(n, 0)].op;
+      return base == Op::ReadVar || base == Op::ReadObs || base == Op::ReadFrame || base == Op::Const;
+    }
+    case Op::Call: {
+      if (n.kidCount > kMaxScalarArgs) return false;
+      for (std::size_t i = 0; i < n.kidCount; ++i) {
+        if (nodes_[kid(n, i)].width != 1) return false;
+      }
+      return true;
+    }
     default:
       return false;
   }
@@ -78,6 +91,35 @@ double ExprPool::evalScalar(std::uint32_t root, const EvalContext& ctx) const {
       return (x >= S(1) && x <= S(2)) ? 1 : 0;
     }
     case Op::If: return evalScalar(S(0) != 0 ? kid(n, 1) : kid(n, 2), ctx);
+    case Op::InSet:
+      if (nodes_[kid(n, 0)].width == 1) {
+        const double x = S(0);
+        const double* begin = constants_.data() + n.a;
+        return std::find(begin, begin + n.b, x) != begin + n.b ? 1 : 0;
+      }
+      break;
+    case Op::Member:
+      if (n.width == 1) {
+        const PackedNode& base = nodes_[kid(n, 0)];
+        switch (base.op) {
+          case Op::ReadVar: return ctx.assignment[base.a + n.a];
+          case Op::ReadObs: return ctx.observation[base.a + n.a];
+          case Op::ReadFrame: return ctx.frame[base.a + n.a];
+          case Op::Const: return constants_[base.a + n.a];
+          default: break;
+        }
+      }
+      break;
+    case Op::Call:
+      if (n.width == 1 && scalarPath(n)) {
+        double args[kMaxScalarArgs];
+        for (std::size_t i = 0; i < n.kidCount; ++i) args[i] = S(i);
+        double out = 0;
+        n.fn(std::span<const double>(args, n.kidCount), std::span<const std::uint16_t>(kidWidths_.data() + n.kidWidths, n.kidCount),
+             std::span<double>(&out, 1));
+        return out;
+      }
+      break;
     default: break;
   }
   double v[kMaxWidth];

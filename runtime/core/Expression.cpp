@@ -10,8 +10,8 @@ namespace {
 inline void copySmall(const double* from, std::size_t n, double* to) {
   for (std::size_t i = 0; i < n; ++i) to[i] = from[i];
 }
-// Calls whose arguments are all scalars and at most this many take the direct path.
-constexpr std::size_t kMaxScalarArgs = 8;
+// Calls with a scalar result whose arguments take at most this many doubles take the direct path.
+constexpr std::size_t kMaxScalarArgs = 16;
 // Values wider than this do not occur (Conf<robot> is at most 64 joints, SE3 is 7).
 constexpr std::size_t kMaxWidth = 64;
 }  // namespace
@@ -32,11 +32,9 @@ bool ExprPool::scalarPath(const PackedNode& n) const {
       return base == Op::ReadVar || base == Op::ReadObs || base == Op::ReadFrame || base == Op::Const;
     }
     case Op::Call: {
-      if (n.kidCount > kMaxScalarArgs) return false;
-      for (std::size_t i = 0; i < n.kidCount; ++i) {
-        if (nodes_[kid(n, i)].width != 1) return false;
-      }
-      return true;
+      std::size_t width = 0;
+      for (std::size_t i = 0; i < n.kidCount; ++i) width += nodes_[kid(n, i)].width;
+      return width <= kMaxScalarArgs;
     }
     default:
       return false;
@@ -113,9 +111,18 @@ double ExprPool::evalScalar(std::uint32_t root, const EvalContext& ctx) const {
     case Op::Call:
       if (n.width == 1 && scalarPath(n)) {
         double args[kMaxScalarArgs];
-        for (std::size_t i = 0; i < n.kidCount; ++i) args[i] = S(i);
+        std::size_t at = 0;
+        for (std::size_t i = 0; i < n.kidCount; ++i) {
+          const std::uint32_t k = kid(n, i);
+          if (nodes_[k].width == 1) {
+            args[at++] = S(i);
+          } else {
+            eval(k, ctx, args + at);
+            at += nodes_[k].width;
+          }
+        }
         double out = 0;
-        n.fn(std::span<const double>(args, n.kidCount), std::span<const std::uint16_t>(kidWidths_.data() + n.kidWidths, n.kidCount),
+        n.fn(std::span<const double>(args, at), std::span<const std::uint16_t>(kidWidths_.data() + n.kidWidths, n.kidCount),
              std::span<double>(&out, 1));
         return out;
       }

@@ -119,7 +119,8 @@ SolveResult Solver::solve(const Csp& csp) {
     }
   }
   const std::size_t userSamplers = csp.samplers.size();
-  std::vector<std::uint32_t> order(userSamplers + memorySamplers.size());
+  std::vector<std::uint32_t> order(userSamplers + memorySamplers.size()), swaps(order.size());
+  for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
 
   auto remember = [&](std::size_t i) {
     if (memories[i] == nullptr) return;
@@ -285,14 +286,17 @@ SolveResult Solver::solve(const Csp& csp) {
       break;
     }
     // A uniformly random order, drawn lazily (Fisher-Yates one position at a time): the first sampler
-    // usually succeeds, so most moves cost one draw instead of a full shuffle.
-    for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+    // usually succeeds, so most moves cost one draw instead of a full shuffle. `order` starts every move as
+    // the identity; the swaps are undone afterwards instead of rewriting the whole array.
     bool moved = false;
-    for (std::size_t pos = 0; pos < order.size() && !moved; ++pos) {
-      std::swap(order[pos], order[pos + rng_.index(order.size() - pos)]);
+    std::size_t pos = 0;
+    for (; pos < order.size() && !moved; ++pos) {
+      swaps[pos] = static_cast<std::uint32_t>(pos + rng_.index(order.size() - pos));
+      std::swap(order[pos], order[swaps[pos]]);
       const std::uint32_t k = order[pos];
       moved = k < userSamplers ? runSampler(csp.samplers[k]) : runMemorySampler(memorySamplers[k - userSamplers]);
     }
+    while (pos-- > 0) std::swap(order[pos], order[swaps[pos]]);
     if (!moved) {
       result.outcome = found ? SolveOutcome::Solved : SolveOutcome::SamplersStuck;
       break;

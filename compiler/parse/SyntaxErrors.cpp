@@ -215,7 +215,7 @@ void SyntaxErrorStrategy::reportMissingToken(antlr4::Parser* parser) {
     const SourceRange prev = tokenRange_(previous);
     diags_.error("E0102", sources_.insertionPoint(prev.file, prev.end),
                  fmt::format("expected {} after {}", what,
-                             where.empty() ? "'" + previous->getText() + "'" : where));
+                             where.empty() ? fmt::format("'{}'", previous->getText()) : where));
   } else {
     diags_.error("E0102", tokenRange_(t), fmt::format("expected {} before {}", what, foundDisplay(t)));
   }

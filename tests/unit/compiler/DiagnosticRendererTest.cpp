@@ -8,12 +8,12 @@
 namespace cbtl {
 namespace {
 
-struct Fixture : ::testing::Test {
+struct Rendering : ::testing::Test {
   SourceManager sm;
   FileId file = sm.add("dir/case.cbtl", "var x : reel;\nrequire ñx < 1;\n");
 };
 
-TEST_F(Fixture, TextHasLocationExcerptCaretAndChildren) {
+TEST_F(Rendering, TextHasLocationExcerptCaretAndChildren) {
   Diagnostic d{Severity::Error, "E0206", SourceRange{file, 8, 12}, "unknown type 'reel'", {}};
   d.help("did you mean 'real'?");
   d.note("declared here", SourceRange{file, 4, 5});
@@ -30,7 +30,7 @@ TEST_F(Fixture, TextHasLocationExcerptCaretAndChildren) {
             "   |     ^\n");
 }
 
-TEST_F(Fixture, CaretColumnsCountCodePoints) {
+TEST_F(Rendering, CaretColumnsCountCodePoints) {
   // 'x' after 'ñ' (2 bytes) on line 2: byte 24, column 10.
   Diagnostic d{Severity::Warning, "W0201", SourceRange{file, 24, 25}, "w", {}};
   const std::string text = renderDiagnosticText(d, sm);
@@ -38,13 +38,13 @@ TEST_F(Fixture, CaretColumnsCountCodePoints) {
   EXPECT_NE(text.find("   |          ^\n"), std::string::npos) << text;
 }
 
-TEST_F(Fixture, SpansOverSeveralLinesUnderlineToTheEndOfTheFirst) {
+TEST_F(Rendering, SpansOverSeveralLinesUnderlineToTheEndOfTheFirst) {
   Diagnostic d{Severity::Error, "E0301", SourceRange{file, 4, 20}, "m", {}};
   const std::string text = renderDiagnosticText(d, sm);
   EXPECT_NE(text.find("   |     ^~~~~~~~~\n"), std::string::npos) << text;  // "x : reel;", 9 columns
 }
 
-TEST_F(Fixture, JsonIsOneObjectPerLineWithTheDocumentedFields) {
+TEST_F(Rendering, JsonIsOneObjectPerLineWithTheDocumentedFields) {
   Diagnostic d{Severity::Error, "E0206", SourceRange{file, 8, 12}, "unknown type 'reel'", {}};
   d.help("did you mean 'real'?");
   d.note("declared here", SourceRange{file, 4, 5});
@@ -71,11 +71,13 @@ TEST_F(Fixture, JsonIsOneObjectPerLineWithTheDocumentedFields) {
   EXPECT_EQ(j.size(), 6u);  // severity, code, message, span, children, rendered
 }
 
-TEST_F(Fixture, JsonStaysValidForInvalidUtf8) {
+TEST_F(Rendering, JsonStaysValidForInvalidUtf8) {
   SourceManager raw;
   const FileId f = raw.add("bad.cbtl", std::string("var \xff;\n"));
   Diagnostic d{Severity::Error, "E0105", SourceRange{f, 4, 5}, "not UTF-8", {}};
-  EXPECT_NO_THROW((void)nlohmann::json::parse(renderDiagnosticJson(d, raw)));
+  nlohmann::json j;
+  EXPECT_NO_THROW(j = nlohmann::json::parse(renderDiagnosticJson(d, raw)));
+  EXPECT_EQ(j.value("code", ""), "E0105");
 }
 
 }  // namespace

@@ -17,6 +17,8 @@ namespace cbtl {
 namespace {
 
 namespace fs = std::filesystem;
+constexpr std::size_t kCutsPerFile = 12;  // truncations of each input
+constexpr int kDeletionsPerFile = 8;      // token-deletion mutants of each input
 
 std::vector<fs::path> goldenInputs() {
   std::vector<fs::path> out;
@@ -93,8 +95,8 @@ TEST(SpanRobustness, GoldenInputsAndTheirMutations) {
     const std::string name = path.string();
     diagnostics += checkSpans(name, text, name);
     ++compiled;
-    // Truncations at every Nth byte, N chosen for about a dozen cuts per file.
-    const std::size_t stride = std::max<std::size_t>(7, text.size() / 12);
+    // Truncations at every Nth byte, N chosen for about kCutsPerFile cuts per file.
+    const std::size_t stride = std::max<std::size_t>(7, text.size() / kCutsPerFile);
     for (std::size_t cut = 1; cut < text.size(); cut += stride) {
       diagnostics += checkSpans(name, text.substr(0, cut), name + " truncated at byte " + std::to_string(cut));
       ++compiled;
@@ -102,7 +104,7 @@ TEST(SpanRobustness, GoldenInputsAndTheirMutations) {
     // Deletions of one to three random tokens.
     const auto tokens = roughTokens(text);
     if (tokens.empty()) continue;
-    for (int m = 0; m < 8; ++m) {
+    for (int m = 0; m < kDeletionsPerFile; ++m) {
       std::string mutated = text;
       std::vector<std::size_t> picks;
       const int count = 1 + static_cast<int>(rng() % 3);
@@ -127,7 +129,7 @@ TEST(SpanRobustness, GoldenInputsAndTheirMutations) {
 
 // Inputs that once broke the span contract, kept as explicit cases.
 TEST(SpanRobustness, EdgeCases) {
-  for (const std::string text : {std::string(""), std::string("var"), std::string("var x : real"), std::string("import \""),
+  for (const std::string& text : {std::string(""), std::string("var"), std::string("var x : real"), std::string("import \""),
                                  std::string("import"), std::string("\"unterminated"), std::string("/* open"),
                                  std::string("require (x < 1;"), std::string("domain"), std::string("enum E {"),
                                  std::string("\xff"), std::string("var x : real in 0 .. 1e999;"),

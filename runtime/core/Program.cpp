@@ -655,7 +655,7 @@ void Program::compileGenerators() {
       if (f.kind != "interval" && f.kind != "threshold" && f.kind != "table" && f.kind != "text") {
         throw RuntimeError(where(f.span), fmt::format("model kind '{}' is not supported", f.kind));
       }
-      cg.factors.push_back(CompiledFactor{&f, f.feature.has_value()});
+      cg.factors.push_back(CompiledFactor{&f});
     }
     for (const auto& r : g.learnRules) {
       currentSpan_ = &r.span;

@@ -29,9 +29,8 @@ struct VarSlot {
 // How a variable is drawn by `sample x ~ uniform`: one entry per component.
 struct UniformPlan {
   enum class Kind { Real, Int, Bool, Choice } kind = Kind::Real;
-  std::vector<std::uint32_t> lo, hi;  // Real/Int: one bound node per component (absent bound: no node)
+  std::vector<std::uint32_t> lo, hi;  // Real/Int: one bound node per component (`uniform` needs both bounds)
   std::vector<double> choices;        // Choice: the allowed values (enum indices, text ids, ...)
-  bool bounded = true;
 };
 
 struct CompiledSampler {
@@ -50,7 +49,6 @@ struct CompiledConstraint {
 
 struct CompiledFactor {
   const ir::ModelFactor* source = nullptr;
-  bool hasFeature = false;
 };
 
 // A learning rule compiled against its frame: the event's arguments laid out one after another, binders

@@ -672,6 +672,38 @@ class Lowerer {
     }
   }
 
+  static bool readsObservation(const ir::Expr& e) {
+    if (e.op == "obs") return true;
+    for (const auto& c : e.children)
+      if (readsObservation(c)) return true;
+    return false;
+  }
+
+  // `var in set` or, with a field, `var.field in set` (set: a range or a set expression).
+  static ir::Expr domainTest(const ir::Variable& var, const std::optional<std::string>& field, ir::Expr set) {
+    ir::Expr ref;
+    ref.op = "var";
+    ref.type = var.type;
+    ref.text = var.name;
+    ref.id = static_cast<std::int64_t>(var.id);
+    if (field) {
+      ir::Expr member;
+      member.op = "member";
+      member.type.kind = "real";
+      member.type.spelling = "real";
+      member.text = *field;
+      member.children.push_back(std::move(ref));
+      ref = std::move(member);
+    }
+    ir::Expr in;
+    in.op = "in";
+    in.type.kind = "bool";
+    in.type.spelling = "bool";
+    in.children.push_back(std::move(ref));
+    in.children.push_back(std::move(set));
+    return in;
+  }
+
   std::uint32_t addConstraint(std::string name, ir::Expr expr, const std::string& scope, SourceRange at) {
     grow(1 + nodeCount(expr), at);
     ir::Constraint c;
@@ -788,8 +820,50 @@ class Lowerer {
   void lowerBody(const std::vector<const Decl*>& body, Ctx& ctx, std::vector<ir::VarId>& vars,
                  std::vector<std::uint32_t>& constraints, std::vector<std::uint32_t>& samplers,
                  std::vector<std::uint32_t>& costs) {
+    const std::size_t firstVar = vars.size();
     for (const Decl* d : body) {
       if (d->kind == DeclKind::Var) lowerVar(static_cast<const VarDecl&>(*d), ctx, vars);
+    }
+    // Domains the solver's samplers alone cannot keep become constraints named `<var>.domain`, which a graph
+    // dump shows and the solver checks like any other: a domain read from an observation (`var book : Book
+    // in pickable`) changes from one CSP to the next, and an initial value read from an observation
+    // (`= plateXY`) may lie outside the declared domain, while the solver tries the initial values first.
+    for (std::size_t i = firstVar; i < vars.size(); ++i) {
+      const ir::Variable& var = g_.variables[vars[i]];
+      const bool observedSet = var.domain.set && var.domain.set->op == "obs";
+      const bool observedInit = var.init && readsObservation(*var.init);
+      std::optional<ir::Expr> cond;
+      if (observedSet || (observedInit && var.domain.set)) {
+        cond = domainTest(var, std::nullopt, *var.domain.set);
+      } else if (observedInit && !var.domain.bounds.empty()) {
+        static const std::vector<std::string> kVec = {"x", "y", "z"}, kSe2 = {"x", "y", "yaw"};
+        const std::vector<std::string>& fields = var.type.kind == "SE2" ? kSe2 : kVec;
+        for (std::size_t c = 0; c < var.domain.bounds.size(); ++c) {
+          const ir::Bound& b = var.domain.bounds[c];
+          if (!b.lo || !b.hi) continue;  // a one-sided bound cannot be written as a range test
+          if (var.domain.bounds.size() > 1 && c >= fields.size()) break;
+          ir::Expr range;
+          range.op = "range";
+          range.type.kind = "range";
+          range.type.spelling = "range";
+          range.children = {*b.lo, *b.hi};
+          std::optional<std::string> field;
+          if (var.domain.bounds.size() > 1) field = fields[c];
+          ir::Expr test = domainTest(var, field, std::move(range));
+          if (!cond) {
+            cond = std::move(test);
+          } else {
+            ir::Expr both;
+            both.op = "and";
+            both.type = test.type;
+            both.children.push_back(std::move(*cond));
+            both.children.push_back(std::move(test));
+            cond = std::move(both);
+          }
+        }
+      }
+      if (!cond) continue;
+      constraints.push_back(addConstraint(var.name + ".domain", std::move(*cond), var.scope, declOf_[var.id]->range));
     }
     std::size_t anonymous = 0;
     for (const Decl* d : body) {

@@ -107,7 +107,7 @@ TaskActions::TaskActions(rt::Program& program, const ir::Task& task) {
 std::vector<sim::ActionCall> TaskActions::unroll(const rt::Program& program, const std::vector<double>& solution,
                                                  const std::vector<double>& observation) const {
   std::vector<double> frame(frameWidth_, 0.0);
-  rt::EvalContext ctx{solution.data(), observation.data(), frame.data()};
+  rt::EvalContext ctx{solution.data(), observation.data(), frame.data(), program.callContext()};
   std::vector<sim::ActionCall> out;
   run(program, actions_, ctx, out);
   return out;

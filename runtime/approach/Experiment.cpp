@@ -168,8 +168,9 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
       bool done = false;
       std::int64_t steps = 0;
       while (!done && steps < config.maxEvalEpisodeSteps) {
+        lp.syncWorld(*evalWorld);
         const auto obs = observationVector(program, evalWorld->observe());
-        Plan plan = makePlan(lp, taskIdx, obs, evaluationChoice(), fallback, evalSolver, evalUser);
+        Plan plan = makePlan(lp, lp.taskFor(*evalWorld, taskIdx), obs, evaluationChoice(), fallback, evalSolver, evalUser);
         if (plan.replanned) ++point.replans;
         if (!plan.ok || plan.calls.empty()) break;  // the robot cannot do this task: the episode fails
         std::size_t next = 0;
@@ -211,8 +212,10 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
     std::uint64_t iterations = 0;
     bool replanned = false;
     if (next >= calls.size()) {
+      lp.syncWorld(*trainWorld);
       const auto obs = observationVector(program, trainWorld->observe());
-      Plan plan = makePlan(lp, taskIdx, obs, trainingChoice(config.approach, approachRng), fallback, trainSolver, user);
+      Plan plan = makePlan(lp, lp.taskFor(*trainWorld, taskIdx), obs, trainingChoice(config.approach, approachRng), fallback,
+                           trainSolver, user);
       ++result.trainSolves;
       iterations = plan.solve.iterations + (plan.failedFull ? plan.failedFull->iterations : 0);
       result.solverIterations += iterations;

@@ -56,7 +56,7 @@ LearnReport Learner::learn(const std::vector<sim::FeedbackEvent>& events, model:
           }
         }
         if (!ok) continue;
-        rt::EvalContext ctx{nullptr, nullptr, frame.data()};
+        rt::EvalContext ctx{nullptr, nullptr, frame.data(), program_.callContext()};
         if (r.condition && !pool.evalBool(*r.condition, ctx)) continue;
         std::string key;
         const auto& binders = keyBinders_[gi][ri];

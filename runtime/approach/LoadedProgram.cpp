@@ -1,10 +1,12 @@
 #include "LoadedProgram.h"
 
+#include "WorldBuiltins.h"
 #include "diag/DiagnosticRenderer.h"
 #include "driver/Pipeline.h"
 
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <fstream>
 
 namespace cbtl::approach {
@@ -43,6 +45,15 @@ void LoadedProgram::prepare(const PipelineResult& r, rt::Builtins builtins) {
     if (errors_.empty()) errors_ = fmt::format("{}: the compiler failed in pass '{}'\n", path_, r.lastPass);
     return;
   }
+  if (!tu_->graph.world.empty()) {
+    namespace fs = std::filesystem;
+    worldPath_ = (fs::path(path_).parent_path() / tu_->graph.world).lexically_normal().string();
+    std::string error;
+    if (!bind::addWorldFromFile(builtins, worldPath_, error)) {
+      errors_ = fmt::format("error: {}: world scene '{}': {}\n", path_, tu_->graph.world, error);
+      return;
+    }
+  }
   try {
     auto program = std::make_unique<rt::Program>(tu_->graph, std::move(builtins));
     for (const auto& task : tu_->graph.tasks) {
@@ -56,6 +67,22 @@ void LoadedProgram::prepare(const PipelineResult& r, rt::Builtins builtins) {
     instances_.clear();
     actions_.clear();
   }
+}
+
+void LoadedProgram::syncWorld(const sim::DomainSimulator& simulator) const {
+  const world::WorldState* state = simulator.worldState();
+  if (state == nullptr || program_ == nullptr || program_->host() == nullptr) return;
+  if (!bind::setWorldReference(program_->host(), *state)) {
+    throw rt::RuntimeError("", fmt::format("the simulator's world state does not fit the scene '{}'", worldPath_));
+  }
+}
+
+std::size_t LoadedProgram::taskFor(const sim::DomainSimulator& simulator, std::size_t configured) const {
+  const std::string name = simulator.requestedTask();
+  if (name.empty()) return configured;
+  const int t = taskIndex(name);
+  if (t < 0) throw rt::RuntimeError("", fmt::format("the simulator asks for task '{}', which '{}' does not declare", name, path_));
+  return static_cast<std::size_t>(t);
 }
 
 int LoadedProgram::taskIndex(const std::string& name) const {

@@ -44,9 +44,21 @@ class LoadedProgram {
   const TaskActions& actions(std::size_t task) const { return actions_.at(task); }
   const Learner& learner() const { return *learner_; }
 
+  // Robot domains (`world "scene.xml"`): the scene file as resolved (relative to the root .cbtl file), empty
+  // otherwise. The scene is loaded with the program; a missing or bad scene is a load error.
+  const std::string& worldPath() const { return worldPath_; }
+  // Makes the simulator's world state the one the world built-ins read (WorldHost.h). Does nothing for a
+  // program without a world or a simulator without a robot scene; throws rt::RuntimeError when the state does
+  // not fit the program's scene.
+  void syncWorld(const sim::DomainSimulator& simulator) const;
+  // The task the simulator asks for now (DomainSimulator::requestedTask), else `configured`. Throws
+  // rt::RuntimeError when the simulator names a task the program lacks.
+  std::size_t taskFor(const sim::DomainSimulator& simulator, std::size_t configured) const;
+
  private:
   void prepare(const PipelineResult& r, rt::Builtins builtins);
   std::string path_;
+  std::string worldPath_;
   std::string errors_;
   std::unique_ptr<TranslationUnit> tu_;
   std::unique_ptr<rt::Program> program_;

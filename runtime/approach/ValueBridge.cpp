@@ -37,6 +37,23 @@ bool fromSimValue(const rt::Program& program, const rt::ValueType& type, const s
       }
       std::copy(value.vector.begin(), value.vector.end(), out);
       return true;
+    case ValueKind::Set: {
+      if (value.kind != sim::Value::Kind::Names) {
+        error = fmt::format("expected a set of {}", type.typeName);
+        return false;
+      }
+      std::fill(out, out + type.width, 0.0);
+      const rt::ValueType elem = program.setElementType(type);
+      for (const auto& m : value.members) {
+        double index = 0;
+        if (!program.parseName(elem, m, index) || index < 0 || index >= type.width) {
+          error = fmt::format("'{}' is not a member of {}", m, type.typeName);
+          return false;
+        }
+        out[static_cast<std::size_t>(index)] = 1;
+      }
+      return true;
+    }
     default:
       if (value.kind != sim::Value::Kind::Number) {
         error = fmt::format("expected a number ({})", rt::toString(type.kind));

@@ -1,5 +1,7 @@
 #include "Builtins.h"
 
+#include "PoseBuiltins.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -12,9 +14,9 @@ using Widths = std::span<const std::uint16_t>;
 using Out = std::span<double>;
 
 #define CBTL_UNARY(NAME, EXPR) \
-  void NAME(Args a, Widths, Out o) { const double x = a[0]; o[0] = (EXPR); }
+  void NAME(const CallContext&, Args a, Widths, Out o) { const double x = a[0]; o[0] = (EXPR); }
 #define CBTL_BINARY(NAME, EXPR) \
-  void NAME(Args a, Widths, Out o) { const double x = a[0], y = a[1]; o[0] = (EXPR); }
+  void NAME(const CallContext&, Args a, Widths, Out o) { const double x = a[0], y = a[1]; o[0] = (EXPR); }
 
 CBTL_UNARY(fAbs, std::fabs(x))
 CBTL_UNARY(fSign, x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0))
@@ -36,55 +38,57 @@ CBTL_BINARY(fAtan2, std::atan2(x, y))
 #undef CBTL_UNARY
 #undef CBTL_BINARY
 
-void fClamp(Args a, Widths, Out o) { o[0] = std::clamp(a[0], std::min(a[1], a[2]), std::max(a[1], a[2])); }
-void fVec2(Args a, Widths, Out o) { o[0] = a[0]; o[1] = a[1]; }
-void fVec3(Args a, Widths, Out o) { o[0] = a[0]; o[1] = a[1]; o[2] = a[2]; }
-void fNorm(Args a, Widths, Out o) {
+void fClamp(const CallContext&, Args a, Widths, Out o) { o[0] = std::clamp(a[0], std::min(a[1], a[2]), std::max(a[1], a[2])); }
+void fVec2(const CallContext&, Args a, Widths, Out o) { o[0] = a[0]; o[1] = a[1]; }
+void fVec3(const CallContext&, Args a, Widths, Out o) { o[0] = a[0]; o[1] = a[1]; o[2] = a[2]; }
+void fNorm(const CallContext&, Args a, Widths, Out o) {
   double s = 0;
   for (double x : a) s += x * x;
   o[0] = std::sqrt(s);
 }
-void fDistance(Args a, Widths w, Out o) {
+void fDistance(const CallContext&, Args a, Widths w, Out o) {
   double s = 0;
   for (std::size_t i = 0; i < w[0]; ++i) s += (a[i] - a[w[0] + i]) * (a[i] - a[w[0] + i]);
   o[0] = std::sqrt(s);
 }
-void fDot(Args a, Widths w, Out o) {
+void fDot(const CallContext&, Args a, Widths w, Out o) {
   double s = 0;
   for (std::size_t i = 0; i < w[0]; ++i) s += a[i] * a[w[0] + i];
   o[0] = s;
 }
-void fCross(Args a, Widths, Out o) {
+void fCross(const CallContext&, Args a, Widths, Out o) {
   o[0] = a[1] * a[5] - a[2] * a[4];
   o[1] = a[2] * a[3] - a[0] * a[5];
   o[2] = a[0] * a[4] - a[1] * a[3];
 }
-void fNormalize(Args a, Widths, Out o) {
+void fNormalize(const CallContext&, Args a, Widths, Out o) {
   double s = 0;
   for (double x : a) s += x * x;
   s = std::sqrt(s);
   for (std::size_t i = 0; i < a.size(); ++i) o[i] = s > 0 ? a[i] / s : 0;
 }
-void fXy(Args a, Widths, Out o) { o[0] = a[0]; o[1] = a[1]; }
-void fSe2(Args a, Widths, Out o) { o[0] = a[0]; o[1] = a[1]; o[2] = a[2]; }
-void fSe2Distance(Args a, Widths, Out o) { o[0] = std::hypot(a[0] - a[3], a[1] - a[4]); }
+void fGen3Conf(const CallContext&, Args a, Widths, Out o) {
+  for (std::size_t i = 0; i < 7; ++i) o[i] = a[i];
+}
+void fXy(const CallContext&, Args a, Widths, Out o) { o[0] = a[0]; o[1] = a[1]; }
+void fSe2(const CallContext&, Args a, Widths, Out o) { o[0] = a[0]; o[1] = a[1]; o[2] = a[2]; }
 
-bool sUniformInt(Args a, Widths, Rng& rng, Out o) {
+bool sUniformInt(const CallContext&, Args a, Widths, Rng& rng, Out o) {
   const auto lo = static_cast<std::int64_t>(std::ceil(a[0])), hi = static_cast<std::int64_t>(std::floor(a[1]));
   if (lo > hi) return false;
   o[0] = static_cast<double>(rng.uniformInt(lo, hi));
   return true;
 }
-bool sUniformReal(Args a, Widths, Rng& rng, Out o) {
+bool sUniformReal(const CallContext&, Args a, Widths, Rng& rng, Out o) {
   if (!(a[0] <= a[1])) return false;
   o[0] = rng.uniform(a[0], a[1]);
   return true;
 }
-bool sBernoulli(Args a, Widths, Rng& rng, Out o) {
+bool sBernoulli(const CallContext&, Args a, Widths, Rng& rng, Out o) {
   o[0] = rng.coin(a[0]) ? 1 : 0;
   return true;
 }
-bool sUniformInBox(Args a, Widths w, Rng& rng, Out o) {
+bool sUniformInBox(const CallContext&, Args a, Widths w, Rng& rng, Out o) {
   const std::size_t n = w[0];
   for (std::size_t i = 0; i < n; ++i) {
     if (!(a[i] <= a[n + i])) return false;
@@ -93,7 +97,7 @@ bool sUniformInBox(Args a, Widths w, Rng& rng, Out o) {
   return true;
 }
 // A point of the rectangle [lo, hi] at least `margin` from its edges (e.g. a pot's centre on the stove).
-bool sPointInRectInset(Args a, Widths, Rng& rng, Out o) {
+bool sPointInRectInset(const CallContext&, Args a, Widths, Rng& rng, Out o) {
   const double m = a[4];
   const double x0 = a[0] + m, y0 = a[1] + m, x1 = a[2] - m, y1 = a[3] - m;
   if (!(x0 <= x1 && y0 <= y1)) return false;
@@ -103,6 +107,16 @@ bool sPointInRectInset(Args a, Widths, Rng& rng, Out o) {
 }
 
 }  // namespace
+
+void concatTexts(const CallContext& cx, Args a, Widths, Out o) {
+  if (cx.strings == nullptr) {
+    o[0] = 0;
+    return;
+  }
+  const auto& x = cx.strings->name(static_cast<std::uint32_t>(a[0]));
+  const auto& y = cx.strings->name(static_cast<std::uint32_t>(a[1]));
+  o[0] = static_cast<double>(cx.strings->intern(x + y));
+}
 
 Builtins Builtins::standard() {
   Builtins b;
@@ -136,13 +150,14 @@ Builtins Builtins::standard() {
   b.addFunction("cross", fCross);
   b.addFunction("normalize", fNormalize);
   b.addFunction("xy", fXy);
+  b.addFunction("gen3Conf", fGen3Conf);
   b.addFunction("se2", fSe2);
-  b.addFunction("se2Distance", fSe2Distance);
   b.addSampler("uniformInt", sUniformInt);
   b.addSampler("uniformReal", sUniformReal);
   b.addSampler("bernoulli", sBernoulli);
   b.addSampler("uniformInBox", sUniformInBox);
   b.addSampler("pointInRectInset", sPointInRectInset);
+  addPoseBuiltins(b);
   return b;
 }
 

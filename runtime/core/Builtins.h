@@ -7,21 +7,45 @@
 //
 // Binding is by name: a program that calls an extern the registry lacks is rejected before it runs, with
 // the call's source location.
+//
+// Every call also receives a CallContext: the program's string table (text arguments are string ids) and
+// the host, the per-program state some built-ins need (the robot world of runtime/bind/WorldBuiltins.h).
+// A registry that binds such built-ins carries its host; the Program adopts it. Built-ins of the prelude and
+// geometry read neither.
 #pragma once
 
 #include "Rng.h"
+#include "Values.h"
 
 #include <cstddef>
 #include <map>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
 namespace cbtl::rt {
 
-using FunctionImpl = void (*)(std::span<const double> args, std::span<const std::uint16_t> widths, std::span<double> out);
-using SamplerImpl = bool (*)(std::span<const double> args, std::span<const std::uint16_t> widths, Rng& rng,
-                             std::span<double> out);
+// State that built-ins of one kind share (e.g. the robot world). Owned by the registry that binds them and
+// then by the Program; used by one thread at a time, like the Program.
+class BuiltinHost {
+ public:
+  virtual ~BuiltinHost() = default;
+};
+
+struct CallContext {
+  StringTable* strings = nullptr;  // mutable: text results (e.g. concatenation) are interned
+  BuiltinHost* host = nullptr;
+};
+
+using FunctionImpl = void (*)(const CallContext& cx, std::span<const double> args, std::span<const std::uint16_t> widths,
+                              std::span<double> out);
+using SamplerImpl = bool (*)(const CallContext& cx, std::span<const double> args, std::span<const std::uint16_t> widths,
+                             Rng& rng, std::span<double> out);
+
+// text + text: the concatenation's string id (interned in cx.strings). Compiled for `+` on texts.
+void concatTexts(const CallContext& cx, std::span<const double> args, std::span<const std::uint16_t> widths,
+                 std::span<double> out);
 
 class Builtins {
  public:
@@ -35,7 +59,12 @@ class Builtins {
   std::vector<std::string> functionNames() const;
   std::vector<std::string> samplerNames() const;
 
+  // The host the bound built-ins expect in CallContext::host (null when none needs one).
+  void setHost(std::shared_ptr<BuiltinHost> host) { host_ = std::move(host); }
+  const std::shared_ptr<BuiltinHost>& host() const { return host_; }
+
  private:
+  std::shared_ptr<BuiltinHost> host_;
   std::map<std::string, FunctionImpl> functions_;
   std::map<std::string, SamplerImpl> samplers_;
 };

@@ -6,6 +6,10 @@
 namespace cbtl::rt {
 
 namespace {
+const CallContext kNoCall{};
+}  // namespace
+
+namespace {
 // Values are a handful of doubles: a plain loop beats a call to memmove.
 inline void copySmall(const double* from, std::size_t n, double* to) {
   for (std::size_t i = 0; i < n; ++i) to[i] = from[i];
@@ -122,7 +126,7 @@ double ExprPool::evalScalar(std::uint32_t root, const EvalContext& ctx) const {
           }
         }
         double out = 0;
-        n.fn(std::span<const double>(args, at), std::span<const std::uint16_t>(kidWidths_.data() + n.kidWidths, n.kidCount),
+        n.fn(ctx.call != nullptr ? *ctx.call : kNoCall, std::span<const double>(args, at), std::span<const std::uint16_t>(kidWidths_.data() + n.kidWidths, n.kidCount),
              std::span<double>(&out, 1));
         return out;
       }
@@ -243,7 +247,7 @@ void ExprPool::eval(std::uint32_t root, const EvalContext& ctx, double* out) con
         eval(k, ctx, args + at);
         at += nodes_[k].width;
       }
-      n.fn(std::span<const double>(args, at), std::span<const std::uint16_t>(kidWidths_.data() + n.kidWidths, n.kidCount),
+      n.fn(ctx.call != nullptr ? *ctx.call : kNoCall, std::span<const double>(args, at), std::span<const std::uint16_t>(kidWidths_.data() + n.kidWidths, n.kidCount),
            std::span<double>(out, n.width));
       return;
     }

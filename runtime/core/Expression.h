@@ -61,6 +61,7 @@ struct EvalContext {
   const double* assignment = nullptr;
   const double* observation = nullptr;
   double* frame = nullptr;
+  const CallContext* call = nullptr;  // handed to built-ins; null: an empty context
 };
 
 class ExprPool {

@@ -61,6 +61,7 @@ std::string Program::where(const ir::Span& s) {
 }
 
 Program::Program(const ir::ConstraintGraph& graph, Builtins builtins) : graph_(graph), builtins_(std::move(builtins)) {
+  callContext_ = CallContext{&strings_, builtins_.host().get()};
   strings_.intern("");  // text id 0 is the empty string: the value of an uninitialized text variable
   for (const auto& c : graph_.constants) constants_[c.name] = &c;
   for (const auto& f : graph_.functions) functions_[f.name] = &f;
@@ -230,7 +231,7 @@ std::vector<double> Program::initialAssignment(const std::vector<double>& observ
   std::vector<double> obs = observation;
   obs.resize(std::max(obsWidth_, std::size_t{1}), 0.0);
   std::vector<double> frame(256, 0.0);
-  EvalContext ctx{x.data(), obs.data(), frame.data()};
+  EvalContext ctx{x.data(), obs.data(), frame.data(), &callContext_};
   double value[64];
   for (const auto& [var, node] : inits_) {
     const VarSlot& s = slots_[var];
@@ -240,9 +241,27 @@ std::vector<double> Program::initialAssignment(const std::vector<double>& observ
   return x;
 }
 
+ValueType Program::setElementType(const ValueType& set) const {
+  if (findEnum(set.typeName) != nullptr) return ValueType{ValueKind::Enum, 1, set.typeName};
+  return ValueType{ValueKind::Item, 1, set.typeName};
+}
+
+std::size_t Program::setElementCount(const ValueType& set) const {
+  if (const auto* e = findEnum(set.typeName)) return e->members.size();
+  if (const auto* s = findItemSetOfType(set.typeName)) return s->entries.size();
+  return 0;
+}
+
 void Program::layoutObservations() {
   for (const auto& o : graph_.observations) {
-    const ValueType t = typeOf(o.type);
+    ValueType t = typeOf(o.type);
+    if (t.kind == ValueKind::Set) {
+      const std::size_t n = setElementCount(t);
+      if (n == 0 || o.indexSet) {
+        throw RuntimeError(where(o.span), fmt::format("observation '{}': only a set of enum members or items can be observed", o.name));
+      }
+      t.width = static_cast<std::uint16_t>(n);
+    }
     if (!o.indexSet) {
       obsSlots_[o.name] = VarSlot{static_cast<std::uint32_t>(obsWidth_), t};
       obsWidth_ += t.width;
@@ -280,7 +299,7 @@ std::vector<double> Program::constantValue(const ir::Expr& e) {
   scope.frameTop = &top;
   const std::uint32_t node = compile(e, scope);
   std::vector<double> frame(top + 1, 0.0);
-  EvalContext ctx{nullptr, nullptr, frame.data()};
+  EvalContext ctx{nullptr, nullptr, frame.data(), &callContext_};
   std::vector<double> out(std::max<std::size_t>(pool_.width(node), 1));
   pool_.eval(node, ctx, out.data());
   return out;
@@ -394,6 +413,20 @@ std::uint32_t Program::compileIn(const ir::Expr& e, Scope& scope) {
     n.op = Op::InRange;
     n.kids = {compile(e.children[0], scope), compile(set.children[0], scope), compile(set.children[1], scope)};
     return pool_.add(std::move(n));
+  }
+  if (set.op == "obs" && set.children.empty()) {
+    // An observed set: its membership flags, indexed by the element's member index.
+    auto it = obsSlots_.find(set.text);
+    if (it != obsSlots_.end() && it->second.type.kind == ValueKind::Set) {
+      std::vector<std::uint32_t> offsets(it->second.type.width);
+      for (std::size_t i = 0; i < offsets.size(); ++i) offsets[i] = it->second.offset + static_cast<std::uint32_t>(i);
+      Node n;
+      n.op = Op::TableObs;
+      n.a = pool_.addTable(offsets);
+      n.count = static_cast<std::uint32_t>(offsets.size());
+      n.kids = {compile(e.children[0], scope)};
+      return pool_.add(std::move(n));
+    }
   }
   ValueType elem;
   const auto members = setMembers(set, elem, scope);
@@ -546,6 +579,10 @@ std::uint32_t Program::compile(const ir::Expr& e, Scope& scope) {
     Node n{op == "neg" ? Op::Neg : Op::Not, std::max<std::uint16_t>(t.width, 1), 0, 0, 0, nullptr, {compile(e.children[0], scope)}, {}};
     return pool_.add(std::move(n));
   }
+  if (op == "+" && t.kind == ValueKind::Text) {
+    Node n{Op::Call, 1, 0, 0, 0, concatTexts, {compile(e.children[0], scope), compile(e.children[1], scope)}, {1, 1}};
+    return pool_.add(std::move(n));
+  }
   if (auto b = binaryOps().find(op); b != binaryOps().end()) {
     Node n;
     n.op = b->second;
@@ -601,7 +638,9 @@ void Program::compileSamplers() {
         const auto& var = graph_.variables.at(v);
         const ValueType& t = slots_[v].type;
         UniformPlan plan;
-        if (var.domain.set) {
+        // An observed set draws from every member of the type; the variable's `.domain` constraint (added by
+        // the compiler) rejects the members the observation leaves out.
+        if (var.domain.set && var.domain.set->op != "obs") {
           ValueType elem;
           plan.kind = UniformPlan::Kind::Choice;
           plan.choices = setMembers(*var.domain.set, elem, scope);

@@ -81,6 +81,9 @@ class Program {
   ExprPool& pool() { return pool_; }
   StringTable& strings() const { return strings_; }
   const Builtins& builtins() const { return builtins_; }
+  // What every evaluation of this program hands its built-ins: the string table and the registry's host.
+  const CallContext* callContext() const { return &callContext_; }
+  BuiltinHost* host() const { return builtins_.host().get(); }
 
   const VarSlot& slot(ir::VarId v) const { return slots_.at(v); }
   std::size_t assignmentWidth() const { return assignmentWidth_; }
@@ -104,6 +107,11 @@ class Program {
   // Type facts.
   ValueType typeOf(const ir::TypeDesc& t) const;
   const ir::Enum* findEnum(const std::string& name) const;
+  // The element type of a set type (enum member or item entry, one double), and how many values it has
+  // (an observed set is laid out as that many 0/1 membership flags in member order). 0 when the element
+  // type is neither an enum nor an item type.
+  ValueType setElementType(const ValueType& set) const;
+  std::size_t setElementCount(const ValueType& set) const;
   const ir::ItemSet* findItemSetOfType(const std::string& itemType) const;
   const ir::ItemSet* findItemSet(const std::string& name) const;
   const ir::Task* findTask(const std::string& name) const;
@@ -146,6 +154,7 @@ class Program {
   Builtins builtins_;
   ExprPool pool_;
   mutable StringTable strings_;
+  CallContext callContext_;
   std::vector<VarSlot> slots_;
   std::size_t assignmentWidth_ = 0;
   std::vector<std::pair<ir::VarId, std::uint32_t>> inits_;  // variable, its initial value's node

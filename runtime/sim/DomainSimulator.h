@@ -16,21 +16,28 @@
 #include <string>
 #include <vector>
 
+namespace cbtl::world {
+struct WorldState;
+}
+
 namespace cbtl::sim {
 
 // One argument or observation value. `kind` tells which member is meaningful:
 //   Number: real, int and bool (0/1) in `number`;  Vector: vec<N>, SE2 (x y yaw), SE3 (x y z qx qy qz qw),
-//   Conf (joint angles, rad) in `vector`;  Name: enum member, item entry or text in `text`.
+//   Conf (joint angles, rad) in `vector`;  Name: enum member, item entry or text in `text`;  Names: a set of
+//   enum members or item entries (observations such as `observe pickable : set<Book>`) in `members`.
 struct Value {
-  enum class Kind { Number, Vector, Name };
+  enum class Kind { Number, Vector, Name, Names };
   Kind kind = Kind::Number;
   double number = 0;
   std::vector<double> vector;
   std::string text;
+  std::vector<std::string> members;
 
-  static Value num(double v) { return Value{Kind::Number, v, {}, {}}; }
-  static Value vec(std::vector<double> v) { return Value{Kind::Vector, 0, std::move(v), {}}; }
-  static Value name(std::string s) { return Value{Kind::Name, 0, {}, std::move(s)}; }
+  static Value num(double v) { return Value{Kind::Number, v, {}, {}, {}}; }
+  static Value vec(std::vector<double> v) { return Value{Kind::Vector, 0, std::move(v), {}, {}}; }
+  static Value name(std::string s) { return Value{Kind::Name, 0, {}, std::move(s), {}}; }
+  static Value names(std::vector<std::string> m) { return Value{Kind::Names, 0, {}, {}, std::move(m)}; }
 };
 
 struct ActionCall {
@@ -78,6 +85,15 @@ class DomainSimulator {
 
   // Lets one step pass without an action (the robot had no plan, e.g. its CSP was infeasible).
   virtual StepResult idle() = 0;
+
+  // Robot domains: the kinematic state of the simulated scene (arm, base, objects, grasp). The runtime copies
+  // it into the robot world its built-ins read (confCollisionFree, ikSample, ...) before it builds a CSP, so
+  // the CSP is checked against the world it will act in. nullptr for domains without a robot scene.
+  virtual const world::WorldState* worldState() const { return nullptr; }
+
+  // The task (its name in the .cbtl file) the world asks for now, e.g. "stowThenHandOverBook" while the robot
+  // still holds something; empty: the task the run was configured with.
+  virtual std::string requestedTask() const { return {}; }
 
   // A second world for evaluation that shares this world's simulated user (so an evaluation sees the
   // user's current, possibly shifted, preferences) but has its own world state and RNG.

@@ -65,7 +65,7 @@ SolveResult Solver::solve(const Csp& csp) {
 
   std::vector<double> x = csp.initial;
   std::vector<double> frame(256, 0.0);
-  rt::EvalContext ctx{x.data(), csp.observation.data(), frame.data()};
+  rt::EvalContext ctx{x.data(), csp.observation.data(), frame.data(), program.callContext()};
 
   // Per constraint: the variables it reads, and the positions in the assignment of their values (the
   // sub-assignment its memory stores). Per variable: the constraints and entropy terms that read it.
@@ -194,7 +194,7 @@ SolveResult Solver::solve(const Csp& csp) {
       }
       std::size_t outWidth = 0;
       for (ir::VarId v : cs.writes) outWidth += program.slot(v).type.width;
-      if (!cs.impl(std::span<const double>(args, at), std::span<const std::uint16_t>(cs.argWidths), rng_,
+      if (!cs.impl(*program.callContext(), std::span<const double>(args, at), std::span<const std::uint16_t>(cs.argWidths), rng_,
                    std::span<double>(scratch, outWidth))) {
         return false;
       }

@@ -72,7 +72,7 @@ int runSolve(const SolveArgs& a) {
   if (!textBackend) return 2;
   auto lp = cli::loadForRun("solve", a.file, a.stdlibDir);
   if (!lp) return 1;
-  const int task = lp->taskIndex(a.task);
+  int task = lp->taskIndex(a.task);
   if (task < 0) {
     fmt::print(stderr, "cbtl solve: error: {}: no task named '{}'\n", a.file, a.task);
     return 1;
@@ -81,6 +81,8 @@ int runSolve(const SolveArgs& a) {
   if (!a.profile.empty()) user.load(a.profile);
   std::vector<double> observation(lp->program().observationWidth(), 0.0);
   if (auto world = domains::createSimulator(lp->graph().domain, {}, a.seed)) {
+    lp->syncWorld(*world);
+    if (a.task.empty()) task = static_cast<int>(lp->taskFor(*world, static_cast<std::size_t>(task)));
     observation = approach::observationVector(lp->program(), world->observe());
   } else if (lp->program().observationWidth() > 0) {
     fmt::print(stderr, "cbtl solve: note: no simulator for domain '{}'; observations are zero\n", lp->graph().domain);

@@ -31,6 +31,7 @@ const char* kindName(Value::Kind kind) {
     case Value::Kind::Number: return "a number";
     case Value::Kind::Vector: return "a vector";
     case Value::Kind::Name: return "a name";
+    case Value::Kind::Names: return "a set of names";
   }
   return "a value";
 }

@@ -74,6 +74,7 @@ sim::StepResult executeStep(sim::DomainSimulator& world, const std::vector<sim::
       merged.satisfaction += r.satisfaction;
     }
     merged.taskDone = merged.taskDone || r.taskDone;
+    merged.taskFailed = merged.taskFailed || r.taskFailed;
     merged.preferencesChanged = merged.preferencesChanged || r.preferencesChanged;
     if (r.consumedStep) {
       merged.consumedStep = true;
@@ -165,7 +166,7 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
     for (int i = 0; i < config.evalTasks; ++i) {
       evalWorld->reset(evaluationTaskSeed(config.seed, i));
       double satisfaction = 0;
-      bool done = false;
+      bool done = false, failed = false;
       std::int64_t steps = 0;
       while (!done && steps < config.maxEvalEpisodeSteps) {
         lp.syncWorld(*evalWorld);
@@ -179,10 +180,11 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
           if (r.consumedStep) ++steps;
           if (r.hasSatisfaction) satisfaction += r.satisfaction;
           done = r.taskDone;
+          failed = failed || r.taskFailed;
         }
       }
-      if (done) ++successes;
-      if (done && satisfaction > 0) ++satisfied;
+      if (done && !failed) ++successes;
+      if (done && !failed && satisfaction > 0) ++satisfied;
       point.satisfaction.push_back(satisfaction);
     }
     double sum = 0;
@@ -236,7 +238,12 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
       result.textModelErrors += static_cast<std::int64_t>(report.modelErrors.size());
     }
     if (r.preferencesChanged && config.nonstationary && config.adaptation == Adaptation::UserReset) user.reset();
-    if (r.taskDone) ++result.mealsServed;
+    if (r.taskDone) {
+      if (!r.taskFailed) ++result.mealsServed;
+      // The task is over (done or failed): calls left in its plan belong to no request.
+      calls.clear();
+      next = 0;
+    }
     if (r.hasSatisfaction) result.trainSatisfaction += r.satisfaction;
     if (trainCsv.is_open()) {
       trainCsv << t << "," << fmt::format("{:.6g}", static_cast<double>(t) * config.dt) << ","

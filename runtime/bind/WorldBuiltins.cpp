@@ -5,6 +5,7 @@
 #include "world/InverseKinematics.h"
 #include "world/MotionPlanner.h"
 #include "world/Occlusion.h"
+#include "world/PreWipe.h"
 
 #include <cmath>
 #include <limits>
@@ -22,7 +23,6 @@ using world::Pose3;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kWipeToolHeight = 0.3;  // metres of the tool frame above the face when wiping starts
 constexpr std::uint64_t kQuerySeed = 0x9e3779b97f4a7c15ULL;  // fixed seed of the searching functions
 
 WorldHost& host(const rt::CallContext& cx) { return static_cast<WorldHost&>(*cx.host); }
@@ -254,9 +254,13 @@ void fToolPoseForObject(const rt::CallContext& cx, Args a, Widths, Out o) {
   writePose(readPose(a.data() + 1) * grasp->inverse(), o.data());
 }
 void fWipeStartPose(const rt::CallContext& cx, Args a, Widths, Out o) {
-  const auto top = host(cx).surfaceTop(text(cx, a[0]));
-  if (!top) return writeNaN(o);
-  writePose(toolDown(top->center + Eigen::Vector3d(0, 0, kWipeToolHeight), 0.0), o.data());
+  WorldHost& h = host(cx);
+  const std::string tool = text(cx, a[0]);
+  const auto grasp = h.nominalGrasp(tool);
+  if (!grasp || !finite(a.subspan(2, 3))) return writeNaN(o);
+  const auto p = world::preWipeToolPose(h.world(), text(cx, a[1]), tool, *grasp, readSe2(a.data() + 2));
+  if (!p) return writeNaN(o);
+  writePose(*p, o.data());
 }
 void fSideGraspPose(const rt::CallContext& cx, Args a, Widths, Out o) {
   WorldHost& h = host(cx);

@@ -74,7 +74,7 @@ std::optional<Pose3> WorldHost::nominalGrasp(const std::string& object) {
     return world_.workspace().objectPose(object);
   }();
   if (!objectPose) return std::nullopt;
-  if (const int site = s.siteId(object + "_grasp"); site >= 0) {
+  if (const int site = s.siteId(object + "_tool"); site >= 0) {
     if (dirty_) pose(reference_.base, reference_.arm);
     const Pose3 tool = world_.workspace().sitePose(site);
     return tool.inverse() * *objectPose;
@@ -87,17 +87,13 @@ std::optional<Pose3> WorldHost::nominalGrasp(const std::string& object) {
 std::optional<Pose3> WorldHost::sideGrasp(const std::string& object, const Pose3& objectPose, double yaw) {
   const auto box = world_.clearance().objectBox(object);
   if (!box) return std::nullopt;
-  const Eigen::Matrix3d r = objectPose.orientation.toRotationMatrix();
-  const Eigen::Vector3d up = r.col(2);
-  const Eigen::Vector3d approach = r * (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * -Eigen::Vector3d::UnitX());
-  Eigen::Matrix3d tool;
-  tool.col(0) = up;
-  tool.col(2) = approach;
-  tool.col(1) = approach.cross(up);
-  Pose3 p;
-  p.position = objectPose.transformPoint(box->center);
-  p.orientation = Eigen::Quaterniond(tool).normalized();
-  return p;
+  // In the object's frame: a quarter turn about x puts the tool z along the object's +y (tool x = object x,
+  // tool y = object -z); yaw + pi/2 about the object's z then turns the approach.
+  const Eigen::Quaterniond inBody = Eigen::AngleAxisd(yaw + M_PI / 2, Eigen::Vector3d::UnitZ()) *
+                                    Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX());
+  const Eigen::Vector3d approach = inBody * Eigen::Vector3d::UnitZ();
+  const Pose3 toolInBody{box->center - kSideGraspDepth * approach, inBody};
+  return objectPose * toolInBody;
 }
 
 std::optional<ArmConfig> WorldHost::namedConf(const std::string& name) const {
@@ -117,18 +113,9 @@ std::optional<ArmConfig> WorldHost::namedConf(const std::string& name) const {
   return it->second;
 }
 
-std::optional<SurfaceTop> WorldHost::surfaceTop(const std::string& geom) const {
-  const world::Workspace& ws = world_.workspace();
-  const int g = ws.scene().geomId(geom);
-  if (g < 0 || ws.model()->geom_type[g] != mjGEOM_BOX) return std::nullopt;
-  // Scenery never moves, so the geom's frame is the same in every state.
-  const mjtNum* s = ws.model()->geom_size + 3 * g;
-  const mjtNum* r = ws.data()->geom_xmat + 9 * g;
-  const mjtNum* p = ws.data()->geom_xpos + 3 * g;
-  double h[3];
-  for (int row = 0; row < 3; ++row)
-    h[row] = std::abs(r[3 * row]) * s[0] + std::abs(r[3 * row + 1]) * s[1] + std::abs(r[3 * row + 2]) * s[2];
-  return SurfaceTop{Eigen::Vector3d(p[0], p[1], p[2] + h[2]), h[0], h[1]};
+std::optional<world::SurfaceFace> WorldHost::surfaceTop(const std::string& geom) const {
+  // Scenery never moves, so the face is the same in every state.
+  return world::surfaceFace(world_.workspace(), geom);
 }
 
 std::optional<WorldHost::Footprint> WorldHost::footprint(const std::string& object, const Pose3& pose) const {

@@ -14,6 +14,7 @@
 
 #include "core/Builtins.h"    // rt::BuiltinHost
 #include "world/Builtins.h"   // world::World
+#include "world/SurfaceFace.h"
 
 #include <map>
 #include <memory>
@@ -22,11 +23,7 @@
 
 namespace cbtl::bind {
 
-// A box geom's top face in world coordinates: the face centre and the half-extents of the geom's world AABB.
-struct SurfaceTop {
-  Eigen::Vector3d center;
-  double halfX = 0, halfY = 0;
-};
+inline constexpr double kSideGraspDepth = 0.03;  // metres from the tool frame to the grasped box centre
 
 class WorldHost final : public rt::BuiltinHost {
  public:
@@ -47,19 +44,21 @@ class WorldHost final : public rt::BuiltinHost {
   // Moves one movable object for a query; the next pose() call puts it back.
   bool moveObject(const std::string& object, const world::Pose3& pose);
 
-  // The grasp of `object`: the reference's when the robot holds it; else the tool at the scene's site
-  // "<object>_grasp" when there is one; else the side grasp sideGrasp(object, -pi/2). Object frame in the
-  // tool frame.
+  // The grasp of `object`: the reference's when the robot holds it; else the scene's standard grasp, the site
+  // "<object>_tool" whose frame is the tool frame at that grasp (home.xml's duster_tool); else the side grasp
+  // sideGrasp(object, -pi/2). The object's frame in the tool frame.
   std::optional<world::Pose3> nominalGrasp(const std::string& object);
-  // Tool pose grasping the box of `object` (at `objectPose`) from the side: tool x along the object's z (up),
-  // tool z (the approach) along the object's -x turned by `yaw` about its z, tool origin at the box centre,
-  // so the fingers close across the object's x extent.
+  // Tool pose grasping the box of `object` (at `objectPose`) from the side: with yaw = -pi/2 the tool z (the
+  // approach) runs along the object's +y, tool x along its x (the fingers close across it) and tool y along
+  // its -z; other yaws turn that about the object's z by yaw + pi/2. The box centre lies kSideGraspDepth
+  // ahead of the tool frame (between the finger tips). With yaw = -pi/2 this is the carry grasp of the home
+  // scene's books (domains/robot/StandardGrasps.h bookToolInBody).
   std::optional<world::Pose3> sideGrasp(const std::string& object, const world::Pose3& objectPose, double yaw);
 
   // A named arm configuration: the scene's <numeric name="conf_<name>"> (7 values) if present, else
   // zero, home, retract, abovePlate, utensilAboveMount, drinkGaze (WorldState.h configs).
   std::optional<world::ArmConfig> namedConf(const std::string& name) const;
-  std::optional<SurfaceTop> surfaceTop(const std::string& geom) const;
+  std::optional<world::SurfaceFace> surfaceTop(const std::string& geom) const;
   // The box geom whose top face the object at its reference pose rests on (bottom within 1 cm, centre over
   // the face); empty when none.
   std::string supportSurface(const std::string& object);

@@ -60,6 +60,7 @@ struct StepResult {
   ActionStatus status = ActionStatus::Applied;
   bool consumedStep = false;              // did the world's clock advance by one step?
   bool taskDone = false;                  // the episode's task ended (e.g. the meal was served)
+  bool taskFailed = false;                // with taskDone: it ended because the world could not carry out the plan
   bool hasSatisfaction = false;           // the user scored the outcome on this step
   double satisfaction = 0;                // +1 / -1 when hasSatisfaction
   bool preferencesChanged = false;        // the user announced that their preferences changed

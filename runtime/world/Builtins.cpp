@@ -1,5 +1,7 @@
 #include "Builtins.h"
 
+#include "SurfaceFace.h"
+
 #include <fmt/core.h>
 
 #include <cmath>
@@ -27,25 +29,6 @@ const char* toString(ActionStatus s) {
 }
 
 namespace {
-
-// A box geom's top face in world coordinates: centre of the face and half-extents of its world AABB.
-struct Face {
-  Eigen::Vector3d center;
-  double halfX, halfY;
-};
-
-std::optional<Face> topFace(const Workspace& ws, const std::string& geomName) {
-  const int g = ws.scene().geomId(geomName);
-  if (g < 0 || ws.model()->geom_type[g] != mjGEOM_BOX) return std::nullopt;
-  const mjtNum* s = ws.model()->geom_size + 3 * g;
-  const mjtNum* r = ws.data()->geom_xmat + 9 * g;
-  const mjtNum* p = ws.data()->geom_xpos + 3 * g;
-  // World AABB half-extents of the rotated box: sum over box axes of |R(row, axis)| * size(axis).
-  double h[3];
-  for (int row = 0; row < 3; ++row)
-    h[row] = std::abs(r[3 * row]) * s[0] + std::abs(r[3 * row + 1]) * s[1] + std::abs(r[3 * row + 2]) * s[2];
-  return Face{Eigen::Vector3d(p[0], p[1], p[2] + h[2]), h[0], h[1]};
-}
 
 const Eigen::Quaterniond kToolDown(0, 1, 0, 0);  // tool z along world -z
 
@@ -158,7 +141,7 @@ std::optional<ArmConfig> sampleIk(World& w, const Pose3& tool, Rng& rng) {
 
 std::optional<Pose3> samplePlacement(World& w, const std::string& object, const std::string& surface,
                                      double clearance, Rng& rng, int tries) {
-  const auto face = topFace(w.workspace(), surface);
+  const auto face = surfaceFace(w.workspace(), surface);
   const auto box = w.clearance().objectBox(object);
   if (!face || !box) return std::nullopt;
   std::uniform_real_distribution<double> yawDist(-std::numbers::pi, std::numbers::pi);
@@ -292,7 +275,7 @@ ActionResult handOver(World& w, const Eigen::Vector3d& position, Rng& rng) {
 ActionResult wipe(World& w, const std::string& surface, Rng& rng, double toolHeight) {
   Workspace& ws = w.workspace();
   if (ws.heldObject() < 0) return fail(ActionStatus::NotHolding, "wiping needs a held tool");
-  const auto face = topFace(ws, surface);
+  const auto face = surfaceFace(ws, surface);
   if (!face) return fail(ActionStatus::InvalidArgument, fmt::format("no box surface '{}'", surface));
   StateGuard guard(w);
   // Passes run along the longer side; their number covers the shorter side in 0.15 m strips.

@@ -32,3 +32,16 @@ TEST(DomainRegistry, UnknownDomainIsNull) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(DomainRegistry, CreatesTheHomeDomainsButNotTheRobotLibrary) {
+  const auto names = cbtl::domains::knownDomains();
+  for (const char* home : {"books", "cleaning"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), home), names.end()) << home;
+    EXPECT_NE(cbtl::domains::createSimulator(home, {}, 3), nullptr) << home;
+  }
+  EXPECT_EQ(std::find(names.begin(), names.end(), "robot"), names.end());
+}
+
+}  // namespace

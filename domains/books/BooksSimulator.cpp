@@ -1,0 +1,151 @@
+#include "books/BooksSimulator.h"
+
+#include "books/BookCatalog.h"
+#include "robot/CallArguments.h"
+#include "robot/HomeEpisode.h"
+#include "robot/HomeScene.h"
+#include "robot/HomeSurfaces.h"
+#include "robot/SurfaceGeometry.h"
+
+#include <stdexcept>
+
+namespace cbtl::domains::books {
+
+using sim::StepResult;
+using sim::Value;
+
+BooksSimulator::BooksSimulator(const sim::SimulatorOptions& options, std::uint64_t seed)
+    : BooksSimulator(options, seed, BooksUser::paperDefault()) {}
+
+BooksSimulator::BooksSimulator(const sim::SimulatorOptions& options, std::uint64_t seed, BooksUser user)
+    : BooksSimulator(options, std::make_shared<const BooksUser>(std::move(user)), seed) {}
+
+BooksSimulator::BooksSimulator(const sim::SimulatorOptions& options, std::shared_ptr<const BooksUser> user,
+                               std::uint64_t seed)
+    : options_(options), user_(std::move(user)), world_(std::make_unique<world::World>(robot::homeScene())) {
+  scenePoses_ = world_->workspace().state().objects;
+  const auto hand = robot::userHandFrame(world_->workspace());
+  if (!hand) throw std::runtime_error("books: the home scene lacks the sites user_hand and handover_center");
+  hand_ = *hand;
+  reset(seed);
+}
+
+void BooksSimulator::stockShelves(world::WorldState& state, bool mayHold) {
+  const std::vector<std::size_t> books = robot::shuffledIndices(rng_, robot::kBookCount);
+  const std::vector<std::size_t> slots = robot::shuffledIndices(rng_, robot::kBookCount);
+  bool holds = false;
+  if (mayHold && robot::uniform01(rng_) < kHeldProbability) {
+    robot::holdAtHome(state, robot::bookBody(books[robot::kBookCount - 1]));
+    holds = true;
+  }
+  const std::size_t most = holds ? robot::kBookCount - 1 : robot::kBookCount;
+  const std::size_t count = 3 + robot::uniformIndex(rng_, most - 3 + 1);
+  for (std::size_t i = 0; i < count; ++i) {
+    state.objects[robot::bookBody(books[i])] = scenePoses_.at(robot::bookBody(slots[i]));
+  }
+}
+
+void BooksSimulator::reset(std::uint64_t seed) {
+  rng_.seed(seed);
+  world_->utterances().clear();
+  world::WorldState s = robot::emptyRoom(scenePoses_);
+  stockShelves(s, true);
+  if (world_->workspace().setState(s) != world::StateStatus::Ok) {
+    throw std::logic_error("books: the episode's start state is invalid");  // a bug in this file
+  }
+}
+
+std::vector<std::string> BooksSimulator::pickable() const {
+  const world::Workspace& ws = world_->workspace();
+  const std::vector<std::string> geoms = robot::homeSurfaceGeoms();
+  const std::string held = ws.state().held ? ws.state().held->object : std::string();
+  std::vector<std::string> out;
+  for (const BookEntry& b : kBooks) {
+    if (b.body == held) continue;
+    if (robot::supportOf(*world_, b.body, geoms)) out.emplace_back(b.entry);
+  }
+  return out;
+}
+
+sim::Observation BooksSimulator::observe() const {
+  const world::WorldState& s = world_->workspace().state();
+  sim::Observation o;
+  o["pickable"] = Value::names(pickable());
+  o["handPose"] = Value::vec(robot::encodePose3(hand_));
+  o["heldBody"] = Value::name(s.held ? s.held->object : std::string());
+  return o;
+}
+
+std::string BooksSimulator::requestedTask() const {
+  return world_->workspace().state().held ? "stowThenHandOverBook" : "handOverBook";
+}
+
+StepResult BooksSimulator::act(const sim::ActionCall& call) {
+  const auto done = actions_.execute(*world_, call, rng_);
+  if (!done) {
+    StepResult r;
+    r.status = sim::ActionStatus::UnknownAction;
+    r.message = "books has no action '" + call.name + "'";
+    return r;
+  }
+  StepResult r = done->toStepResult(call.name);
+  if (!done->wellFormed) return r;
+  if (!done->done()) {
+    r.taskDone = true;  // a failure ends the task; the user has nothing to judge
+    r.taskFailed = true;
+    return r;
+  }
+  if (call.name == "handOver") return handOver(std::move(r));
+  return r;
+}
+
+StepResult BooksSimulator::handOver(StepResult r) {
+  world::Workspace& ws = world_->workspace();
+  const std::string body = ws.state().held->object;  // handOver succeeded, so something is held
+  r.taskDone = true;
+  const auto book = bookOfBody(body);
+  if (!book) {
+    r.status = sim::ActionStatus::Ignored;
+    r.message = "handOver: the user does not take the " + body;
+    return r;
+  }
+  const std::string entry(kBooks[*book].entry);
+  const Eigen::Vector3d point = ws.toolPose().position;
+  const bool reached = user_->reaches(hand_, point);
+  const bool enjoyed = reached && user_->enjoys(entry);
+  const std::string said = user_->reaction(entry, reached);
+  r.feedback.push_back(sim::FeedbackEvent{
+      "handoverOutcome",
+      {Value::name(entry), Value::vec({point.x(), point.y(), point.z()}), Value::num(reached ? 1 : 0),
+       Value::name(said), Value::num(enjoyed ? 1 : 0)}});
+  r.hasSatisfaction = true;
+  r.satisfaction = reached && enjoyed ? 1.0 : -1.0;
+  r.message = said;
+  if (reached) {
+    // The user takes the book: it leaves the robot's hand and the room.
+    ws.setHeld(std::nullopt);
+    world::WorldState s = ws.state();
+    s.gripper = 1.0;
+    s.objects[body] = robot::parkedPose(*book);
+    ws.setState(s);
+    if (pickable().empty()) {
+      s = ws.state();
+      stockShelves(s, false);
+      ws.setState(s);
+    }
+  }
+  return r;
+}
+
+StepResult BooksSimulator::idle() {
+  StepResult r;
+  r.consumedStep = true;
+  r.message = "idle: the robot waits";
+  return r;
+}
+
+std::unique_ptr<sim::DomainSimulator> BooksSimulator::makeEvaluationTwin() const {
+  return std::unique_ptr<sim::DomainSimulator>(new BooksSimulator(options_, user_, 0));
+}
+
+}  // namespace cbtl::domains::books

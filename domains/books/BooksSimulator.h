@@ -1,0 +1,94 @@
+// BooksSimulator.h — the Books domain behind the runtime's DomainSimulator contract: the home scene (robot
+// on its mobile base, nine books, the user sitting in bed) plus BooksUser (hidden book taste and range of
+// motion), speaking the names of domains/books/books.cbtl.
+//
+// Episode start (reset(seed), all draws from the simulator's RNG in this order):
+//   1. the room of robot/HomeEpisode.h (base at the origin, arm at kHomeSceneInitial, duster on the main
+//      table, books parked outside the room);
+//   2. a uniform permutation of the books and one of the nine home.xml book slots (three on the middle
+//      shelf layer, three on the top layer, one per side table);
+//   3. with probability kHeldProbability the robot holds the permutation's last book (arm at configs::kHome,
+//      carry grasp) — a book the user could not reach last time — so "stowThenHandOverBook" occurs;
+//   4. how many books are on the furniture: uniform in [3, 9] (in [3, 8] when one is held) — the paper's "a
+//      random subset of the books are available" — the permutation's first ones, in the shuffled slots.
+// After a task ends the world goes on. When the user has taken the last book on the furniture and the robot
+// holds nothing, the shelves are restocked by steps 2 and 4 (the user has finished reading).
+//
+// Observations (books.cbtl): "pickable" (Names: the Book entries resting on one of the seven surfaces),
+// "handPose" (Vector SE3: robot/HomeSurfaces.h userHandFrame, whose z points at the scene's
+// handover_center), "heldBody" (Name: "" or the body held).
+// requestedTask(): "stowThenHandOverBook" while the robot holds anything, otherwise "handOverBook".
+//
+// Actions: the standard actions (robot/RobotActions.h; one step each, wait(n) n steps); another name or a
+// wrong shape is UnknownAction (no step).
+//   - handOver() of a held book: feedback handoverOutcome(book, handoverPoint = tool position, reached,
+//     said, enjoyed); reached per BooksUser::reaches; enjoyed is the user's taste when reached and false
+//     when not (they never got the book; books.cbtl learns `enjoyed if reached`). Satisfaction +1 iff
+//     reached and enjoyed, otherwise -1 (an unreachable handover disappoints the user too, as in the
+//     reference); taskDone. Reached: the user takes the book (it is parked outside the room: no longer held,
+//     not pickable). Not reached: the robot keeps holding it.
+//   - handOver() of something that is not a book (the duster): the user refuses it: status Ignored, taskDone,
+//     no feedback, no satisfaction.
+//   - A failed action (no path, no IK, ...) ends the task as failed: status Ignored, taskDone, no
+//     satisfaction, the message says why; the world is as before that action.
+// idle(): one step passes, nothing changes.
+// Options: none of SimulatorOptions applies (kept only for the evaluation twin).
+// Lifetime state (not touched by reset): the user, shared with evaluation twins.
+#pragma once
+
+#include "DomainSimulator.h"
+#include "books/BooksUser.h"
+#include "robot/RobotActions.h"
+
+#include "Builtins.h"
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace cbtl::domains::books {
+
+inline constexpr double kHeldProbability = 0.25;
+
+class BooksSimulator final : public sim::DomainSimulator {
+ public:
+  // The paper's user (BooksUser::paperDefault). Throws std::runtime_error when the home scene cannot load.
+  BooksSimulator(const sim::SimulatorOptions& options, std::uint64_t seed);
+  BooksSimulator(const sim::SimulatorOptions& options, std::uint64_t seed, BooksUser user);
+
+  void reset(std::uint64_t seed) override;
+  sim::Observation observe() const override;
+  sim::StepResult act(const sim::ActionCall& call) override;
+  sim::StepResult idle() override;
+  const world::WorldState* worldState() const override { return &world_->workspace().state(); }
+  std::string requestedTask() const override;
+  // Shares the user; its own world and RNG, reset with seed 0 until the caller resets it.
+  std::unique_ptr<sim::DomainSimulator> makeEvaluationTwin() const override;
+
+  const BooksUser& user() const { return *user_; }
+  world::World& world() { return *world_; }
+  const world::World& world() const { return *world_; }
+  // The Book entries on the furniture now (the "pickable" observation), in kBooks order.
+  std::vector<std::string> pickable() const;
+  // The user's hand frame (the "handPose" observation).
+  const world::Pose3& handFrame() const { return hand_; }
+
+ private:
+  BooksSimulator(const sim::SimulatorOptions& options, std::shared_ptr<const BooksUser> user, std::uint64_t seed);
+
+  // Steps 2 and 4 of the episode start on `state` (step 3 too when `mayHold`).
+  void stockShelves(world::WorldState& state, bool mayHold);
+  sim::StepResult handOver(sim::StepResult r);
+
+  sim::SimulatorOptions options_;
+  std::shared_ptr<const BooksUser> user_;
+  std::unique_ptr<world::World> world_;
+  std::map<std::string, world::Pose3> scenePoses_;  // home.xml's object poses (the book slots among them)
+  world::Pose3 hand_;
+  robot::RobotActions actions_;
+  world::Rng rng_;
+};
+
+}  // namespace cbtl::domains::books

@@ -1,0 +1,126 @@
+#include "cleaning/CleaningSimulator.h"
+
+#include "robot/HomeEpisode.h"
+#include "robot/HomeScene.h"
+#include "robot/HomeSurfaces.h"
+#include "robot/SurfaceGeometry.h"
+
+#include <stdexcept>
+
+namespace cbtl::domains::cleaning {
+
+using sim::StepResult;
+using sim::Value;
+
+CleaningSimulator::CleaningSimulator(const sim::SimulatorOptions& options, std::uint64_t seed)
+    : CleaningSimulator(options, seed, CleaningUser::paperDefault()) {}
+
+CleaningSimulator::CleaningSimulator(const sim::SimulatorOptions& options, std::uint64_t seed, CleaningUser user)
+    : CleaningSimulator(options, std::make_shared<const CleaningUser>(std::move(user)), seed) {}
+
+CleaningSimulator::CleaningSimulator(const sim::SimulatorOptions& options, std::shared_ptr<const CleaningUser> user,
+                                     std::uint64_t seed)
+    : options_(options), user_(std::move(user)), world_(std::make_unique<world::World>(robot::homeScene())) {
+  scenePoses_ = world_->workspace().state().objects;
+  reset(seed);
+}
+
+void CleaningSimulator::reset(std::uint64_t seed) {
+  rng_.seed(seed);
+  world_->utterances().clear();
+  world::WorldState s = robot::emptyRoom(scenePoses_);
+  const std::vector<std::size_t> books = robot::shuffledIndices(rng_, robot::kBookCount);
+  const double held = robot::uniform01(rng_);
+  if (held >= 2.0 / 3.0) {
+    robot::holdAtHome(s, robot::bookBody(books[1]));
+  } else if (held >= 1.0 / 3.0) {
+    robot::holdAtHome(s, "duster");
+  }
+  if (world_->workspace().setState(s) != world::StateStatus::Ok) {
+    throw std::logic_error("cleaning: the episode's start state is invalid");  // a bug in this file
+  }
+  // Surfaces in a uniform order: the first one with room for the book is covered (the main table may have
+  // none while the duster lies on it).
+  const std::string obstacle = robot::bookBody(books[0]);
+  for (std::size_t i : robot::shuffledIndices(rng_, robot::kHomeSurfaces.size())) {
+    const std::string covered(robot::kHomeSurfaces[i].geom);
+    if (const auto pose = world::builtins::samplePlacement(*world_, obstacle, covered, kObstacleClearance, rng_)) {
+      world_->workspace().setObjectPose(obstacle, *pose);
+      break;
+    }
+  }
+}
+
+std::vector<std::string> CleaningSimulator::clearSurfaces() const {
+  const world::Workspace& ws = world_->workspace();
+  const std::vector<std::string> geoms = robot::homeSurfaceGeoms();
+  std::vector<bool> clear(geoms.size(), true);
+  const std::string held = ws.state().held ? ws.state().held->object : std::string();
+  for (const world::ObjectInfo& o : ws.scene().objects()) {
+    if (o.name == "duster" || o.name == held) continue;
+    if (const auto support = robot::supportOf(*world_, o.name, geoms)) {
+      for (std::size_t i = 0; i < geoms.size(); ++i)
+        if (geoms[i] == *support) clear[i] = false;
+    }
+  }
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < geoms.size(); ++i)
+    if (clear[i]) out.emplace_back(robot::kHomeSurfaces[i].member);
+  return out;
+}
+
+sim::Observation CleaningSimulator::observe() const {
+  const world::WorldState& s = world_->workspace().state();
+  sim::Observation o;
+  o["clearSurfaces"] = Value::names(clearSurfaces());
+  o["heldBody"] = Value::name(s.held ? s.held->object : std::string());
+  o["basePose"] = Value::vec({s.base.x, s.base.y, s.base.yaw});
+  return o;
+}
+
+std::string CleaningSimulator::requestedTask() const {
+  const auto& held = world_->workspace().state().held;
+  if (!held) return "cleanSurface";
+  return held->object == "duster" ? "cleanWithDusterInHand" : "stowThenClean";
+}
+
+StepResult CleaningSimulator::act(const sim::ActionCall& call) {
+  const auto done = actions_.execute(*world_, call, rng_);
+  if (!done) {
+    StepResult r;
+    r.status = sim::ActionStatus::UnknownAction;
+    r.message = "cleaning has no action '" + call.name + "'";
+    return r;
+  }
+  StepResult r = done->toStepResult(call.name);
+  if (!done->wellFormed) return r;
+  if (!done->done()) {
+    r.taskDone = true;  // a failure ends the task; the user has nothing to judge
+    r.taskFailed = true;
+    return r;
+  }
+  if (call.name == "wipe") {
+    if (const auto surface = robot::surfaceMemberOfGeom(call.args[0].text)) {
+      const bool welcome = user_->welcomes(*surface);
+      r.feedback.push_back(sim::FeedbackEvent{"cleaningReaction", {Value::name(*surface), Value::num(welcome ? 1 : 0)}});
+      r.hasSatisfaction = true;
+      r.satisfaction = welcome ? 1.0 : -1.0;
+      r.taskDone = true;
+      r.message = welcome ? "Thanks for cleaning there." : "Don't clean there -- I can do it myself.";
+    }
+  }
+  return r;
+}
+
+StepResult CleaningSimulator::idle() {
+  StepResult r;
+  r.consumedStep = true;
+  r.message = "idle: the robot waits";
+  return r;
+}
+
+std::unique_ptr<sim::DomainSimulator> CleaningSimulator::makeEvaluationTwin() const {
+  return std::unique_ptr<sim::DomainSimulator>(new CleaningSimulator(options_, user_, 0));
+}
+
+}  // namespace cbtl::domains::cleaning

@@ -1,0 +1,87 @@
+// CleaningSimulator.h — the Cleaning domain behind the runtime's DomainSimulator contract: the home scene
+// (robot on its mobile base, duster, books as obstacles) plus CleaningUser (hidden preference), speaking
+// the names of domains/cleaning/cleaning.cbtl.
+//
+// Episode start (reset(seed), all draws from the simulator's RNG in this order):
+//   1. the room of robot/HomeEpisode.h (base at the origin, arm at kHomeSceneInitial, duster on the main
+//      table, books parked outside the room);
+//   2. a uniform permutation of the nine books;
+//   3. what the robot holds: nothing, the duster or a book (the permutation's second book), 1/3 each, so
+//      the three tasks occur equally often; holding puts the arm at configs::kHome (HomeEpisode holdAtHome);
+//   4. one surface covered by one upright book (the permutation's first) at a uniform spot and yaw, kept
+//      kObstacleClearance from other objects (the paper: "for each task, we randomly sample one surface to
+//      cover with obstacles"): the surfaces are tried in a uniform random order and the first with room
+//      for the book (world::builtins::samplePlacement, 100 tries) is covered — the main table often has no
+//      room while the duster lies on it.
+// After a task ends the world goes on from where it is (the next task starts from the robot's state); only
+// reset draws a new room.
+//
+// Observations (cleaning.cbtl): "clearSurfaces" (Names: the Surface members on which no object rests —
+// SurfaceGeometry.h restsOn; the duster does not count, as every plan picks it up before it wipes),
+// "heldBody" (Name: "", "duster" or "book_k"), "basePose" (Vector x, y, yaw).
+// requestedTask(): "cleanWithDusterInHand" holding the duster, "cleanSurface" empty-handed, otherwise
+// "stowThenClean".
+//
+// Actions: the standard actions (robot/RobotActions.h; every well-formed action takes one step, wait(n)
+// n steps). A call of another name, or one of the wrong shape, is UnknownAction (no step).
+//   - A completed wipe of one of the seven surfaces is judged by the user: feedback
+//     cleaningReaction(surface, welcome), satisfaction +1 (welcome) or -1, taskDone.
+//   - A failed action (no path, no IK, not holding, ...) ends the task as failed: status Ignored, taskDone,
+//     no satisfaction (the user did not see a cleaning to judge), the message says why; the world is as
+//     before that action.
+// idle(): one step passes, nothing changes.
+// Options: none of SimulatorOptions applies (the user has no ranges to shift and there is no stock); they are
+// kept only for the evaluation twin.
+// Lifetime state (not touched by reset): the user, shared with evaluation twins.
+#pragma once
+
+#include "DomainSimulator.h"
+#include "cleaning/CleaningUser.h"
+#include "robot/RobotActions.h"
+
+#include "Builtins.h"
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace cbtl::domains::cleaning {
+
+inline constexpr double kObstacleClearance = 0.02;  // metres between an obstacle book and other objects
+
+class CleaningSimulator final : public sim::DomainSimulator {
+ public:
+  // The paper's user (CleaningUser::paperDefault). Throws std::runtime_error when the home scene cannot load.
+  CleaningSimulator(const sim::SimulatorOptions& options, std::uint64_t seed);
+  CleaningSimulator(const sim::SimulatorOptions& options, std::uint64_t seed, CleaningUser user);
+
+  void reset(std::uint64_t seed) override;
+  sim::Observation observe() const override;
+  sim::StepResult act(const sim::ActionCall& call) override;
+  sim::StepResult idle() override;
+  const world::WorldState* worldState() const override { return &world_->workspace().state(); }
+  std::string requestedTask() const override;
+  // Shares the user; its own world and RNG, reset with seed 0 until the caller resets it.
+  std::unique_ptr<sim::DomainSimulator> makeEvaluationTwin() const override;
+
+  const CleaningUser& user() const { return *user_; }
+  // The robot world (tests and tools may inspect or arrange it).
+  world::World& world() { return *world_; }
+  const world::World& world() const { return *world_; }
+  // The Surface members that are clear now (the "clearSurfaces" observation).
+  std::vector<std::string> clearSurfaces() const;
+
+ private:
+  CleaningSimulator(const sim::SimulatorOptions& options, std::shared_ptr<const CleaningUser> user, std::uint64_t seed);
+
+  sim::SimulatorOptions options_;
+  std::shared_ptr<const CleaningUser> user_;
+  std::unique_ptr<world::World> world_;
+  std::map<std::string, world::Pose3> scenePoses_;  // home.xml's object poses
+  robot::RobotActions actions_;
+  world::Rng rng_;
+};
+
+}  // namespace cbtl::domains::cleaning

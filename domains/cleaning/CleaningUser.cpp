@@ -1,0 +1,17 @@
+#include "cleaning/CleaningUser.h"
+
+#include "robot/HomeSurfaces.h"
+
+#include <stdexcept>
+
+namespace cbtl::domains::cleaning {
+
+CleaningUser::CleaningUser(std::set<std::string, std::less<>> welcomeSurfaces) : welcome_(std::move(welcomeSurfaces)) {
+  for (const std::string& s : welcome_) {
+    if (!robot::surfaceGeomOfMember(s)) throw std::invalid_argument("cleaning: '" + s + "' is not a Surface");
+  }
+}
+
+CleaningUser CleaningUser::paperDefault() { return CleaningUser({"shelfMiddle", "sideTable0"}); }
+
+}  // namespace cbtl::domains::cleaning

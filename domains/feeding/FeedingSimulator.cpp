@@ -1,0 +1,348 @@
+#include "feeding/FeedingSimulator.h"
+
+#include "robot/CallArguments.h"
+#include "robot/HomeEpisode.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <random>
+#include <stdexcept>
+
+namespace cbtl::domains::feeding {
+
+namespace {
+
+using world::Pose3;
+
+// Plate and drink domains on the table (feeding.cbtl), metres.
+constexpr double kPlateX0 = 0.30, kPlateX1 = 0.38, kPlateY0 = 0.25, kPlateY1 = 0.64;
+constexpr double kDrinkX0 = 0.30, kDrinkX1 = 0.38, kDrinkY0 = 0.15, kDrinkY1 = 0.75;
+// Where the drink waits while it is not in use: off the table, out of every check of the table.
+constexpr double kDrinkParkedX = 0.55, kDrinkParkedY = 1.60;
+// The drink's handle in the drink's body frame (the holder box of feeding.xml), and how far short of it along
+// world -y the tool stops (the fingers close on the handle's near face; closer, they would touch it), metres.
+const Eigen::Vector3d kDrinkGraspOffset(-0.085, 0.0, 0.2);
+constexpr double kDrinkGraspStandoff = 0.10;
+constexpr double kDrinkLift = 0.01;  // metres the tool rises after closing on the handle
+// The utensil mount's grasp pose (feeding.cbtl mountX, mountY, mountLowZ), tool pointing down.
+const Eigen::Vector3d kMountLow(0.242, -0.077, 0.07);
+constexpr double kMountTolerance = 0.03;      // metres from the mount pose where a release re-mounts the utensil
+constexpr double kFoodReach = 0.10;           // metres from the plate centre where food can be picked up
+
+const std::vector<std::string> kFoods = {"french fries", "potato wedges", "tater tots", "carrot sticks"};
+const std::vector<std::string> kDips = {"ketchup", "bbqSauce", "ranch", "hummus"};  // noDip is always possible
+
+sim::StepResult unknownAction(std::string message) {
+  sim::StepResult r;
+  r.status = sim::ActionStatus::UnknownAction;
+  r.message = std::move(message);
+  return r;
+}
+
+Eigen::Quaterniond towardsPlusY() { return Eigen::Quaterniond(0.0, 0.0, 0.7071067811865476, 0.7071067811865476); }
+
+}  // namespace
+
+const char* toString(Request r) {
+  switch (r) {
+    case Request::Food: return "food";
+    case Request::Prepare: return "prepare";
+    case Request::Drink: return "drink";
+  }
+  return "?";
+}
+
+std::shared_ptr<const world::Scene> feedingScene() {
+  static std::once_flag once;
+  static std::shared_ptr<const world::Scene> scene;
+  static std::string error;
+  std::call_once(once, [] {
+    const auto r = world::Scene::loadFile(CBTL_FEEDING_SCENE_PATH);
+    if (r.status == world::LoadStatus::Ok) scene = r.scene;
+    else error = r.message;
+  });
+  if (!scene) throw std::runtime_error("the Feeding scene cannot be loaded: " + error);
+  return scene;
+}
+
+FeedingSimulator::FeedingSimulator(const sim::SimulatorOptions&, std::uint64_t seed)
+    : FeedingSimulator(std::make_shared<const FeedingUser>(FeedingUser::paperDefault()), seed) {}
+
+FeedingSimulator::FeedingSimulator(const sim::SimulatorOptions&, std::uint64_t seed, FeedingUser user)
+    : FeedingSimulator(std::make_shared<const FeedingUser>(std::move(user)), seed) {}
+
+FeedingSimulator::FeedingSimulator(std::shared_ptr<const FeedingUser> user, std::uint64_t seed)
+    : user_(std::move(user)), world_(std::make_unique<world::World>(feedingScene())) {
+  scenePoses_ = world_->workspace().state().objects;
+  reset(seed);
+}
+
+world::Pose2 FeedingSimulator::randomXY(double x0, double x1, double y0, double y1) {
+  std::uniform_real_distribution<double> ux(x0, x1), uy(y0, y1);
+  const double x = ux(rng_);
+  return world::Pose2{x, uy(rng_), 0.0};
+}
+
+void FeedingSimulator::reset(std::uint64_t seed) {
+  rng_.seed(seed);
+  world::WorldState s;
+  s.arm = world::configs::kRetract;
+  s.gripper = 1.0;
+  s.objects = scenePoses_;
+  const world::Pose2 plate = randomXY(kPlateX0, kPlateX1, kPlateY0, kPlateY1);
+  s.objects["plate"].position.x() = plate.x;
+  s.objects["plate"].position.y() = plate.y;
+  world_->workspace().setState(s);
+  world_->utterances().clear();
+  cycle_ = robot::uniformIndex(rng_, 4);
+  food_ = kFoods[robot::uniformIndex(rng_, kFoods.size())];
+  std::vector<std::string> dips = kDips;
+  const std::size_t first = robot::uniformIndex(rng_, dips.size());
+  std::swap(dips[0], dips[first]);
+  const std::size_t second = 1 + robot::uniformIndex(rng_, dips.size() - 1);
+  std::swap(dips[1], dips[second]);
+  dips_ = {dips[0], dips[1]};
+  std::sort(dips_.begin(), dips_.end());
+  startRequest(cycle_ == 2 ? Request::Prepare : cycle_ == 3 ? Request::Drink : Request::Food);
+}
+
+void FeedingSimulator::startRequest(Request r) {
+  request_ = r;
+  progress_ = Progress{};
+  progress_.utterancesAtStart = static_cast<int>(world_->utterances().size());
+  world::Workspace& ws = world_->workspace();
+  if (r == Request::Food) {
+    Pose3 drink = *ws.objectPose("drink");
+    drink.position.x() = kDrinkParkedX;
+    drink.position.y() = kDrinkParkedY;
+    ws.setObjectPose("drink", drink);
+  } else if (r == Request::Prepare) {
+    // The drink arrives at a random spot on the table clear of the plate (the caregiver puts it there).
+    Pose3 drink = *ws.objectPose("drink");
+    drink.position.z() = scenePoses_.at("drink").position.z();
+    const Pose3 plate = *ws.objectPose("plate");
+    for (int i = 0; i < 100; ++i) {
+      const world::Pose2 xy = randomXY(kDrinkX0, kDrinkX1, kDrinkY0, kDrinkY1);
+      drink.position.x() = xy.x;
+      drink.position.y() = xy.y;
+      if (world_->clearance().objectDistance("drink", drink, "plate", plate) > 0.01) break;
+    }
+    ws.setObjectPose("drink", drink);
+  }
+}
+
+void FeedingSimulator::nextRequest() {
+  cycle_ = (cycle_ + 1) % 4;
+  startRequest(cycle_ == 2 ? Request::Prepare : cycle_ == 3 ? Request::Drink : Request::Food);
+}
+
+void FeedingSimulator::restoreHome() {
+  world::WorldState s = world_->workspace().state();
+  s.arm = world::configs::kRetract;
+  s.gripper = 1.0;
+  s.held.reset();
+  s.objects["utensil"] = scenePoses_.at("utensil");
+  if (s.objects.count("drink") != 0) s.objects["drink"].orientation = scenePoses_.at("drink").orientation;
+  world_->workspace().setState(s);
+}
+
+std::string FeedingSimulator::requestedTask() const {
+  switch (request_) {
+    case Request::Food: return "feedBite";
+    case Request::Prepare: return "prepareDrink";
+    case Request::Drink: return "giveDrink";
+  }
+  return {};
+}
+
+sim::Observation FeedingSimulator::observe() const {
+  const world::Workspace& ws = world_->workspace();
+  const Pose3 plate = *ws.objectPose("plate");
+  const Pose3 drink = *ws.objectPose("drink");
+  sim::Observation o;
+  o["plateXY"] = sim::Value::vec({plate.position.x(), plate.position.y()});
+  o["drinkXY"] = sim::Value::vec({drink.position.x(), drink.position.y()});
+  o["dipsOnTable"] = sim::Value::names(dips_);
+  o["foodOnPlate"] = sim::Value::name(food_);
+  return o;
+}
+
+sim::StepResult FeedingSimulator::fail(sim::StepResult r) {
+  r.status = sim::ActionStatus::Ignored;
+  r.consumedStep = true;
+  r.taskFailed = true;
+  restoreHome();
+  return complete(std::move(r), false);
+}
+
+sim::StepResult FeedingSimulator::complete(sim::StepResult r, bool satisfied) {
+  r.taskDone = true;
+  r.hasSatisfaction = true;
+  r.satisfaction = satisfied ? 1.0 : -1.0;
+  nextRequest();
+  return r;
+}
+
+sim::StepResult FeedingSimulator::graspDrink() {
+  world::Workspace& ws = world_->workspace();
+  sim::StepResult r;
+  r.consumedStep = true;
+  if (ws.heldObject() >= 0) {
+    r.message = "grasp(drink): the gripper is not empty";
+    return fail(std::move(r));
+  }
+  const Pose3 drink = *ws.objectPose("drink");
+  const Pose3 handle{drink.transformPoint(kDrinkGraspOffset) - Eigen::Vector3d(0, kDrinkGraspStandoff, 0), towardsPlusY()};
+  // IK from random starts: seeded at the folded arm, every converged solution reaches around the table.
+  std::optional<world::ArmConfig> q;
+  for (int attempt = 0; attempt < 5 && !q; ++attempt) q = world::builtins::sampleIk(*world_, handle, rng_);
+  if (!q) {
+    r.message = fmt::format("grasp(drink): no collision-free IK solution for the handle of the drink at ({:.3f}, {:.3f})",
+                            drink.position.x(), drink.position.y());
+    return fail(std::move(r));
+  }
+  const world::builtins::ActionResult approach = world::builtins::moveArm(*world_, *q, rng_);
+  if (!approach.done()) {
+    r.message = fmt::format("grasp(drink): approach: {}: {}", world::builtins::toString(approach.status), approach.detail);
+    return fail(std::move(r));
+  }
+  // The drink's handle sticks out towards the fingers; the drink joins the hand where it stands.
+  ws.setHeld(std::string("drink"));
+  world::WorldState closed = ws.state();
+  closed.gripper = 0.0;
+  ws.setState(closed);
+  // The lift is a 1 cm straight move that starts with the drink on the table (a contact the planner would
+  // reject as a colliding start), so only its end is checked.
+  Pose3 lifted = ws.toolPose();
+  lifted.position.z() += kDrinkLift;
+  world::IkOptions ik = world_->ik;
+  const world::IkResult up = world::solveIk(ws, lifted, ws.state().arm, rng_, ik);
+  if (!up.solved()) {
+    ws.setArm(*q);
+    r.message = fmt::format("grasp(drink): lift: {}", world::toString(up.status));
+    return fail(std::move(r));
+  }
+  ws.setArm(up.q);
+  return r;
+}
+
+sim::StepResult FeedingSimulator::releaseUtensil() {
+  world::Workspace& ws = world_->workspace();
+  sim::StepResult r;
+  r.consumedStep = true;
+  if ((ws.toolPose().position - kMountLow).norm() > kMountTolerance) {
+    r.message = "release(): the utensil is not at its mount";
+    return fail(std::move(r));
+  }
+  ws.setHeld(std::nullopt);
+  ws.setObjectPose("utensil", scenePoses_.at("utensil"));
+  world::WorldState s = ws.state();
+  s.gripper = 1.0;
+  ws.setState(s);
+  return r;
+}
+
+sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
+  world::Workspace& ws = world_->workspace();
+  const auto holding = [&](const char* object) {
+    return ws.heldObject() >= 0 && ws.scene().objects()[static_cast<std::size_t>(ws.heldObject())].name == object;
+  };
+  sim::StepResult step;
+  step.consumedStep = true;
+  if (call.name == "dipInto") {
+    if (const std::string e = robot::checkArguments(call, {robot::kNameArg}); !e.empty()) {
+      return unknownAction(e);
+    }
+    const std::string entry = dipEntryOfSauce(call.args[0].text);
+    if (entry.empty() || std::find(dips_.begin(), dips_.end(), entry) == dips_.end()) {
+      step.message = fmt::format("dipInto({}): no such sauce on the table", call.args[0].text);
+      return fail(std::move(step));
+    }
+    progress_.dip = entry;
+    return step;
+  }
+  if (call.name == "acquireFood") {
+    if (const std::string e = robot::checkArguments(call, {}); !e.empty()) {
+      return unknownAction(e);
+    }
+    const Eigen::Vector3d tool = ws.toolPose().position, plate = ws.objectPose("plate")->position;
+    if (!holding("utensil") || std::hypot(tool.x() - plate.x(), tool.y() - plate.y()) > kFoodReach) {
+      step.message = "acquireFood(): the utensil is not above the food";
+      return fail(std::move(step));
+    }
+    return step;
+  }
+  if (call.name == "waitForReady") {
+    if (const std::string e = robot::checkArguments(call, {robot::kNameArg}); !e.empty()) {
+      return unknownAction(e);
+    }
+    progress_.signal = call.args[0].text;
+    return step;
+  }
+  if (call.name == "grasp" && call.args.size() == 1 && call.args[0].text == "drink") return graspDrink();
+  if (call.name == "release" && call.args.empty() && holding("utensil")) return releaseUtensil();
+
+  const auto result = actions_.execute(*world_, call, rng_);
+  if (!result) {
+    return unknownAction(fmt::format("Feeding has no action '{}'", call.name));
+  }
+  step = result->toStepResult(call.name);
+  if (step.status == sim::ActionStatus::UnknownAction) return step;
+  if (step.status == sim::ActionStatus::Ignored) return fail(std::move(step));
+
+  if (call.name == "moveArm") {
+    const world::ArmConfig q = ws.state().arm;
+    const double score = world::builtins::occlusion(*world_, q);
+    const bool blocked = user_->viewBlocked(score);
+    progress_.viewBlocked = progress_.viewBlocked || blocked;
+    step.feedback.push_back(sim::FeedbackEvent{blocked ? "viewBlocked" : "viewClear",
+                                               {sim::Value::vec(std::vector<double>(q.begin(), q.end()))}});
+    return step;
+  }
+  if (call.name == "moveDrink" && request_ == Request::Prepare) return complete(std::move(step), true);
+  if (call.name == "waitForUser") {
+    const std::string signal = call.args[0].text;
+    if (request_ == Request::Food && signal == "biteTaken") progress_.biteTaken = true;
+    if (request_ == Request::Drink && signal == "done") progress_.drinkOffered = true;
+    if (request_ == Request::Food && signal == "done") {
+      if (!progress_.biteTaken) {
+        step.message = "the user was never fed";
+        return complete(std::move(step), false);
+      }
+      const std::string idealDip = user_->idealDip(food_, dips_);
+      const int spoke = static_cast<int>(world_->utterances().size()) - progress_.utterancesAtStart;
+      const std::string verbosity = FeedingUser::perceivedVerbosity(spoke);
+      const std::string signalGiven = progress_.signal.empty() ? "autoContinue" : progress_.signal;
+      step.feedback.push_back({"dipAnswer", {sim::Value::name(food_), sim::Value::name(progress_.dip), sim::Value::name(idealDip)}});
+      step.feedback.push_back({"signalAnswer", {sim::Value::name(signalGiven), sim::Value::name(user_->readySignal)}});
+      step.feedback.push_back({"verbosityAnswer", {sim::Value::name(verbosity), sim::Value::name(user_->verbosity)}});
+      const bool satisfied = !progress_.viewBlocked && progress_.dip == idealDip && signalGiven == user_->readySignal &&
+                             verbosity == user_->verbosity;
+      return complete(std::move(step), satisfied);
+    }
+    return step;
+  }
+  if (call.name == "moveArmToNamed" && request_ == Request::Drink && progress_.drinkOffered && ws.heldObject() < 0) {
+    Pose3 drink = *ws.objectPose("drink");
+    drink.position.x() = kDrinkParkedX;  // the user keeps the drink by them; the table is clear again
+    drink.position.y() = kDrinkParkedY;
+    ws.setObjectPose("drink", drink);
+    return complete(std::move(step), !progress_.viewBlocked);
+  }
+  return step;
+}
+
+sim::StepResult FeedingSimulator::idle() {
+  sim::StepResult r;
+  r.consumedStep = true;
+  return r;
+}
+
+std::unique_ptr<sim::DomainSimulator> FeedingSimulator::makeEvaluationTwin() const {
+  return std::unique_ptr<sim::DomainSimulator>(new FeedingSimulator(user_, 0));
+}
+
+}  // namespace cbtl::domains::feeding

@@ -1,0 +1,103 @@
+// FeedingSimulator.h — the Feeding domain (domains/feeding/feeding.cbtl) behind the runtime's DomainSimulator
+// contract: the Gen3 on its stand in feeding.xml, the plate, the drink and the utensil, and a hidden
+// FeedingUser who eats, drinks and answers questions.
+//
+// Requests cycle with period 4, as in the reference: food, food, prepare (the drink appears on the table at a
+// random spot clear of the plate), drink. requestedTask() names the .cbtl task of the current request:
+// feedBite, prepareDrink, giveDrink. A request ends (taskDone, satisfaction +1 or -1) when
+//   feedBite:     waitForUser("done") after waitForUser("biteTaken"); the user answers dipAnswer(food, offered
+//                 dip, ideal dip), signalAnswer(offered, ideal) and verbosityAnswer(perceived, ideal) and is
+//                 satisfied (+1) iff all three match and their view was never blocked during the bite;
+//   prepareDrink: moveDrink succeeds (+1);
+//   giveDrink:    the arm is back at a named configuration, empty-handed, after waitForUser("done") (+1 iff
+//                 the view was never blocked during the request);
+// and as a failure (-1) when any action fails (no IK, no path, a grasp out of reach, ...): the caregiver then
+// puts the utensil back, opens the gripper and folds the arm to `retract`.
+// View feedback: after every successful moveArm(q) (the configurations the CSP chose), the user says
+// viewBlocked(q) when the occlusion score from their eyes (Occlusion.h) reaches their threshold, else the
+// move passes as viewClear(q).
+//
+// Actions: the standard ones through robot::RobotActions (one step each), with three Feeding rules: grasp("drink")
+// moves the tool in front of the drink's handle (kDrinkGraspOffset from the drink's body frame, 10 cm short
+// of it along -y, tool z along +y; nearer, the open fingers touch it), attaches the drink, closes and lifts 1 cm;
+// release() of the utensil at its mount puts it back in the mount (the mount is not a surface), and the
+// domain's own actions dipInto(sauce: text), acquireFood() (the tool must be within 0.1 m of the plate centre
+// horizontally, holding the utensil) and waitForReady(signal: ReadySignal), one step each.
+// Observations: plateXY, drinkXY (vec<2>), dipsOnTable (set of Dip entries), foodOnPlate (text).
+//
+// Determinism: reset(seed) reseeds the simulator's std::mt19937_64; the episode draws, in order, the plate
+// position, the position in the request cycle, the food, the two dips on the table (and, for a prepare
+// request, the drink position). SimulatorOptions (preference shifts, unsatisfiable stock) do not apply.
+#pragma once
+
+#include "DomainSimulator.h"
+#include "feeding/FeedingUser.h"
+#include "robot/RobotActions.h"
+
+#include "Builtins.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace cbtl::domains::feeding {
+
+enum class Request { Food, Prepare, Drink };
+const char* toString(Request r);
+
+// The feeding.xml scene (loaded once per process; throws std::runtime_error when it cannot be loaded).
+std::shared_ptr<const world::Scene> feedingScene();
+
+class FeedingSimulator final : public sim::DomainSimulator {
+ public:
+  FeedingSimulator(const sim::SimulatorOptions& options, std::uint64_t seed);
+  FeedingSimulator(const sim::SimulatorOptions& options, std::uint64_t seed, FeedingUser user);
+
+  void reset(std::uint64_t seed) override;
+  sim::Observation observe() const override;
+  sim::StepResult act(const sim::ActionCall& call) override;
+  sim::StepResult idle() override;
+  const world::WorldState* worldState() const override { return &world_->workspace().state(); }
+  std::string requestedTask() const override;
+  // Shares the user; its own world and RNG, reset with seed 0 until the caller resets it.
+  std::unique_ptr<sim::DomainSimulator> makeEvaluationTwin() const override;
+
+  Request request() const { return request_; }
+  const std::string& food() const { return food_; }
+  const std::vector<std::string>& dipsOnTable() const { return dips_; }
+  const FeedingUser& user() const { return *user_; }
+  world::World& world() { return *world_; }
+
+ private:
+  FeedingSimulator(std::shared_ptr<const FeedingUser> user, std::uint64_t seed);
+  struct Progress {
+    bool biteTaken = false;
+    bool drinkOffered = false;
+    bool viewBlocked = false;
+    int utterancesAtStart = 0;
+    std::string dip = "noDip";
+    std::string signal;
+  };
+  void startRequest(Request r);
+  void nextRequest();
+  void restoreHome();
+  sim::StepResult fail(sim::StepResult r);
+  sim::StepResult complete(sim::StepResult r, bool satisfied);
+  sim::StepResult graspDrink();
+  sim::StepResult releaseUtensil();
+  world::Pose2 randomXY(double x0, double x1, double y0, double y1);
+
+  std::shared_ptr<const FeedingUser> user_;
+  std::unique_ptr<world::World> world_;
+  robot::RobotActions actions_;
+  world::Rng rng_;
+  std::map<std::string, world::Pose3> scenePoses_;
+  std::size_t cycle_ = 0;
+  Request request_ = Request::Food;
+  std::string food_;
+  std::vector<std::string> dips_;
+  Progress progress_;
+};
+
+}  // namespace cbtl::domains::feeding

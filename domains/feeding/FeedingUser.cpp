@@ -1,0 +1,40 @@
+#include "feeding/FeedingUser.h"
+
+#include <algorithm>
+
+namespace cbtl::domains::feeding {
+
+FeedingUser FeedingUser::paperDefault() {
+  FeedingUser u;
+  u.occlusionThreshold = 0.05;
+  u.dipRanking = {{"french fries", {"ketchup", "ranch"}},
+                  {"potato wedges", {"bbqSauce"}},
+                  {"tater tots", {"ketchup"}},
+                  {"carrot sticks", {"hummus", "ranch"}}};
+  u.readySignal = "button";
+  u.verbosity = "brief";
+  return u;
+}
+
+std::string FeedingUser::idealDip(const std::string& food, const std::vector<std::string>& onTable) const {
+  auto it = dipRanking.find(food);
+  if (it == dipRanking.end()) return "noDip";
+  for (const auto& dip : it->second) {
+    if (std::find(onTable.begin(), onTable.end(), dip) != onTable.end()) return dip;
+  }
+  return "noDip";
+}
+
+std::string FeedingUser::perceivedVerbosity(int utterances) {
+  if (utterances <= 0) return "silent";
+  return utterances == 1 ? "brief" : "chatty";
+}
+
+std::string dipEntryOfSauce(const std::string& sauce) {
+  static const std::map<std::string, std::string> entries = {
+      {"ketchup", "ketchup"}, {"BBQ sauce", "bbqSauce"}, {"ranch dressing", "ranch"}, {"hummus", "hummus"}};
+  auto it = entries.find(sauce);
+  return it == entries.end() ? std::string() : it->second;
+}
+
+}  // namespace cbtl::domains::feeding

@@ -1,0 +1,39 @@
+// FeedingUser.h — the hidden user of the Feeding domain: how much arm in their view they tolerate, which
+// dip they want with each food, how they like to signal that they are ready, and how much the robot should
+// talk. The robot never reads these; it learns them from the feedback events the simulator derives here.
+//
+// Names are those of domains/feeding/feeding.cbtl: Dip entries (ketchup, bbqSauce, ranch, hummus, noDip),
+// ReadySignal members (mouthOpen, button, autoContinue), Verbosity members (silent, brief, chatty).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace cbtl::domains::feeding {
+
+class FeedingUser {
+ public:
+  // The user of our experiments (documented in docs/domains-feeding.md): complains from an occlusion score
+  // of 0.05 (the reference user's threshold), likes ketchup with fries and tater tots, BBQ sauce with potato
+  // wedges, hummus with carrot sticks, ranch as the second choice with fries and carrots; presses the button;
+  // wants brief talk.
+  static FeedingUser paperDefault();
+
+  double occlusionThreshold = 0.05;                          // view blocked at score >= this, in [0, 1]
+  std::map<std::string, std::vector<std::string>> dipRanking;  // food -> Dip entries, best first
+  std::string readySignal = "button";
+  std::string verbosity = "brief";
+
+  // The dip the user wants with `food` among those on the table: the best-ranked one there, else noDip.
+  std::string idealDip(const std::string& food, const std::vector<std::string>& onTable) const;
+  bool viewBlocked(double occlusionScore) const { return occlusionScore >= occlusionThreshold; }
+  // The verbosity the user perceived from how many times the robot spoke during one bite.
+  static std::string perceivedVerbosity(int utterances);
+};
+
+// Dip entry of the sauce name a plan passes to dipInto ("ketchup", "BBQ sauce", "ranch dressing", "hummus");
+// empty for an unknown name.
+std::string dipEntryOfSauce(const std::string& sauce);
+
+}  // namespace cbtl::domains::feeding

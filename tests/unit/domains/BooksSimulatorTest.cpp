@@ -1,0 +1,183 @@
+// The Books simulator: episode starts, observations, requested tasks, handovers the user reaches or not,
+// and the evaluation twin.
+#include "books/BooksSimulator.h"
+
+#include "HomeTestSupport.h"
+#include "books/BookCatalog.h"
+#include "robot/CallArguments.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+namespace {
+
+using cbtl::domains::books::BooksSimulator;
+using cbtl::domains::books::BooksUser;
+using cbtl::domains::books::Interval;
+using cbtl::sim::ActionCall;
+using cbtl::sim::ActionStatus;
+using cbtl::sim::StepResult;
+using cbtl::sim::Value;
+namespace robot = cbtl::domains::robot;
+namespace world = cbtl::world;
+
+const world::Pose2 kBedBase{1.0, 0.2, 0.0};
+
+bool contains(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+
+// The robot at the bed holding `body` with the tool `radius` metres from the user's ROM centre.
+std::optional<Eigen::Vector3d> presentAt(BooksSimulator& sim, const std::string& body, double radius, world::Rng& rng) {
+  if (!cbtl::test::holdAt(sim.world(), body, kBedBase)) return std::nullopt;
+  return cbtl::test::handoverAt(sim.world(), BooksUser::romCentre(sim.handFrame()), radius, rng);
+}
+
+TEST(BooksSimulator, ResetIsDeterministic) {
+  BooksSimulator a({}, 21), b({}, 4);
+  b.reset(21);
+  EXPECT_EQ(a.observe().at("pickable").members, b.observe().at("pickable").members);
+  EXPECT_EQ(a.observe().at("heldBody").text, b.observe().at("heldBody").text);
+  for (const auto& [name, pose] : a.worldState()->objects) EXPECT_EQ(pose.position, b.worldState()->objects.at(name).position) << name;
+}
+
+TEST(BooksSimulator, ObservationsHaveTheDeclaredNamesAndKinds) {
+  BooksSimulator sim({}, 2);
+  const auto o = sim.observe();
+  ASSERT_EQ(o.size(), 3u);
+  ASSERT_EQ(o.at("pickable").kind, Value::Kind::Names);
+  for (const std::string& e : o.at("pickable").members) EXPECT_TRUE(cbtl::domains::books::bookOfEntry(e).has_value()) << e;
+  ASSERT_EQ(o.at("handPose").kind, Value::Kind::Vector);
+  ASSERT_EQ(o.at("handPose").vector.size(), 7u);
+  EXPECT_EQ(o.at("heldBody").kind, Value::Kind::Name);
+  // books.cbtl's romCentre(): the hand moved 0.2 m along its z lands on the scene's handover_center.
+  const auto hand = robot::decodePose3(o.at("handPose").vector);
+  ASSERT_TRUE(hand.has_value());
+  const Eigen::Vector3d centre = hand->transformPoint(Eigen::Vector3d(0, 0, 0.2));
+  EXPECT_LT((centre - sim.world().workspace().sitePose("handover_center")->position).norm(), 0.005);
+}
+
+TEST(BooksSimulator, EpisodesVaryTheShelfAndTheHeldBookWithValidStarts) {
+  BooksSimulator sim({}, 0);
+  std::set<std::string> tasks;
+  std::set<std::size_t> counts;
+  for (std::uint64_t seed = 0; seed < 30; ++seed) {
+    sim.reset(seed);
+    const auto o = sim.observe();
+    const auto& pickable = o.at("pickable").members;
+    counts.insert(pickable.size());
+    EXPECT_GE(pickable.size(), 3u);
+    const std::string held = o.at("heldBody").text;
+    EXPECT_EQ(sim.requestedTask(), held.empty() ? "handOverBook" : "stowThenHandOverBook");
+    if (!held.empty()) {
+      const auto book = cbtl::domains::books::bookOfBody(held);
+      ASSERT_TRUE(book.has_value()) << held;
+      EXPECT_FALSE(contains(pickable, std::string(cbtl::domains::books::kBooks[*book].entry)));
+    }
+    tasks.insert(sim.requestedTask());
+    EXPECT_TRUE(world::checkRobotCollisions(sim.world().workspace()).free()) << "seed " << seed;
+  }
+  EXPECT_EQ(tasks.size(), 2u);
+  EXPECT_GE(counts.size(), 3u);
+}
+
+TEST(BooksSimulator, AReachableHandoverOfALikedBookPleasesTheUser) {
+  BooksSimulator sim({}, 3);
+  world::Rng rng(8);
+  const auto point = presentAt(sim, "book_0", 0.2, rng);  // Cosmos, mid-shell
+  ASSERT_TRUE(point.has_value());
+  // Another book on the top shelf, so taking Cosmos does not empty the furniture (no restock).
+  sim.world().workspace().setObjectPose("book_5", world::Pose3::fromPosition(Eigen::Vector3d(0.2, 0.75, 0.53)));
+  ASSERT_EQ(sim.pickable(), (std::vector<std::string>{"intoTheWild"}));
+  const StepResult r = sim.act(ActionCall{"handOver", {}});
+  ASSERT_EQ(r.status, ActionStatus::Applied) << r.message;
+  EXPECT_TRUE(r.consumedStep);
+  EXPECT_TRUE(r.taskDone);
+  ASSERT_TRUE(r.hasSatisfaction);
+  EXPECT_EQ(r.satisfaction, 1.0);
+  ASSERT_EQ(r.feedback.size(), 1u);
+  const auto& f = r.feedback[0];
+  EXPECT_EQ(f.name, "handoverOutcome");
+  ASSERT_EQ(f.args.size(), 5u);
+  EXPECT_EQ(f.args[0].text, "cosmos");
+  ASSERT_EQ(f.args[1].vector.size(), 3u);
+  EXPECT_NEAR(f.args[1].vector[0], point->x(), 1e-9);
+  EXPECT_EQ(f.args[2].number, 1.0);
+  EXPECT_EQ(f.args[3].text, "Thank you, I love Cosmos!");
+  EXPECT_EQ(f.args[4].number, 1.0);
+  // The user took it.
+  EXPECT_FALSE(sim.worldState()->held.has_value());
+  EXPECT_FALSE(contains(sim.pickable(), "cosmos"));
+  EXPECT_TRUE(robot::isParked(sim.worldState()->objects.at("book_0")));
+  EXPECT_EQ(sim.world().utterances().back(), "Here you go!");
+}
+
+TEST(BooksSimulator, AReachedDislikedBookIsTakenButDisappoints) {
+  BooksSimulator sim({}, 3);
+  world::Rng rng(8);
+  ASSERT_TRUE(presentAt(sim, "book_6", 0.2, rng).has_value());  // Moby Dick
+  const StepResult r = sim.act(ActionCall{"handOver", {}});
+  ASSERT_EQ(r.status, ActionStatus::Applied) << r.message;
+  EXPECT_EQ(r.satisfaction, -1.0);
+  EXPECT_EQ(r.feedback.at(0).args.at(2).number, 1.0);
+  EXPECT_EQ(r.feedback.at(0).args.at(4).number, 0.0);
+  EXPECT_FALSE(sim.worldState()->held.has_value());
+}
+
+TEST(BooksSimulator, AnUnreachableHandoverKeepsTheBookInHand) {
+  BooksSimulator sim({}, 3);
+  world::Rng rng(8);
+  ASSERT_TRUE(presentAt(sim, "book_0", 0.45, rng).has_value());  // beyond the 0.3 m shell
+  const StepResult r = sim.act(ActionCall{"handOver", {}});
+  ASSERT_EQ(r.status, ActionStatus::Applied) << r.message;
+  EXPECT_TRUE(r.taskDone);
+  EXPECT_EQ(r.satisfaction, -1.0);
+  EXPECT_EQ(r.feedback.at(0).args.at(2).number, 0.0);
+  EXPECT_EQ(r.feedback.at(0).args.at(3).text, "I can't reach there.");
+  EXPECT_EQ(r.feedback.at(0).args.at(4).number, 0.0);
+  ASSERT_TRUE(sim.worldState()->held.has_value());
+  EXPECT_EQ(sim.worldState()->held->object, "book_0");
+  EXPECT_EQ(sim.requestedTask(), "stowThenHandOverBook");
+}
+
+TEST(BooksSimulator, HandingOverWithoutABookIsNotAHandover) {
+  BooksSimulator sim({}, 3);
+  world::WorldState s = *sim.worldState();
+  s.held.reset();
+  sim.world().workspace().setState(s);
+  StepResult r = sim.act(ActionCall{"handOver", {}});
+  EXPECT_EQ(r.status, ActionStatus::Ignored);  // NotHolding
+  EXPECT_TRUE(r.taskDone);
+  EXPECT_FALSE(r.hasSatisfaction);
+  ASSERT_TRUE(cbtl::test::holdAt(sim.world(), "duster", kBedBase));
+  r = sim.act(ActionCall{"handOver", {}});
+  EXPECT_EQ(r.status, ActionStatus::Ignored);
+  EXPECT_TRUE(r.feedback.empty());
+  EXPECT_FALSE(r.hasSatisfaction);
+}
+
+TEST(BooksSimulator, TakingTheLastBookRestocksTheShelves) {
+  BooksSimulator sim({}, 3);
+  world::Rng rng(8);
+  ASSERT_TRUE(presentAt(sim, "book_1", 0.2, rng).has_value());  // every other book is parked
+  EXPECT_TRUE(sim.pickable().empty());
+  const StepResult r = sim.act(ActionCall{"handOver", {}});
+  ASSERT_EQ(r.satisfaction, 1.0) << r.message;
+  EXPECT_GE(sim.pickable().size(), 3u);
+}
+
+TEST(BooksSimulator, EvaluationTwinSharesTheUserNotTheWorld) {
+  BooksSimulator sim({}, 3, BooksUser({"mobyDick"}, Interval{0.0, 1.0}));
+  auto twin = sim.makeEvaluationTwin();
+  auto* t = dynamic_cast<BooksSimulator*>(twin.get());
+  ASSERT_NE(t, nullptr);
+  EXPECT_EQ(&t->user(), &sim.user());
+  world::Rng rng(8);
+  ASSERT_TRUE(presentAt(*t, "book_6", 0.2, rng).has_value());
+  const auto trainHeld = sim.worldState()->held;
+  const StepResult r = t->act(ActionCall{"handOver", {}});
+  EXPECT_EQ(r.satisfaction, 1.0);  // this user likes Moby Dick
+  EXPECT_EQ(sim.worldState()->held.has_value(), trainHeld.has_value());
+}
+
+}  // namespace

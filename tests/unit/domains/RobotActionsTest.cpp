@@ -1,0 +1,232 @@
+// The standard-action executor on the home scene: each action's effect on the World, call-shape errors,
+// and failures that leave the World unchanged.
+#include "robot/CallArguments.h"
+#include "robot/HomeScene.h"
+#include "robot/RobotActions.h"
+#include "robot/StandardGrasps.h"
+#include "robot/SurfaceGeometry.h"
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+namespace {
+
+using cbtl::domains::robot::RobotActionResult;
+using cbtl::domains::robot::RobotActions;
+using cbtl::sim::ActionCall;
+using cbtl::sim::Value;
+using cbtl::world::builtins::ActionStatus;
+namespace robot = cbtl::domains::robot;
+namespace world = cbtl::world;
+
+class RobotActionsTest : public ::testing::Test {
+ protected:
+  RobotActionsTest() : w(robot::homeScene()), rng(11) {
+    world::WorldState s = w.workspace().state();
+    s.arm = world::configs::kHomeSceneInitial;
+    EXPECT_EQ(w.workspace().setState(s), world::StateStatus::Ok);
+  }
+
+  RobotActionResult run(const std::string& name, std::vector<Value> args) {
+    auto r = actions.execute(w, ActionCall{name, std::move(args)}, rng);
+    EXPECT_TRUE(r.has_value()) << name;
+    return r ? *r : RobotActionResult{};
+  }
+
+  // Holds book_6 (the book of side table 0) in the carry grasp with the arm at `q`.
+  void holdBook(const world::ArmConfig& q) {
+    world::WorldState s = w.workspace().state();
+    s.arm = q;
+    s.held = world::Grasp{"book_6", robot::bookToolInBody().inverse()};
+    ASSERT_EQ(w.workspace().setState(s), world::StateStatus::Ok);
+  }
+
+  world::World w;
+  world::Rng rng;
+  RobotActions actions;
+};
+
+TEST_F(RobotActionsTest, OtherNamesAreNotStandard) {
+  EXPECT_FALSE(actions.execute(w, ActionCall{"movePot", {}}, rng).has_value());
+  EXPECT_TRUE(RobotActions::isStandard("wipe"));
+  EXPECT_EQ(RobotActions::names().size(), 15u);
+}
+
+TEST_F(RobotActionsTest, MoveBaseMovesTheBase) {
+  const RobotActionResult r = run("moveBase", {Value::vec({0.0, -0.55, 0.0})});
+  ASSERT_TRUE(r.done()) << r.detail;
+  EXPECT_EQ(r.steps, 1);
+  EXPECT_NEAR(w.workspace().state().base.y, -0.55, 1e-9);
+  EXPECT_EQ(r.simStatus(), cbtl::sim::ActionStatus::Applied);
+}
+
+TEST_F(RobotActionsTest, MoveBaseIntoTheWallFailsAndKeepsTheBase) {
+  const RobotActionResult r = run("moveBase", {Value::vec({0.0, 1.3, 0.0})});
+  EXPECT_FALSE(r.done());
+  EXPECT_EQ(r.status, ActionStatus::NoPath);
+  EXPECT_EQ(r.steps, 1);
+  EXPECT_EQ(r.simStatus(), cbtl::sim::ActionStatus::Ignored);
+  EXPECT_NEAR(w.workspace().state().base.y, 0.0, 1e-12);
+}
+
+TEST_F(RobotActionsTest, MoveArmAndNamedConfigurations) {
+  RobotActionResult r = run("moveArmToNamed", {Value::name("home")});
+  ASSERT_TRUE(r.done()) << r.detail;
+  EXPECT_EQ(w.workspace().state().arm, world::configs::kHome);
+  r = run("moveArm", {Value::vec(std::vector<double>(world::configs::kRetract.begin(), world::configs::kRetract.end()))});
+  ASSERT_TRUE(r.done()) << r.detail;
+  EXPECT_EQ(w.workspace().state().arm, world::configs::kRetract);
+
+  r = run("moveArmToNamed", {Value::name("nowhere")});
+  EXPECT_EQ(r.status, ActionStatus::InvalidArgument);
+  EXPECT_NE(r.detail.find("nowhere"), std::string::npos);
+  EXPECT_NE(r.detail.find("retract"), std::string::npos);  // the message lists the known names
+  EXPECT_EQ(w.workspace().state().arm, world::configs::kRetract);
+}
+
+TEST_F(RobotActionsTest, IllFormedCallsAreUnknownActions) {
+  const std::vector<ActionCall> bad{
+      {"moveBase", {Value::vec({0, 0})}},                   // SE2 needs 3 numbers
+      {"moveBase", {Value::name("table")}},                 // wrong kind
+      {"moveArm", {Value::vec({0, 0, 0})}},                 // Conf needs 7
+      {"grasp", {}},                                        // missing argument
+      {"grasp", {Value::num(3)}},                           // wrong kind
+      {"place", {Value::name("table_top"), Value::vec({0, 0, 0})}},
+      {"wipe", {Value::vec({0, 0, 0}), Value::name("shelf_layer_1")}},
+      {"say", {Value::names({"a"})}},
+      {"handOver", {Value::num(1)}},
+      {"wait", {Value::name("1")}},
+  };
+  const world::WorldState before = w.workspace().state();
+  for (const ActionCall& call : bad) {
+    const auto r = actions.execute(w, call, rng);
+    ASSERT_TRUE(r.has_value()) << call.name;
+    EXPECT_FALSE(r->wellFormed) << call.name;
+    EXPECT_EQ(r->steps, 0) << call.name;
+    EXPECT_EQ(r->simStatus(), cbtl::sim::ActionStatus::UnknownAction) << call.name;
+    EXPECT_FALSE(r->detail.empty()) << call.name;
+  }
+  EXPECT_EQ(w.workspace().state().arm, before.arm);
+}
+
+TEST_F(RobotActionsTest, NonFiniteValuesFailWithoutThrowing) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  RobotActionResult r = run("moveBase", {Value::vec({nan, 0, 0})});
+  EXPECT_EQ(r.status, ActionStatus::InvalidArgument);
+  r = run("moveTool", {Value::vec({0.5, 0, 0.5, 0, 0, 0, 0})});  // zero quaternion
+  EXPECT_EQ(r.status, ActionStatus::InvalidArgument);
+  EXPECT_TRUE(r.wellFormed);
+}
+
+TEST_F(RobotActionsTest, GraspDusterApproachesAttachesAndLifts) {
+  ASSERT_TRUE(run("moveBase", {Value::vec({0.0, -0.1, 0.0})}).done());
+  const double zBefore = w.workspace().objectPose("duster")->position.z();
+  const RobotActionResult r = run("grasp", {Value::name("duster")});
+  ASSERT_TRUE(r.done()) << r.detail;
+  ASSERT_TRUE(w.workspace().state().held.has_value());
+  EXPECT_EQ(w.workspace().state().held->object, "duster");
+  EXPECT_EQ(w.workspace().state().gripper, 0.0);
+  EXPECT_NEAR(w.workspace().objectPose("duster")->position.z(), zBefore + robot::kLift, 2e-3);
+
+  // A second grasp is refused; the duster stays in hand.
+  EXPECT_EQ(run("grasp", {Value::name("book_0")}).status, ActionStatus::AlreadyHolding);
+  // Releasing drops it back onto the table.
+  const RobotActionResult rel = run("release", {});
+  ASSERT_TRUE(rel.done()) << rel.detail;
+  EXPECT_FALSE(w.workspace().state().held.has_value());
+  EXPECT_EQ(robot::supportOf(w, "duster", robot::restingSurfaces(w.workspace().scene())), std::string("table_top"));
+}
+
+TEST_F(RobotActionsTest, GraspFailsForUnknownOrDistantBodies) {
+  EXPECT_EQ(run("grasp", {Value::name("no_such_body")}).status, ActionStatus::InvalidArgument);
+  EXPECT_EQ(run("grasp", {Value::name("book_0")}).status, ActionStatus::OutOfReach);
+  EXPECT_FALSE(w.workspace().state().held.has_value());
+}
+
+TEST_F(RobotActionsTest, ReleaseNeedsAHeldBodyAndASurfaceBelow) {
+  EXPECT_EQ(run("release", {}).status, ActionStatus::NotHolding);
+  holdBook(world::configs::kHome);  // the book hangs in the air in front of the robot
+  const RobotActionResult r = run("release", {});
+  EXPECT_EQ(r.status, ActionStatus::Blocked);
+  EXPECT_TRUE(w.workspace().state().held.has_value());
+}
+
+TEST_F(RobotActionsTest, PlacePutsTheBookOnTheSideTable) {
+  ASSERT_TRUE(run("moveBase", {Value::vec({0.0, -0.55, 0.0})}).done());
+  holdBook(world::configs::kHome);
+  // Upright, spine along world x as in home.xml, centred on side table 1's top (z = 0): centre at 0.08.
+  const world::Pose3 target{Eigen::Vector3d(-0.75, -0.70, 0.08),
+                            Eigen::Quaterniond(Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitZ()))};
+  // Side table 1 is occupied by book_7 in the scene: move it away first so the target is free.
+  w.workspace().setObjectPose("book_7", robot::parkedPose(0));
+  ASSERT_TRUE(run("moveBase", {Value::vec({0.0, -0.80, 0.0})}).done());
+  const RobotActionResult r = run("place", {Value::name("side_table_1_top"), Value::vec(robot::encodePose3(target))});
+  ASSERT_TRUE(r.done()) << r.detail;
+  EXPECT_FALSE(w.workspace().state().held.has_value());
+  const world::Pose3 p = *w.workspace().objectPose("book_6");
+  EXPECT_NEAR((p.position - target.position).norm(), 0.0, 1e-6);
+  EXPECT_TRUE(robot::restsOn(w, "book_6", p, "side_table_1_top"));
+  EXPECT_EQ(w.workspace().state().gripper, 1.0);
+}
+
+TEST_F(RobotActionsTest, PlaceRefusesPosesOffTheSurfaceOrOccupied) {
+  holdBook(world::configs::kHome);
+  const world::WorldState before = w.workspace().state();
+  const world::Pose3 floating{Eigen::Vector3d(-0.75, -0.70, 0.3), Eigen::Quaterniond::Identity()};
+  EXPECT_EQ(run("place", {Value::name("side_table_1_top"), Value::vec(robot::encodePose3(floating))}).status,
+            ActionStatus::InvalidArgument);
+  EXPECT_EQ(run("place", {Value::name("no_surface"), Value::vec(robot::encodePose3(floating))}).status,
+            ActionStatus::InvalidArgument);
+  // Where book_7 stands.
+  const world::Pose3 occupied = *w.workspace().objectPose("book_7");
+  EXPECT_EQ(run("place", {Value::name("side_table_1_top"), Value::vec(robot::encodePose3(occupied))}).status,
+            ActionStatus::Blocked);
+  EXPECT_EQ(w.workspace().state().arm, before.arm);
+  EXPECT_TRUE(w.workspace().state().held.has_value());
+}
+
+TEST_F(RobotActionsTest, HandOverSaysHereYouGo) {
+  EXPECT_EQ(run("handOver", {}).status, ActionStatus::NotHolding);
+  holdBook(world::configs::kHome);
+  const RobotActionResult r = run("handOver", {});
+  ASSERT_TRUE(r.done());
+  ASSERT_FALSE(w.utterances().empty());
+  EXPECT_EQ(w.utterances().back(), "Here you go!");
+  EXPECT_TRUE(w.workspace().state().held.has_value());  // the domain decides whether the user takes it
+}
+
+TEST_F(RobotActionsTest, SayWaitAndGripper) {
+  ASSERT_TRUE(run("say", {Value::name("Done")}).done());
+  EXPECT_EQ(w.utterances().back(), "Done");
+  EXPECT_EQ(run("waitForUser", {Value::name("button")}).steps, 1);
+  EXPECT_EQ(run("wait", {Value::num(3)}).steps, 3);
+  EXPECT_EQ(run("wait", {Value::num(0)}).steps, 0);
+  EXPECT_EQ(run("wait", {Value::num(-1)}).status, ActionStatus::InvalidArgument);
+  EXPECT_EQ(run("wait", {Value::num(1.5)}).status, ActionStatus::InvalidArgument);
+  ASSERT_TRUE(run("closeGripper", {Value::num(0.25)}).done());
+  EXPECT_DOUBLE_EQ(w.workspace().state().gripper, 0.75);
+  EXPECT_EQ(run("closeGripper", {Value::num(2)}).status, ActionStatus::InvalidArgument);
+}
+
+TEST_F(RobotActionsTest, StepResultCarriesStatusAndMessage) {
+  const RobotActionResult r = run("moveArmToNamed", {Value::name("nowhere")});
+  const cbtl::sim::StepResult s = r.toStepResult("moveArmToNamed");
+  EXPECT_EQ(s.status, cbtl::sim::ActionStatus::Ignored);
+  EXPECT_TRUE(s.consumedStep);
+  EXPECT_NE(s.message.find("moveArmToNamed"), std::string::npos);
+}
+
+}  // namespace
+
+// The language's built-ins read the duster's standard grasp from home.xml's site duster_tool; it must be the
+// grasp the executor uses.
+TEST(StandardGrasps, TheSceneSiteIsTheDusterGrasp) {
+  cbtl::world::Workspace ws(cbtl::domains::robot::homeScene());
+  const int site = ws.scene().siteId("duster_tool");
+  ASSERT_GE(site, 0);
+  const cbtl::world::Pose3 inBody = ws.objectPose("duster")->inverse() * ws.sitePose(site);
+  const cbtl::world::Pose3 expected = cbtl::domains::robot::dusterToolInBody();
+  EXPECT_LT((inBody.position - expected.position).norm(), 1e-6);
+  EXPECT_LT(inBody.orientation.angularDistance(expected.orientation), 1e-6);
+}

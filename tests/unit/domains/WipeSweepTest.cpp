@@ -1,0 +1,93 @@
+// The wiping sweep: from a pre-wipe pose the duster covers a reachable surface and the base comes back;
+// without the duster on the surface, or without anything held, the sweep fails and nothing moves.
+#include "robot/CallArguments.h"
+#include "robot/HomeScene.h"
+#include "robot/RobotActions.h"
+#include "robot/StandardGrasps.h"
+#include "robot/WipeSweep.h"
+
+#include <gtest/gtest.h>
+
+namespace {
+
+namespace robot = cbtl::domains::robot;
+namespace world = cbtl::world;
+using cbtl::sim::ActionCall;
+using cbtl::sim::Value;
+using cbtl::world::builtins::ActionStatus;
+
+class WipeSweepTest : public ::testing::Test {
+ protected:
+  WipeSweepTest() : w(robot::homeScene()), rng(5) {}
+
+  // The robot at `base` holding the duster (standard grasp) with the arm at a collision-free IK solution of
+  // the pre-wipe pose of `surface`; false when none is found.
+  bool readyToWipe(const std::string& surface, const world::Pose2& base) {
+    world::WorldState s = w.workspace().state();
+    s.base = base;
+    s.arm = world::configs::kHome;
+    s.held = world::Grasp{"duster", robot::dusterToolInBody().inverse()};
+    for (int k = 0; k < 9; ++k) s.objects["book_" + std::to_string(k)] = robot::parkedPose(static_cast<std::size_t>(k));
+    if (w.workspace().setState(s) != world::StateStatus::Ok) return false;
+    const auto tool = robot::preWipeToolPose(w, surface, "duster", s.held->toolToObject, base);
+    if (!tool) return false;
+    for (int attempt = 0; attempt < 5; ++attempt) {
+      if (const auto q = world::builtins::sampleIk(w, *tool, rng)) {
+        w.workspace().setArm(*q);
+        return true;
+      }
+    }
+    return false;
+  }
+
+  world::World w;
+  world::Rng rng;
+  robot::RobotActions actions;
+};
+
+TEST_F(WipeSweepTest, WipesEveryHomeSurfaceFromItsApproachBase) {
+  const std::vector<std::pair<std::string, world::Pose2>> cases{
+      {"shelf_layer_1", {0, 0, 0}},          {"shelf_layer_2", {0, 0, 0}},     {"shelf_layer_0", {0.067, 0.023, 0}},
+      {"table_top", {0, -0.1, 0}},           {"side_table_0_top", {0, -0.55, 0}}, {"side_table_2_top", {0, -1.05, 0}}};
+  for (const auto& [surface, base] : cases) {
+    SCOPED_TRACE(surface);
+    ASSERT_TRUE(readyToWipe(surface, base));
+    const world::ArmConfig arm = w.workspace().state().arm;
+    const auto r = actions.execute(w, ActionCall{"wipe", {Value::name(surface), Value::vec(robot::encodePose2(base))}}, rng);
+    ASSERT_TRUE(r.has_value());
+    ASSERT_TRUE(r->done()) << r->detail;
+    EXPECT_GE(r->basePath.size(), 3u);  // at least one stroke there and back, plus the return
+    EXPECT_NEAR(w.workspace().state().base.x, base.x, 1e-9);
+    EXPECT_NEAR(w.workspace().state().base.y, base.y, 1e-9);
+    EXPECT_EQ(w.workspace().state().arm, arm);  // the arm stays fixed
+  }
+}
+
+TEST_F(WipeSweepTest, FailsWhenTheDusterIsNotOnTheSurface) {
+  ASSERT_TRUE(readyToWipe("shelf_layer_1", {0, 0, 0}));
+  const auto r = actions.execute(w, ActionCall{"wipe", {Value::name("shelf_layer_2"), Value::vec({0, 0, 0})}}, rng);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->status, ActionStatus::OutOfReach);
+  const auto unknown = actions.execute(w, ActionCall{"wipe", {Value::name("ceiling"), Value::vec({0, 0, 0})}}, rng);
+  EXPECT_EQ(unknown->status, ActionStatus::InvalidArgument);
+}
+
+TEST_F(WipeSweepTest, FailsWithoutAHeldTool) {
+  const auto r = actions.execute(w, ActionCall{"wipe", {Value::name("table_top"), Value::vec({0, -0.1, 0})}}, rng);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->status, ActionStatus::NotHolding);
+}
+
+TEST_F(WipeSweepTest, ABlockedSweepLeavesTheWorldAsItWas) {
+  ASSERT_TRUE(readyToWipe("shelf_layer_1", {0, 0, 0}));
+  // A book standing in the middle of the middle layer is in the duster's way.
+  w.workspace().setObjectPose("book_0", world::Pose3::fromPosition(Eigen::Vector3d(-0.2, 0.675, 0.13)));
+  const world::WorldState before = w.workspace().state();
+  const auto r = actions.execute(w, ActionCall{"wipe", {Value::name("shelf_layer_1"), Value::vec({0, 0, 0})}}, rng);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->status, ActionStatus::NoPath);
+  EXPECT_EQ(w.workspace().state().base.x, before.base.x);
+  EXPECT_EQ(w.workspace().state().arm, before.arm);
+}
+
+}  // namespace

@@ -40,7 +40,7 @@
 #include "books/BooksUser.h"
 #include "robot/RobotActions.h"
 
-#include "Builtins.h"
+#include "world/Builtins.h"
 
 #include <cstdint>
 #include <map>

@@ -39,7 +39,7 @@
 #include "cleaning/CleaningUser.h"
 #include "robot/RobotActions.h"
 
-#include "Builtins.h"
+#include "world/Builtins.h"
 
 #include <cstdint>
 #include <map>

@@ -34,7 +34,7 @@
 #include "feeding/FeedingUser.h"
 #include "robot/RobotActions.h"
 
-#include "Builtins.h"
+#include "world/Builtins.h"
 
 #include <cstdint>
 #include <memory>

@@ -7,7 +7,7 @@
 // Random draws use std::uniform_*_distribution over world::Rng (one platform's results are reproducible).
 #pragma once
 
-#include "Builtins.h"
+#include "world/Builtins.h"
 
 #include <cstddef>
 #include <map>

@@ -2,7 +2,7 @@
 // (`enum Surface`), with their scene geoms (the files' `surfaceGeom` table), and the hand frame of the user.
 #pragma once
 
-#include "Builtins.h"
+#include "world/Builtins.h"
 
 #include <array>
 #include <optional>

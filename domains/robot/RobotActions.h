@@ -49,7 +49,7 @@
 
 #include "robot/NamedConfigurations.h"
 
-#include "Builtins.h"
+#include "world/Builtins.h"
 #include "DomainSimulator.h"
 
 #include <optional>

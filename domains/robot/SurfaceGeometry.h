@@ -7,7 +7,7 @@
 
 #include "SurfaceFace.h"
 
-#include "Builtins.h"
+#include "world/Builtins.h"
 
 #include <optional>
 #include <string>

@@ -18,7 +18,7 @@
 // collides: the detail names the geoms).
 #pragma once
 
-#include "Builtins.h"
+#include "world/Builtins.h"
 #include "PreWipe.h"
 
 #include <optional>

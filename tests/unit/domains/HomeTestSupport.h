@@ -6,7 +6,7 @@
 #include "robot/StandardGrasps.h"
 #include "robot/WipeSweep.h"
 
-#include "Builtins.h"
+#include "world/Builtins.h"
 
 #include <numbers>
 #include <optional>

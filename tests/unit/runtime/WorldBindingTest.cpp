@@ -7,6 +7,7 @@
 #include "Solver.h"
 #include "UserModel.h"
 #include "WorldBuiltins.h"
+#include "robot/StandardGrasps.h"
 #include "world/WorldState.h"
 
 #include <gtest/gtest.h>
@@ -257,4 +258,18 @@ require plateMoved: distance(bodyPose("plate").position, vec3(0.36, 0.5, 0.1625)
   EXPECT_TRUE(checkAll(*lp).at(0).second);
   s.objects["noSuchObject"] = p;
   EXPECT_FALSE(bind::setWorldReference(lp->program().host(), s));
+}
+
+// std.collision's side grasp at yaw -pi/2 is the books' carry grasp the executor uses.
+TEST(WorldBuiltins, SideGraspIsTheBooksCarryGrasp) {
+  const world::Pose3 g = domains::robot::bookToolInBody();
+  char expected[256];
+  std::snprintf(expected, sizeof expected, "poseQuat(vec3(%.9f, %.9f, %.9f), %.9f, %.9f, %.9f, %.9f)", g.position.x(),
+                g.position.y(), g.position.z(), g.orientation.x(), g.orientation.y(), g.orientation.z(),
+                g.orientation.w());
+  auto lp = test::compileOrFail("g.cbtl", homePrelude() + "const inBody = relativePose(bodyPose(\"book_0\"), sideGraspPose(\"book_0\", -pi / 2));\n" +
+                                              "require same: distance(inBody.position, " + expected + ".position) < 1e-6 and angleBetween(inBody, " +
+                                              expected + ") < 1e-6;\n");
+  ASSERT_TRUE(lp->ok());
+  expectAllHold(*lp);
 }

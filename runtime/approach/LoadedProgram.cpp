@@ -64,6 +64,15 @@ void LoadedProgram::prepare(const PipelineResult& r, rt::Builtins builtins) {
     program_ = std::move(program);
   } catch (const rt::RuntimeError& e) {
     errors_ = fmt::format("error: {}\n", e.what());
+    if (tu_->graph.world.empty()) {
+      // A robot-world built-in in a file without a scene: say what is missing, not just what failed.
+      for (const auto& name : bind::worldBuiltinNames()) {
+        if (std::string(e.what()).find("'" + name + "' has no implementation") != std::string::npos) {
+          errors_ += fmt::format("note: '{}' reads the robot world: declare its scene with `world \"scene.xml\";`\n", name);
+          break;
+        }
+      }
+    }
     instances_.clear();
     actions_.clear();
   }

@@ -243,6 +243,17 @@ TEST(WorldBuiltins, AMissingSceneIsALoadErrorNamingTheFile) {
   EXPECT_NE(lp->errors().find("no/such/scene.xml"), std::string::npos) << lp->errors();
 }
 
+TEST(WorldBuiltins, AWorldBuiltinWithoutASceneSaysWhatIsMissing) {
+  auto lp = approach::LoadedProgram::fromSource("n.cbtl", R"(domain n;
+import std.kinova;
+var q : Conf<gen3>;
+require inLimits: withinJointLimits(q);
+)");
+  ASSERT_FALSE(lp->ok());
+  EXPECT_NE(lp->errors().find("n.cbtl:4:"), std::string::npos) << lp->errors();
+  EXPECT_NE(lp->errors().find("declare its scene with `world"), std::string::npos) << lp->errors();
+}
+
 TEST(WorldBuiltins, TheReferenceStateIsWhatTheBuiltinsSee) {
   auto lp = test::compileOrFail("r.cbtl", feedingPrelude() + R"(
 require plateMoved: distance(bodyPose("plate").position, vec3(0.36, 0.5, 0.1625)) < 1e-6;

@@ -1,17 +1,10 @@
 #include "robot/NamedConfigurations.h"
 
-#include "WorldState.h"
+#include "world/NamedConfigurations.h"
 
 namespace cbtl::domains::robot {
 
-NamedConfigurations::NamedConfigurations()
-    : table_{{"home", world::configs::kHome},
-             {"retract", world::configs::kRetract},
-             {"zero", world::configs::kZero},
-             {"abovePlate", world::configs::kAbovePlate},
-             {"utensilAboveMount", world::configs::kUtensilAboveMount},
-             {"drinkGaze", world::configs::kDrinkGaze},
-             {"homeSceneInitial", world::configs::kHomeSceneInitial}} {}
+NamedConfigurations::NamedConfigurations() : table_(world::standardConfigurations()) {}
 
 std::optional<world::ArmConfig> NamedConfigurations::find(std::string_view name) const {
   const auto it = table_.find(name);

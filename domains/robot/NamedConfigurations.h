@@ -1,9 +1,8 @@
-// NamedConfigurations.h — the arm configurations that `moveArmToNamed(name)` and std.kinova's namedConf
-// know by name (radians, joint_1..joint_7), from runtime/world/WorldState.h `configs::`.
-//
-// Names: "home", "retract", "zero", "abovePlate", "utensilAboveMount", "drinkGaze", "homeSceneInitial"
-// (the home scene's start configuration of the seed). A domain may add its own names (e.g. Feeding's
-// "beforeTransfer") through NamedConfigurations::add.
+// NamedConfigurations.h — the arm configurations `moveArmToNamed(name)` knows beyond the scene's own: the
+// world library's standard table (world/NamedConfigurations.h: home, retract, zero, abovePlate,
+// utensilAboveMount, drinkGaze, homeSceneInitial; radians, joint_1..joint_7) plus names a domain adds
+// with NamedConfigurations::add. A scene's <numeric name="conf_<name>"> (Feeding's beforeTransfer) is looked
+// up first by the executor, as by std.kinova's namedConf.
 #pragma once
 
 #include "Pose.h"

@@ -1,5 +1,7 @@
 #include "robot/RobotActions.h"
 
+#include "world/NamedConfigurations.h"
+
 #include "robot/CallArguments.h"
 #include "robot/StandardGrasps.h"
 #include "robot/SurfaceGeometry.h"
@@ -137,7 +139,9 @@ std::optional<RobotActionResult> RobotActions::execute(world::World& w, const si
   }
   if (n == "moveArmToNamed") {
     if (auto e = checkArguments(call, {kNameArg}); !e.empty()) return illFormed(e);
-    const auto q = named_.find(a[0].text);
+    // The scene's own names first, as std.kinova's namedConf reads them (world/NamedConfigurations.h).
+    auto q = world::namedConfiguration(w.workspace().scene(), a[0].text);
+    if (!q) q = named_.find(a[0].text);
     if (!q) {
       std::string known;
       for (const std::string& name : named_.names()) known += (known.empty() ? "" : ", ") + name;

@@ -1,5 +1,7 @@
 #include "WorldHost.h"
 
+#include "world/NamedConfigurations.h"
+
 #include <mujoco/mujoco.h>
 
 #include <cmath>
@@ -97,20 +99,7 @@ std::optional<Pose3> WorldHost::sideGrasp(const std::string& object, const Pose3
 }
 
 std::optional<ArmConfig> WorldHost::namedConf(const std::string& name) const {
-  const mjModel* m = world_.workspace().model();
-  const int id = mj_name2id(m, mjOBJ_NUMERIC, ("conf_" + name).c_str());
-  if (id >= 0 && m->numeric_size[id] == world::kArmDof) {
-    ArmConfig q{};
-    for (int i = 0; i < world::kArmDof; ++i) q[i] = m->numeric_data[m->numeric_adr[id] + i];
-    return q;
-  }
-  namespace c = world::configs;
-  static const std::map<std::string, ArmConfig> table = {
-      {"zero", c::kZero}, {"home", c::kHome}, {"retract", c::kRetract}, {"abovePlate", c::kAbovePlate},
-      {"utensilAboveMount", c::kUtensilAboveMount}, {"drinkGaze", c::kDrinkGaze}};
-  auto it = table.find(name);
-  if (it == table.end()) return std::nullopt;
-  return it->second;
+  return world::namedConfiguration(scene(), name);
 }
 
 std::optional<world::SurfaceFace> WorldHost::surfaceTop(const std::string& geom) const {

@@ -55,8 +55,7 @@ class WorldHost final : public rt::BuiltinHost {
   // scene's books (domains/robot/StandardGrasps.h bookToolInBody).
   std::optional<world::Pose3> sideGrasp(const std::string& object, const world::Pose3& objectPose, double yaw);
 
-  // A named arm configuration: the scene's <numeric name="conf_<name>"> (7 values) if present, else
-  // zero, home, retract, abovePlate, utensilAboveMount, drinkGaze (WorldState.h configs).
+  // A named arm configuration (world/NamedConfigurations.h: the scene's conf_<name>, else the standard table).
   std::optional<world::ArmConfig> namedConf(const std::string& name) const;
   std::optional<world::SurfaceFace> surfaceTop(const std::string& geom) const;
   // The box geom whose top face the object at its reference pose rests on (bottom within 1 cm, centre over

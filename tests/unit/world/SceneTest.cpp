@@ -1,5 +1,7 @@
 // Scene loading: good scenes load, bad or missing files give a clear error instead of a crash.
 #include "MujocoErrors.h"
+#include "NamedConfigurations.h"
+#include "WorldState.h"
 #include "WorldTestSupport.h"
 
 #include <filesystem>
@@ -82,4 +84,18 @@ TEST(WorldScene, InvalidAttributeIsAParseError) {
 }
 
 }  // namespace
+}  // namespace cbtl::world
+
+namespace cbtl::world {
+
+TEST(NamedConfigurations, TheSceneNamesComeFirstThenTheStandardTable) {
+  const auto feeding = test::feedingScene();
+  const auto before = namedConfiguration(*feeding, "beforeTransfer");
+  ASSERT_TRUE(before.has_value());
+  EXPECT_NEAR((*before)[0], -2.60005, 1e-9);  // feeding.xml's conf_beforeTransfer
+  EXPECT_EQ(namedConfiguration(*feeding, "retract"), configs::kRetract);
+  EXPECT_FALSE(namedConfiguration(*feeding, "noSuchPose").has_value());
+  EXPECT_FALSE(namedConfiguration(*test::homeScene(), "beforeTransfer").has_value());  // Feeding's only
+}
+
 }  // namespace cbtl::world

@@ -6,7 +6,7 @@ BUILD_TYPE ?= RelWithDebInfo
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure build demo test asan fuzz bench golden-update clean
+.PHONY: all deps configure build demo test asan fuzz fuzz-runtime bench golden-update clean
 
 all: build
 
@@ -34,7 +34,11 @@ asan:
 # The compiler fuzzer for FUZZ_SECONDS (default 60), built with clang in build-fuzz/.
 FUZZ_SECONDS ?= 60
 fuzz: deps
-	scripts/fuzz.sh $(FUZZ_SECONDS)
+	scripts/fuzz.sh $(FUZZ_SECONDS) cbtlc
+
+# The runtime fuzzer (load, solve, re-check, unroll, learn) for FUZZ_SECONDS, in the same build-fuzz/.
+fuzz-runtime: deps
+	scripts/fuzz.sh $(FUZZ_SECONDS) runtime
 
 bench: build
 	scripts/bench.sh $(BUILD_DIR)

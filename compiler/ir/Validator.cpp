@@ -1,21 +1,13 @@
 #include "ir/Validator.h"
 
 #include "ir/Pattern.h"
+#include "ir/ReadSet.h"
 
 #include <fmt/format.h>
 
 #include <set>
 
 namespace cbtl::ir {
-namespace {
-
-void varsOf(const Expr& e, std::set<VarId>& out) {
-  if (e.op == "var" && e.id >= 0) out.insert(static_cast<VarId>(e.id));
-  for (VarId v : e.vars) out.insert(v);
-  for (const auto& c : e.children) varsOf(c, out);
-}
-
-}  // namespace
 
 std::vector<std::string> validate(const ConstraintGraph& g) {
   std::vector<std::string> problems;
@@ -28,7 +20,7 @@ std::vector<std::string> validate(const ConstraintGraph& g) {
     const auto& c = g.constraints[i];
     if (c.id != i) problems.push_back(fmt::format("constraint {} has id {}", i, c.id));
     std::set<VarId> read;
-    varsOf(c.expr, read);
+    collectReadVars(g, c.expr, read);
     for (VarId v : read) {
       if (v >= n) problems.push_back(fmt::format("constraint {} reads unknown variable {}", c.name, v));
     }

@@ -1,6 +1,7 @@
 #include "lower/Lowering.h"
 
 #include "ir/Pattern.h"
+#include "ir/ReadSet.h"
 #include "lower/UsageWarnings.h"
 #include "sema/GeneratorChecker.h"
 #include "sema/Type.h"
@@ -48,6 +49,7 @@ class Lowerer {
     global.scope = "global";
     lowerBody(symbols_.globalScope, global, globalVars_, globalConstraints_, globalSamplers_, globalCosts_);
     globalCtx_ = global;
+    lowerFunctionBodies();
 
     bool anyTask = false;
     std::set<std::string> usedSkills;
@@ -78,6 +80,7 @@ class Lowerer {
         if (d->kind == DeclKind::Personal) lowerGenerator(static_cast<const PersonalDecl&>(*d));
       }
     }
+    followCallsInReadSets();
     if (!tooLarge_) reportUsageWarnings(g_, declOf_, diags_);
   }
 
@@ -448,6 +451,29 @@ class Lowerer {
     return it == members.end() ? 0xffffffffu : it->second;
   }
 
+  void lowerFunctionBodies() {
+    for (const auto& [index, decl] : pendingBodies_) {
+      Ctx none;
+      g_.functions[index].body = lower(decl->body.get(), none);
+    }
+    pendingBodies_.clear();
+  }
+
+  // Read sets as the runtime evaluates them: with every called function's body inlined (ir/ReadSet.h).
+  // Done once everything is lowered, so a function declared after its caller is followed too.
+  void followCallsInReadSets() {
+    auto readSet = [this](const ir::Expr& e, std::vector<ir::VarId>& vars) {
+      std::set<ir::VarId> all(vars.begin(), vars.end());
+      ir::collectReadVars(g_, e, all);
+      vars.assign(all.begin(), all.end());
+    };
+    for (auto& c : g_.constraints) readSet(c.expr, c.vars);
+    for (auto& c : g_.costs) readSet(c.expr, c.vars);
+    for (auto& smp : g_.samplers) {
+      for (const auto& a : smp.args) readSet(a, smp.reads);
+    }
+  }
+
   static void collectVars(const ir::Expr& x, std::set<ir::VarId>& out) {
     if (x.op == "var" && x.id >= 0) out.insert(static_cast<ir::VarId>(x.id));
     for (ir::VarId v : x.vars) out.insert(v);
@@ -560,10 +586,8 @@ class Lowerer {
         for (const auto& tp : c.typeParams) f.typeParams.push_back(tp.name);
         for (const auto& p : c.params) f.params.push_back({p.name.name, typeDesc(p.type.resolved)});
         f.result = c.result ? typeDesc(c.result->resolved) : ir::TypeDesc{"void", "void"};
-        if (c.body) {
-          Ctx none;
-          f.body = lower(c.body.get(), none);
-        }
+        // The body is lowered once the global variables exist (lowerFunctionBodies): it may read them.
+        if (c.body) pendingBodies_.emplace_back(g_.functions.size(), &c);
         f.span = span(d.range);
         g_.functions.push_back(std::move(f));
         break;
@@ -1089,6 +1113,7 @@ class Lowerer {
   DiagnosticEngine& diags_;
   ir::ConstraintGraph& g_;
   Ctx globalCtx_;
+  std::vector<std::pair<std::size_t, const CallableDecl*>> pendingBodies_;  // function index, its declaration
   std::size_t graphSize_ = 0;
   bool tooLarge_ = false;
   std::vector<const VarDecl*> declOf_;  // the declaration of each graph variable, by id

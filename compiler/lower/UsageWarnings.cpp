@@ -1,6 +1,7 @@
 #include "lower/UsageWarnings.h"
 
 #include "ir/Pattern.h"
+#include "ir/ReadSet.h"
 
 #include <fmt/format.h>
 
@@ -10,18 +11,12 @@
 namespace cbtl {
 namespace {
 
-void varsOf(const ir::Expr& e, std::set<ir::VarId>& out) {
-  if (e.op == "var" && e.id >= 0) out.insert(static_cast<ir::VarId>(e.id));
-  for (ir::VarId v : e.vars) out.insert(v);
-  for (const auto& c : e.children) varsOf(c, out);
-}
-
-void varsOf(const ir::Action& a, std::set<ir::VarId>& out) {
-  for (const auto& x : a.args) varsOf(x, out);
-  if (a.set) varsOf(*a.set, out);
-  if (a.condition) varsOf(*a.condition, out);
-  for (const auto& b : a.body) varsOf(b, out);
-  for (const auto& b : a.elseBody) varsOf(b, out);
+void varsOf(const ir::ConstraintGraph& g, const ir::Action& a, std::set<ir::VarId>& out) {
+  for (const auto& x : a.args) ir::collectReadVars(g, x, out);
+  if (a.set) ir::collectReadVars(g, *a.set, out);
+  if (a.condition) ir::collectReadVars(g, *a.condition, out);
+  for (const auto& b : a.body) varsOf(g, b, out);
+  for (const auto& b : a.elseBody) varsOf(g, b, out);
 }
 
 // Marks the variables that a generator's parameter can match (type and pattern; captures are not
@@ -77,7 +72,7 @@ void reportUsageWarnings(const ir::ConstraintGraph& graph, const std::vector<con
   matchedByGenerators(graph, read);
   for (const auto& t : graph.tasks) {
     for (const auto& inst : t.instances) {
-      for (const auto& a : inst.actions) varsOf(a, read);
+      for (const auto& a : inst.actions) varsOf(graph, a, read);
     }
   }
 

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace cbtl::approach {
 
 namespace {
@@ -69,7 +71,7 @@ void run(const rt::Program& program, const std::vector<CompiledAction>& actions,
     if (a.kind == "call") {
       sim::ActionCall call;
       call.name = a.name;
-      double v[64];
+      double v[rt::kMaxValueWidth];
       for (std::size_t i = 0; i < a.args.size(); ++i) {
         pool.eval(a.args[i], ctx, v);
         call.args.push_back(toSimValue(program, a.argTypes[i], v));
@@ -81,7 +83,9 @@ void run(const rt::Program& program, const std::vector<CompiledAction>& actions,
         lo = pool.evalScalar(*a.lo, ctx);
         hi = pool.evalScalar(*a.hi, ctx);
       }
-      for (double i = lo; i <= hi && out.size() < kMaxCalls; i += 1) {
+      // Bounded by count, not by the calls made: a body that emits nothing must not spin over a huge range.
+      std::size_t iterations = 0;
+      for (double i = lo; i <= hi && out.size() < kMaxCalls && iterations < kMaxCalls; i += 1, ++iterations) {
         ctx.frame[a.binderSlot] = i;
         run(program, a.body, ctx, out);
       }
@@ -101,13 +105,16 @@ TaskActions::TaskActions(rt::Program& program, const ir::Task& task) {
   for (const auto& inst : task.instances) {
     for (const auto& a : inst.actions) actions_.push_back(c.compile(a));
   }
-  frameWidth_ = c.top + 256;
+  frameWidth_ = c.top + 1;
 }
 
 std::vector<sim::ActionCall> TaskActions::unroll(const rt::Program& program, const std::vector<double>& solution,
                                                  const std::vector<double>& observation) const {
-  std::vector<double> frame(frameWidth_, 0.0);
-  rt::EvalContext ctx{solution.data(), observation.data(), frame.data(), program.callContext()};
+  std::vector<double> frame(std::max<std::size_t>(frameWidth_, program.frameSize()) + 1, 0.0);
+  std::vector<double> x = solution, obs = observation;
+  x.resize(std::max<std::size_t>(program.assignmentWidth(), 1), 0.0);
+  obs.resize(std::max<std::size_t>(program.observationWidth(), 1), 0.0);
+  rt::EvalContext ctx{x.data(), obs.data(), frame.data(), program.callContext()};
   std::vector<sim::ActionCall> out;
   run(program, actions_, ctx, out);
   return out;

@@ -156,6 +156,12 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
 
   ExperimentResult result;
   Progress progress(config.progress, config.steps);
+  auto countRecheck = [&result](const Plan& plan) {
+    if (!plan.rechecked) return;
+    ++result.rechecks;
+    if (plan.recheck.holds()) return;
+    if (result.recheckViolations++ == 0) result.firstRecheckViolation = plan.recheck.violations.front();
+  };
   const auto taskIdx = static_cast<std::size_t>(task);
 
   auto evaluate = [&](std::int64_t step) {
@@ -172,6 +178,7 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
         lp.syncWorld(*evalWorld);
         const auto obs = observationVector(program, evalWorld->observe());
         Plan plan = makePlan(lp, lp.taskFor(*evalWorld, taskIdx), obs, evaluationChoice(), fallback, evalSolver, evalUser);
+        countRecheck(plan);
         if (plan.replanned) ++point.replans;
         if (!plan.ok || plan.calls.empty()) break;  // the robot cannot do this task: the episode fails
         std::size_t next = 0;
@@ -204,6 +211,7 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
 
   std::vector<sim::ActionCall> calls;
   std::size_t next = 0;
+  StepWorld planWorld;  // the solution and observation the current calls come from: what feedback is about
   for (std::int64_t t = 0; t <= config.steps; ++t) {
     if (t % config.evalEvery == 0 || t == config.steps) evaluate(t);
     if (t == config.steps) break;
@@ -218,6 +226,7 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
       const auto obs = observationVector(program, trainWorld->observe());
       Plan plan = makePlan(lp, lp.taskFor(*trainWorld, taskIdx), obs, trainingChoice(config.approach, approachRng), fallback,
                            trainSolver, user);
+      countRecheck(plan);
       ++result.trainSolves;
       iterations = plan.solve.iterations + (plan.failedFull ? plan.failedFull->iterations : 0);
       result.solverIterations += iterations;
@@ -227,11 +236,12 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
       if (!plan.ok) ++result.trainSolveFailures;
       calls = plan.ok ? std::move(plan.calls) : std::vector<sim::ActionCall>{};
       next = 0;
+      planWorld = StepWorld{plan.ok ? std::move(plan.solve.assignment) : std::vector<double>{}, obs};
     }
     sim::StepResult r = next < calls.size() ? executeStep(*trainWorld, calls, next) : trainWorld->idle();
     std::size_t labels = 0;
     if (learning && !r.feedback.empty()) {
-      const LearnReport report = lp.learner().learn(r.feedback, user);
+      const LearnReport report = lp.learner().learn(r.feedback, user, planWorld);
       labels = report.labels;
       if (!report.problems.empty()) throw std::runtime_error("feedback does not fit its declaration: " + report.problems.front());
       if (!report.modelErrors.empty() && result.textModelErrors == 0) result.firstTextModelError = report.modelErrors.front();

@@ -76,6 +76,10 @@ struct ExperimentResult {
   // Learning steps whose text model kept its old theta (e.g. a language-model server failed), and the first one.
   std::int64_t textModelErrors = 0;
   std::string firstTextModelError;
+  // Solutions re-checked before execution (training and evaluation) and those refused by the re-check
+  // (Recheck.h: a runtime bug; never executed), with the first violation.
+  std::int64_t rechecks = 0, recheckViolations = 0;
+  std::string firstRecheckViolation;
   double meanEval() const;
 };
 

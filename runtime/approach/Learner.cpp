@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <optional>
 
 namespace cbtl::approach {
@@ -31,9 +32,12 @@ Learner::Learner(const rt::Program& program) : program_(program) {
   }
 }
 
-LearnReport Learner::learn(const std::vector<sim::FeedbackEvent>& events, model::UserModel& user) const {
+LearnReport Learner::learn(const std::vector<sim::FeedbackEvent>& events, model::UserModel& user, const StepWorld& world) const {
   LearnReport report;
   const auto& pool = program_.pool();
+  std::vector<double> assignment = world.assignment, observation = world.observation;
+  assignment.resize(std::max<std::size_t>(program_.assignmentWidth(), 1), 0.0);
+  observation.resize(std::max<std::size_t>(program_.observationWidth(), 1), 0.0);
   std::vector<double> frame;
   for (const auto& ev : events) {
     for (std::size_t gi = 0; gi < program_.generators().size(); ++gi) {
@@ -46,7 +50,7 @@ LearnReport Learner::learn(const std::vector<sim::FeedbackEvent>& events, model:
                                                 r.binderTypes.size()));
           continue;
         }
-        frame.assign(r.frameWidth + 256, 0.0);
+        frame.assign(std::max<std::size_t>(r.frameWidth, program_.frameSize()) + 1, 0.0);
         bool ok = true;
         for (std::size_t i = 0; i < ev.args.size() && ok; ++i) {
           std::string error;
@@ -56,7 +60,7 @@ LearnReport Learner::learn(const std::vector<sim::FeedbackEvent>& events, model:
           }
         }
         if (!ok) continue;
-        rt::EvalContext ctx{nullptr, nullptr, frame.data(), program_.callContext()};
+        rt::EvalContext ctx{assignment.data(), observation.data(), frame.data(), program_.callContext()};
         if (r.condition && !pool.evalBool(*r.condition, ctx)) continue;
         std::string key;
         const auto& binders = keyBinders_[gi][ri];
@@ -72,7 +76,7 @@ LearnReport Learner::learn(const std::vector<sim::FeedbackEvent>& events, model:
           const std::uint32_t feature = r.features[l];
           if (f.isTable()) {
             if (feature == UINT32_MAX) continue;
-            double v[64];
+            double v[rt::kMaxValueWidth];
             pool.eval(feature, ctx, v);
             const auto& spec = *g.factors[static_cast<std::size_t>(factor)].source;
             f.observe(program_.render(program_.typeOf(spec.feature->type), v), holds);

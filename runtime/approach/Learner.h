@@ -20,6 +20,14 @@
 
 namespace cbtl::approach {
 
+// The world a step's feedback is about: the solution the robot acted on and the observation its CSP was
+// solved against. Rules read them through their features (Books' handoverInROM measures a handover from the
+// user's hand pose, an observation). Missing or short vectors read as zeros, never past their end.
+struct StepWorld {
+  std::vector<double> assignment;
+  std::vector<double> observation;
+};
+
 struct LearnReport {
   std::size_t labels = 0;                 // labelled examples added
   std::vector<std::string> problems;      // events that did not fit their declaration
@@ -30,7 +38,7 @@ class Learner {
  public:
   // Throws rt::RuntimeError when a rule does not bind a `per` key of its generator.
   explicit Learner(const rt::Program& program);
-  LearnReport learn(const std::vector<sim::FeedbackEvent>& events, model::UserModel& user) const;
+  LearnReport learn(const std::vector<sim::FeedbackEvent>& events, model::UserModel& user, const StepWorld& world = {}) const;
 
  private:
   const rt::Program& program_;

@@ -16,6 +16,11 @@ Plan makePlan(const LoadedProgram& lp, std::size_t task, const std::vector<doubl
     plan.replanned = true;
   }
   plan.ok = plan.solve.solved();
+  if (plan.ok) {
+    plan.rechecked = true;
+    plan.recheck = solver::recheck(plan.csp, plan.solve.assignment);
+    plan.ok = plan.recheck.holds();
+  }
   if (plan.ok) plan.calls = lp.actions(task).unroll(lp.program(), plan.solve.assignment, observation);
   return plan;
 }

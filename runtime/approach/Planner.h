@@ -1,9 +1,10 @@
-// Planner.h — one request: build the CSP the approach asks for, solve it, fall back if allowed, and unroll
-// the solution into action calls.
+// Planner.h — one request: build the CSP the approach asks for, solve it, fall back if allowed, re-check the
+// solution from scratch, and unroll it into action calls. Nothing reaches `calls` without passing the re-check.
 #pragma once
 
 #include "Approach.h"
 #include "LoadedProgram.h"
+#include "Recheck.h"
 #include "Solver.h"
 
 #include <optional>
@@ -18,6 +19,11 @@ struct Plan {
   solver::SolveResult solve;                     // its result
   std::optional<solver::SolveResult> failedFull; // the failed full solve, when replanned
   std::vector<sim::ActionCall> calls;
+  // The independent re-check of the solution (Recheck.h), run on every Solved result. A solution that fails it
+  // is refused: `ok` is false and `calls` is empty.
+  bool rechecked = false;
+  solver::RecheckResult recheck;
+  bool refused() const { return rechecked && !recheck.holds(); }
 };
 
 Plan makePlan(const LoadedProgram& lp, std::size_t task, const std::vector<double>& observation, CspChoice choice,

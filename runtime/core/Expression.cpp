@@ -16,9 +16,18 @@ inline void copySmall(const double* from, std::size_t n, double* to) {
 }
 // Calls with a scalar result whose arguments take at most this many doubles take the direct path.
 constexpr std::size_t kMaxScalarArgs = 16;
-// Values wider than this do not occur (Conf<robot> is at most 64 joints, SE3 is 7).
-constexpr std::size_t kMaxWidth = 64;
+// Program guarantees no node is wider (Expression.h).
+constexpr std::size_t kMaxWidth = kMaxValueWidth;
 }  // namespace
+
+// A table entry for a run-time index. Indices come from typed values, but a sampler or an observation can
+// hand over anything (NaN, 1e300): clamp into [0, count) rather than read past the table or convert an
+// out-of-range double (undefined behaviour). Program never builds an empty table.
+inline std::uint32_t tableIndex(double idx, std::uint32_t count) {
+  if (!(idx > 0)) return 0;  // negative and NaN
+  if (idx >= static_cast<double>(count)) return count - 1;
+  return static_cast<std::uint32_t>(idx);
+}
 
 // Whether evalScalar computes this node itself (rather than falling back to eval, which would loop).
 bool ExprPool::scalarPath(const PackedNode& n) const {
@@ -63,9 +72,7 @@ double ExprPool::evalScalar(std::uint32_t root, const EvalContext& ctx) const {
     case Op::ReadObs: return ctx.observation[n.a];
     case Op::ReadFrame: return ctx.frame[n.a];
     case Op::TableVar: case Op::TableObs: case Op::TableConst: {
-      const double idx = S(0);
-      std::uint32_t i = idx < 0 ? 0 : static_cast<std::uint32_t>(idx);
-      if (i >= n.count) i = n.count - 1;
+      const std::uint32_t i = tableIndex(S(0), n.count);
       const std::uint32_t at = tables_[n.a + i];
       return n.op == Op::TableVar ? ctx.assignment[at] : n.op == Op::TableObs ? ctx.observation[at] : constants_[at];
     }
@@ -158,9 +165,7 @@ void ExprPool::eval(std::uint32_t root, const EvalContext& ctx, double* out) con
       copySmall(ctx.frame + n.a, n.width, out);
       return;
     case Op::TableVar: case Op::TableObs: case Op::TableConst: {
-      const double idx = evalScalar(kid(n, 0), ctx);
-      std::uint32_t i = idx < 0 ? 0 : static_cast<std::uint32_t>(idx);
-      if (i >= n.count) i = n.count - 1;  // indices come from typed enum values; clamp rather than read past
+      const std::uint32_t i = tableIndex(evalScalar(kid(n, 0), ctx), n.count);
       const std::uint32_t at = tables_[n.a + i];
       const double* base = n.op == Op::TableVar ? ctx.assignment : n.op == Op::TableObs ? ctx.observation : constants_.data();
       copySmall(base + at, n.width, out);
@@ -240,7 +245,7 @@ void ExprPool::eval(std::uint32_t root, const EvalContext& ctx, double* out) con
       eval(evalBool(kid(n, 0), ctx) ? kid(n, 1) : kid(n, 2), ctx, out);
       return;
     case Op::Call: {
-      double args[kMaxWidth * 4];
+      double args[kMaxCallArgsWidth];
       std::size_t at = 0;
       for (std::size_t i = 0; i < n.kidCount; ++i) {
         const std::uint32_t k = kid(n, i);
@@ -262,6 +267,12 @@ void ExprPool::eval(std::uint32_t root, const EvalContext& ctx, double* out) con
         k = 2;
       }
       const std::uint32_t where = kid(n, k), body = kid(n, k + 1);
+      // A range bound read at run time can be anything; a range too long to walk (or with a non-finite
+      // bound) makes the quantifier false, which rejects the candidate instead of hanging the solver.
+      if (n.count == 0 && lo <= hi && !(hi - lo < static_cast<double>(kMaxQuantifierRange))) {
+        out[0] = 0;
+        return;
+      }
       bool result = isForall;
       for (double v = lo; v <= hi; v += 1) {
         ctx.frame[n.a] = v;

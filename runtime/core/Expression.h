@@ -9,11 +9,21 @@
 
 #include "Builtins.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 namespace cbtl::rt {
+
+// Limits the evaluator's stack buffers rely on. Program rejects, at load and with the source location, any
+// expression whose value is wider than kMaxValueWidth doubles or any call whose arguments take more than
+// kMaxCallArgsWidth doubles, so no fixed-size buffer is ever indexed past its end by program data.
+inline constexpr std::size_t kMaxValueWidth = 64;
+inline constexpr std::size_t kMaxCallArgsWidth = 4 * kMaxValueWidth;
+// An integer-range quantifier whose run-time bounds span more members than this (or are not finite) is
+// false: a candidate that would take that long to check is rejected rather than hanging the solver.
+inline constexpr std::size_t kMaxQuantifierRange = std::size_t{1} << 20;
 
 enum class Op : std::uint8_t {
   Const,        // pool constants [a, a + width)
@@ -93,9 +103,11 @@ class ExprPool {
     return at;
   }
   std::uint16_t width(std::uint32_t i) const { return nodes_[i].width; }
+  const PackedNode& node(std::uint32_t i) const { return nodes_[i]; }
   std::size_t size() const { return nodes_.size(); }
 
-  // Evaluates node `root` into out[0 .. width). Precondition: out has room for the node's width.
+  // Evaluates node `root` into out[0 .. width). Preconditions: out has room for the node's width; the context's
+  // frame has at least Program::frameSize() slots.
   void eval(std::uint32_t root, const EvalContext& ctx, double* out) const;
   // The first component of a node's value; width-1 nodes (almost all of them) take a direct path with no
   // output buffers.

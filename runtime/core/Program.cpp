@@ -69,6 +69,7 @@ Program::Program(const ir::ConstraintGraph& graph, Builtins builtins) : graph_(g
   layoutObservations();
   compileInitialValues();
   compileConstraints();
+  compileDomainChecks();
   compileSamplers();
   compileGenerators();
   itemDescriptors_ = ItemDescriptors(graph_, [this](const ir::Expr& e) { return constantStrings(e); });
@@ -230,9 +231,9 @@ std::vector<double> Program::initialAssignment(const std::vector<double>& observ
   std::vector<double> x(assignmentWidth_, 0.0);
   std::vector<double> obs = observation;
   obs.resize(std::max(obsWidth_, std::size_t{1}), 0.0);
-  std::vector<double> frame(256, 0.0);
+  std::vector<double> frame(frameSize_, 0.0);
   EvalContext ctx{x.data(), obs.data(), frame.data(), &callContext_};
-  double value[64];
+  double value[kMaxValueWidth];
   for (const auto& [var, node] : inits_) {
     const VarSlot& s = slots_[var];
     pool_.eval(node, ctx, value);
@@ -402,7 +403,15 @@ std::uint32_t Program::compileCall(const ir::Expr& e, Scope& scope) {
   n.fn = impl;
   n.width = std::max<std::uint16_t>(typeOf(e.type).width, 1);
   n.kids = args;
-  for (std::uint32_t a : args) n.kidWidths.push_back(pool_.width(a));
+  std::size_t argsWidth = 0;
+  for (std::uint32_t a : args) {
+    n.kidWidths.push_back(pool_.width(a));
+    argsWidth += pool_.width(a);
+  }
+  if (argsWidth > kMaxCallArgsWidth) {
+    throw RuntimeError(at, fmt::format("the arguments of '{}' take {} doubles, more than the runtime's limit of {}", e.text,
+                                       argsWidth, kMaxCallArgsWidth));
+  }
   return pool_.add(std::move(n));
 }
 
@@ -470,6 +479,21 @@ std::uint32_t Program::compileQuantifier(const ir::Expr& e, Scope& scope, std::s
 }
 
 std::uint32_t Program::compile(const ir::Expr& e, Scope& scope) {
+  const std::uint32_t node = compileExpr(e, scope);
+  if (pool_.width(node) > kMaxValueWidth) {
+    throw RuntimeError(currentSpan_ ? where(*currentSpan_) : "",
+                       fmt::format("a value of {} doubles ('{}' of type {}) is wider than the runtime's limit of {}",
+                                   pool_.width(node), e.text.empty() ? e.op : e.text, e.type.spelling, kMaxValueWidth));
+  }
+  const PackedNode& packed = pool_.node(node);
+  if ((packed.op == Op::TableVar || packed.op == Op::TableObs || packed.op == Op::TableConst) && packed.count == 0) {
+    throw RuntimeError(currentSpan_ ? where(*currentSpan_) : "", fmt::format("'{}' indexes an empty family", e.text));
+  }
+  if (scope.frameTop != nullptr) frameSize_ = std::max<std::size_t>(frameSize_, *scope.frameTop);
+  return node;
+}
+
+std::uint32_t Program::compileExpr(const ir::Expr& e, Scope& scope) {
   const std::string at = currentSpan_ ? where(*currentSpan_) : "";
   const ValueType t = typeOf(e.type);
   const std::string& op = e.op;
@@ -482,8 +506,9 @@ std::uint32_t Program::compile(const ir::Expr& e, Scope& scope) {
     return pool_.add(Node{Op::ReadVar, s.type.width, s.offset, 0, 0, nullptr, {}, {}});
   }
   if (op == "param") {
-    if (e.id < 0 || static_cast<std::size_t>(e.id) >= scope.params.size()) {
-      throw RuntimeError(at, fmt::format("parameter '{}' is not bound here", e.text));
+    if (e.id < 0 || static_cast<std::size_t>(e.id) >= scope.params.size() || scope.params[static_cast<std::size_t>(e.id)] == UINT32_MAX) {
+      // A learning rule's labels and condition see only the parameters its event binds.
+      throw RuntimeError(at, fmt::format("parameter '{}' is not bound here (a learning rule must bind every parameter it reads)", e.text));
     }
     return scope.params[static_cast<std::size_t>(e.id)];
   }
@@ -602,10 +627,15 @@ std::uint32_t Program::compile(const ir::Expr& e, Scope& scope) {
   if (op == "forall" || op == "exists") return compileQuantifier(e, scope, 0);
   if (op == "tuple") {
     Node n{Op::Concat, 0, 0, 0, 0, nullptr, {}, {}};
+    std::size_t width = 0;
     for (const auto& c : e.children) {
       n.kids.push_back(compile(c, scope));
-      n.width = static_cast<std::uint16_t>(n.width + pool_.width(n.kids.back()));
+      width += pool_.width(n.kids.back());
+      if (width > kMaxValueWidth) {
+        throw RuntimeError(at, fmt::format("a tuple of more than {} doubles is wider than the runtime's limit", kMaxValueWidth));
+      }
     }
+    n.width = static_cast<std::uint16_t>(width);
     return pool_.add(std::move(n));
   }
   throw RuntimeError(at, fmt::format("expression '{}' is not supported at run time", op));
@@ -620,6 +650,26 @@ void Program::compileConstraints() {
     std::uint32_t top = 0;
     scope.frameTop = &top;
     constraints_.push_back(CompiledConstraint{&c, compile(c.expr, scope)});
+  }
+  currentSpan_ = nullptr;
+}
+
+void Program::compileDomainChecks() {
+  domainChecks_.resize(graph_.variables.size());
+  for (const auto& v : graph_.variables) {
+    currentSpan_ = &v.span;
+    DomainCheck& check = domainChecks_[v.id];
+    Scope scope;
+    std::uint32_t top = 0;
+    scope.frameTop = &top;
+    for (const auto& b : v.domain.bounds) {
+      check.lo.push_back(b.lo ? compile(*b.lo, scope) : UINT32_MAX);
+      check.hi.push_back(b.hi ? compile(*b.hi, scope) : UINT32_MAX);
+    }
+    if (v.domain.set && v.domain.set->op != "obs") {
+      ValueType elem;
+      check.members = setMembers(*v.domain.set, elem, scope);
+    }
   }
   currentSpan_ = nullptr;
 }
@@ -678,8 +728,12 @@ void Program::compileSamplers() {
       for (const auto& a : s.args) {
         cs.args.push_back(compile(a, scope));
         cs.argWidths.push_back(pool_.width(cs.args.back()));
+        cs.argsWidth += cs.argWidths.back();
       }
     }
+    for (ir::VarId v : cs.writes) cs.outWidth += slots_.at(v).type.width;
+    maxSamplerOut_ = std::max(maxSamplerOut_, cs.outWidth);
+    maxSamplerArgs_ = std::max(maxSamplerArgs_, cs.argsWidth);
     samplers_.push_back(std::move(cs));
   }
   currentSpan_ = nullptr;
@@ -746,6 +800,7 @@ void Program::compileGenerators() {
       }
       if (r.condition) cr.condition = compile(*r.condition, scope);
       cr.frameWidth = top;
+      frameSize_ = std::max<std::size_t>(frameSize_, top);
       cg.rules.push_back(std::move(cr));
     }
     for (const auto& p : g.params) cg.paramTypes.push_back(typeOf(p.type));

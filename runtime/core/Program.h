@@ -40,6 +40,16 @@ struct CompiledSampler {
   std::vector<std::uint32_t> args;    // argument nodes
   std::vector<std::uint16_t> argWidths;
   std::vector<UniformPlan> uniform;   // per written variable, for `uniform`
+  std::size_t outWidth = 0;           // doubles it writes: the widths of `writes`, added up
+  std::size_t argsWidth = 0;          // doubles its arguments take
+};
+
+// A variable's declared domain compiled for the independent re-check of solutions (solver/Recheck.h): per
+// bounded component its bound nodes (UINT32_MAX: that side is unbounded), and the allowed values of a set
+// domain. Observed-set domains are checked by their `.domain` constraints instead.
+struct DomainCheck {
+  std::vector<std::uint32_t> lo, hi;  // component order as declared (SE3: x y z)
+  std::optional<std::vector<double>> members;
 };
 
 struct CompiledConstraint {
@@ -98,9 +108,17 @@ class Program {
   std::size_t observationWidth() const { return obsWidth_; }
 
   const std::vector<CompiledConstraint>& constraints() const { return constraints_; }
+  const DomainCheck& domainCheck(ir::VarId v) const { return domainChecks_.at(v); }
   const std::vector<CompiledSampler>& samplers() const { return samplers_; }
   const std::vector<CompiledGenerator>& generators() const { return generators_; }
   const std::vector<std::uint32_t>& costs() const { return costs_; }
+  // Frame slots any expression compiled so far may touch (quantifier binders, event arguments): an
+  // EvalContext's frame must hold at least this many. Grows when more expressions are compiled
+  // (personalized instances, actions), so read it after preparing everything.
+  std::size_t frameSize() const { return frameSize_; }
+  // The widest sampler output and argument list of the program: the solver's buffers for a draw.
+  std::size_t maxSamplerOutWidth() const { return maxSamplerOut_; }
+  std::size_t maxSamplerArgsWidth() const { return maxSamplerArgs_; }
   // The textpref::Item of every subject value a text factor can be asked about (ItemDescriptors.h).
   const ItemDescriptors& itemDescriptors() const { return itemDescriptors_; }
 
@@ -123,6 +141,8 @@ class Program {
     std::map<std::string, std::uint32_t> locals;
     std::uint32_t* frameTop = nullptr;  // next free frame slot; binders allocate from here
   };
+  // Throws RuntimeError (located) for a value wider than kMaxValueWidth or a call whose arguments exceed
+  // kMaxCallArgsWidth.
   std::uint32_t compile(const ir::Expr& e, Scope& scope);
 
   // Renders a value (width doubles) for people: enum member names, strings, vectors "(x, y)".
@@ -138,8 +158,10 @@ class Program {
   void layoutObservations();
   void compileInitialValues();
   void compileConstraints();
+  void compileDomainChecks();
   void compileSamplers();
   void compileGenerators();
+  std::uint32_t compileExpr(const ir::Expr& e, Scope& scope);
   std::uint32_t constNode(std::vector<double> values, std::uint16_t width);
   std::uint32_t compileConstRef(const ir::Expr& e, Scope& scope);
   std::uint32_t compileCall(const ir::Expr& e, Scope& scope);
@@ -161,6 +183,7 @@ class Program {
   std::map<std::string, VarSlot> obsSlots_;
   std::size_t obsWidth_ = 0;
   std::vector<CompiledConstraint> constraints_;
+  std::vector<DomainCheck> domainChecks_;
   std::vector<CompiledSampler> samplers_;
   std::vector<CompiledGenerator> generators_;
   std::vector<std::uint32_t> costs_;
@@ -169,6 +192,8 @@ class Program {
   std::map<std::string, const ir::Function*> functions_;
   const ir::Span* currentSpan_ = nullptr;
   int inlineDepth_ = 0;
+  std::size_t frameSize_ = 1;
+  std::size_t maxSamplerOut_ = 0, maxSamplerArgs_ = 0;
 };
 
 }  // namespace cbtl::rt

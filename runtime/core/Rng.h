@@ -23,13 +23,14 @@ class Rng {
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
   // Uniform integer in [lo, hi] (both inclusive); precondition lo <= hi.
   std::int64_t uniformInt(std::int64_t lo, std::int64_t hi) {
-    const std::uint64_t span = static_cast<std::uint64_t>(hi - lo) + 1;
+    // In unsigned arithmetic: hi - lo overflows int64 for bounds of opposite sign beyond 2^62.
+    const std::uint64_t span = static_cast<std::uint64_t>(hi) - static_cast<std::uint64_t>(lo) + 1;
     if (span == 0) return static_cast<std::int64_t>(engine_());
     // Rejection keeps the draw exactly uniform.
     const std::uint64_t limit = UINT64_MAX - UINT64_MAX % span;
     std::uint64_t r;
     do { r = engine_(); } while (r >= limit);
-    return lo + static_cast<std::int64_t>(r % span);
+    return static_cast<std::int64_t>(static_cast<std::uint64_t>(lo) + r % span);
   }
   // Index in [0, n); precondition n > 0.
   std::size_t index(std::size_t n) { return static_cast<std::size_t>(uniformInt(0, static_cast<std::int64_t>(n) - 1)); }

@@ -1,5 +1,7 @@
 #include "Csp.h"
 
+#include <algorithm>
+
 namespace cbtl::solver {
 
 Csp makeCsp(const rt::Program& program, std::uint32_t taskIndex, const std::vector<rt::PersonalInstance>& instances,
@@ -10,6 +12,8 @@ Csp makeCsp(const rt::Program& program, std::uint32_t taskIndex, const std::vect
   csp.taskIndex = taskIndex;
   csp.instances = &instances;
   csp.user = &user;
+  // Every evaluation reads the observation by the program's offsets: a short vector reads as zeros.
+  observation.resize(std::max<std::size_t>(program.observationWidth(), 1), 0.0);
   csp.initial = program.initialAssignment(observation);
   csp.observation = std::move(observation);
   csp.cost = cost;

@@ -45,7 +45,7 @@ double PersonalEvaluator::textProbability(const rt::PersonalInstance& inst, std:
 std::string PersonalEvaluator::key(std::uint32_t instance, const rt::EvalContext& ctx) const {
   const auto& inst = instances_[instance];
   std::string key;
-  double v[64];
+  double v[rt::kMaxValueWidth];
   for (std::size_t i = 0; i < inst.key.size(); ++i) {
     const auto& part = inst.key[i];
     if (i) key += "|";
@@ -66,7 +66,7 @@ PersonalValue PersonalEvaluator::evaluate(std::uint32_t instance, const rt::Eval
   const auto& state = user_.generator(inst.generator);
   Cache& c = cache_[instance];
   bool stale = c.factors == nullptr || c.version != state.version();
-  double v[64];
+  double v[rt::kMaxValueWidth];
   std::size_t at = 0;
   for (const auto& part : inst.key) {
     if (!part.fromValue) continue;

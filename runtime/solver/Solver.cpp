@@ -27,6 +27,8 @@ std::size_t Solver::memoryEntries() const {
 
 namespace {
 
+constexpr double kMaxExactInt = 9007199254740992.0;  // 2^53
+
 inline double* copySmall(const double* from, std::size_t n, double* to) {
   for (std::size_t i = 0; i < n; ++i) to[i] = from[i];
   return to + n;
@@ -64,7 +66,7 @@ SolveResult Solver::solve(const Csp& csp) {
   PersonalEvaluator personal(program, *csp.instances, *csp.user);
 
   std::vector<double> x = csp.initial;
-  std::vector<double> frame(256, 0.0);
+  std::vector<double> frame(std::max<std::size_t>(program.frameSize(), 1), 0.0);
   rt::EvalContext ctx{x.data(), csp.observation.data(), frame.data(), program.callContext()};
 
   // Per constraint: the variables it reads, and the positions in the assignment of their values (the
@@ -172,7 +174,10 @@ SolveResult Solver::solve(const Csp& csp) {
     for (const auto* t = termsOf.begin(v); t != termsOf.end(v); ++t) termDirty[*t] = 1;
   };
 
-  double scratch[512];
+  // Sized from the program: a family of any size can be drawn by one sampler.
+  std::vector<double> scratchBuffer(std::max<std::size_t>(program.maxSamplerOutWidth(), 1));
+  std::vector<double> argsBuffer(std::max<std::size_t>(program.maxSamplerArgsWidth(), 1));
+  double* const scratch = scratchBuffer.data();
   // Writes a sampler's drawn values (laid out variable after variable in `scratch`) into the candidate.
   auto writeDrawn = [&](const std::vector<ir::VarId>& writes) {
     std::size_t from = 0;
@@ -186,16 +191,14 @@ SolveResult Solver::solve(const Csp& csp) {
   auto runSampler = [&](std::uint32_t s) -> bool {
     const rt::CompiledSampler& cs = program.samplers()[s];
     if (cs.impl != nullptr) {
-      double args[512];
+      double* const args = argsBuffer.data();
       std::size_t at = 0;
       for (std::uint32_t a : cs.args) {
         pool.eval(a, ctx, args + at);
         at += pool.width(a);
       }
-      std::size_t outWidth = 0;
-      for (ir::VarId v : cs.writes) outWidth += program.slot(v).type.width;
       if (!cs.impl(*program.callContext(), std::span<const double>(args, at), std::span<const std::uint16_t>(cs.argWidths), rng_,
-                   std::span<double>(scratch, outWidth))) {
+                   std::span<double>(scratch, cs.outWidth))) {
         return false;
       }
       writeDrawn(cs.writes);
@@ -211,14 +214,16 @@ SolveResult Solver::solve(const Csp& csp) {
           case rt::UniformPlan::Kind::Bool: scratch[at] = rng_.coin() ? 1 : 0; break;
           case rt::UniformPlan::Kind::Choice: scratch[at] = plan.choices[rng_.index(plan.choices.size())]; break;
           case rt::UniformPlan::Kind::Int: {
-            const double lo = std::ceil(pool.evalScalar(plan.lo[c], ctx)), hi = std::floor(pool.evalScalar(plan.hi[c], ctx));
+            // Bounds are clamped to the integers a double holds exactly (and int64 can convert).
+            const double lo = std::max(std::ceil(pool.evalScalar(plan.lo[c], ctx)), -kMaxExactInt);
+            const double hi = std::min(std::floor(pool.evalScalar(plan.hi[c], ctx)), kMaxExactInt);
             if (!(lo <= hi)) return false;
             scratch[at] = static_cast<double>(rng_.uniformInt(static_cast<std::int64_t>(lo), static_cast<std::int64_t>(hi)));
             break;
           }
           case rt::UniformPlan::Kind::Real: {
             const double lo = pool.evalScalar(plan.lo[c], ctx), hi = pool.evalScalar(plan.hi[c], ctx);
-            if (!(lo <= hi)) return false;
+            if (!(lo <= hi) || !std::isfinite(hi - lo)) return false;
             scratch[at] = rng_.uniform(lo, hi);
             break;
           }

@@ -48,11 +48,18 @@ int runTrial(const RunArgs& a) {
                r.evals.empty() ? 0.0 : r.evals.front().mean, r.evals.empty() ? 0.0 : r.evals.back().mean, r.evals.size(),
                r.meanEval());
     fmt::print("{:.2f} s wall clock; {} training solver iterations\n", seconds, r.solverIterations);
+    fmt::print("{} solutions re-checked before execution, {} refused\n", r.rechecks, r.recheckViolations);
     if (r.textModelErrors > 0) {
       fmt::print("{} text-model updates failed (the old theta was kept); the first: {}\n", r.textModelErrors,
                  r.firstTextModelError);
     }
     if (!a.out.empty()) fmt::print("wrote {}/train.csv, eval.csv, config.json, profile.json, models/\n", a.out);
+  }
+  if (r.recheckViolations > 0) {
+    // Never executed, but a solution the solver accepted broke a hard constraint: a runtime bug.
+    fmt::print(stderr, "cbtl run: internal error: {} accepted solutions failed the independent re-check and were refused; the first: {}\n",
+               r.recheckViolations, r.firstRecheckViolation);
+    return 70;
   }
   return 0;
 }

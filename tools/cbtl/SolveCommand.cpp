@@ -102,6 +102,16 @@ int runSolve(const SolveArgs& a) {
     for (const auto& c : plan.calls) fmt::print("  {}\n", renderCall(c));
   }
   if (a.explain || !plan.ok) explain(plan);
+  if (plan.rechecked) {
+    fmt::print("re-check: {} constraints and {} variables evaluated from scratch: {}\n", plan.recheck.constraintsChecked,
+               plan.recheck.variablesChecked, plan.recheck.holds() ? "all hold" : "VIOLATED");
+  }
+  if (plan.refused()) {
+    fmt::print(stderr, "cbtl solve: internal error: the solver accepted a solution that fails the independent re-check; it was refused:\n");
+    for (const auto& v : plan.recheck.violations) fmt::print(stderr, "  {}\n", v);
+    fmt::print(stderr, "this is a bug; please report it with the command line.\n");
+    return 70;
+  }
   return plan.ok ? 0 : 3;
 }
 

@@ -48,7 +48,7 @@ std::vector<RequestLog> runRequests(approach::LoadedProgram& lp, sim::DomainSimu
       EXPECT_NE(r.status, sim::ActionStatus::UnknownAction) << call.name << ": " << r.message;
       if (r.status == sim::ActionStatus::Ignored && entry.failure.empty()) entry.failure = call.name + ": " + r.message;
       if (!r.feedback.empty()) {
-        const auto report = lp.learner().learn(r.feedback, user);
+        const auto report = lp.learner().learn(r.feedback, user, approach::StepWorld{plan.solve.assignment, obs});
         EXPECT_TRUE(report.problems.empty()) << report.problems.front();
       }
       if (r.hasSatisfaction) entry.satisfaction += r.satisfaction;

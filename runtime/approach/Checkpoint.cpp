@@ -282,6 +282,8 @@ void RunOutput::startFresh(const json& config, const std::string& trainHeader, c
   world_.open(worldLogPath());
   train_.append(trainHeader);
   eval_.append(evalHeader);
+  train_.flush();  // the CSVs are never empty: a killed run leaves at least their headers
+  eval_.flush();
 }
 
 void RunOutput::openForResume(const json& config) {

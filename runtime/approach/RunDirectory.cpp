@@ -158,6 +158,7 @@ void AppendFile::open(const std::string& path, std::uint64_t keepBytes) {
   path_ = path;
   buffer_.clear();
   injectedFailure_ = writeFailsFor(path);
+  written_ = keepBytes;
   fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0) throw RunDirectoryError(fmt::format("cannot write '{}': {}", path, errnoText(errno)));
   struct stat st {};
@@ -165,10 +166,10 @@ void AppendFile::open(const std::string& path, std::uint64_t keepBytes) {
     throw RunDirectoryError(fmt::format("'{}' is shorter than its checkpoint says ({} bytes expected); the run cannot be resumed",
                                         path, keepBytes));
   }
+  if (!S_ISREG(st.st_mode)) return;  // a device (e.g. /dev/full in tests): nothing to truncate
   if (::ftruncate(fd_, static_cast<off_t>(keepBytes)) != 0 || ::lseek(fd_, static_cast<off_t>(keepBytes), SEEK_SET) < 0) {
     throw RunDirectoryError(fmt::format("cannot truncate '{}': {}", path, errnoText(errno)));
   }
-  written_ = keepBytes;
 }
 
 AppendFile::~AppendFile() {

@@ -8,6 +8,7 @@
 #include "Experiment.h"
 #include "RunDirectory.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -117,8 +118,12 @@ TEST_P(ResumeTest, ResumedRunWritesTheBytesOfAnUninterruptedOne) {
   // Nothing before the checkpoint ran again: the first training step is the checkpoint's, and its evaluation
   // (the "model" point) is not repeated.
   for (const auto& [point, step] : calls) {
-    if (from >= 0) EXPECT_GE(step, from) << point;
-    if (point == "model") EXPECT_GT(step, from);
+    if (from >= 0) {
+      EXPECT_GE(step, from) << point;
+    }
+    if (point == "model") {
+      EXPECT_GT(step, from);
+    }
   }
   EXPECT_EQ(resumed.mealsServed, expected.mealsServed);
   EXPECT_EQ(resumed.trainSolves, expected.trainSolves);
@@ -134,9 +139,9 @@ INSTANTIATE_TEST_SUITE_P(
                                          Variant{"epsilon_shifting", approach::ApproachKind::EpsilonGreedy, true}),
                        ::testing::Values(Point{"step", 537}, Point{"checkpoint", 600}, Point{"model", 300}, Point{"model", 0},
                                          Point{"finish", 1000}, Point{"step", 999})),
-    [](const auto& info) {
-      const Variant& v = std::get<0>(info.param);
-      const Point& p = std::get<1>(info.param);
+    [](const auto& param) {
+      const Variant& v = std::get<0>(param.param);
+      const Point& p = std::get<1>(param.param);
       return fmt::format("{}_{}_{}", v.name, p.point, p.step);
     });
 

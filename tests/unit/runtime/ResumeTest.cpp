@@ -85,6 +85,9 @@ struct Point {
   std::int64_t step;
 };
 
+void PrintTo(const Variant& v, std::ostream* os) { *os << v.name; }
+void PrintTo(const Point& p, std::ostream* os) { *os << p.point << ":" << p.step; }
+
 class ResumeTest : public ::testing::TestWithParam<std::tuple<Variant, Point>> {};
 
 }  // namespace

@@ -73,6 +73,32 @@ Stat stat(const std::vector<double>& v) {
   return s;
 }
 
+std::string trialFolder(const std::string& out, cbtl::approach::ApproachKind kind, std::uint64_t seed) {
+  return fmt::format("{}/{}/seed{}", out, cbtl::approach::toString(kind), seed);
+}
+
+// Locks OUT for the whole experiment and applies the mode to what the experiment would write: Fresh refuses
+// an OUT with summary.csv or any trial's files, Force removes summary.csv (each trial clears its own folder).
+std::unique_ptr<cbtl::approach::DirectoryLock> prepareOut(const std::string& out, const std::vector<cbtl::approach::ApproachKind>& kinds,
+                                                          const std::vector<std::uint64_t>& seeds, cbtl::approach::RunMode mode) {
+  using namespace cbtl;
+  if (out.empty()) return nullptr;
+  std::filesystem::create_directories(out);
+  auto lock = std::make_unique<approach::DirectoryLock>(out);
+  std::vector<std::string> existing;
+  if (std::filesystem::exists(std::filesystem::path(out) / "summary.csv")) existing.push_back("summary.csv");
+  for (auto kind : kinds) {
+    for (auto seed : seeds) {
+      for (const auto& f : approach::runFilesIn(trialFolder(out, kind, seed))) {
+        existing.push_back(fmt::format("{}/seed{}/{}", approach::toString(kind), seed, f));
+      }
+    }
+  }
+  if (!existing.empty() && mode == approach::RunMode::Fresh) throw approach::RunDirectoryError(approach::refusalMessage(out, existing));
+  if (mode == approach::RunMode::Force) std::filesystem::remove(std::filesystem::path(out) / "summary.csv");
+  return lock;
+}
+
 int runExperiments(const ExperimentArgs& a) {
   using namespace cbtl;
   std::vector<approach::ApproachKind> kinds;
@@ -98,25 +124,7 @@ int runExperiments(const ExperimentArgs& a) {
   const approach::SimulatorFactory& factory = *factoryOrNone;
   base.runMode = a.force ? approach::RunMode::Force : a.resume ? approach::RunMode::Resume : approach::RunMode::Fresh;
   base.testHook = approach::killHookFromEnvironment();
-  const auto trialDir = [&](approach::ApproachKind kind, std::uint64_t seed) {
-    return fmt::format("{}/{}/seed{}", a.out, approach::toString(kind), seed);
-  };
-  std::unique_ptr<approach::DirectoryLock> lock;
-  if (!a.out.empty()) {
-    std::filesystem::create_directories(a.out);
-    lock = std::make_unique<approach::DirectoryLock>(a.out);
-    std::vector<std::string> existing;
-    if (std::filesystem::exists(std::filesystem::path(a.out) / "summary.csv")) existing.push_back("summary.csv");
-    for (auto kind : kinds) {
-      for (auto seed : seeds) {
-        for (const auto& f : approach::runFilesIn(trialDir(kind, seed))) {
-          existing.push_back(fmt::format("{}/seed{}/{}", approach::toString(kind), seed, f));
-        }
-      }
-    }
-    if (!existing.empty() && base.runMode == approach::RunMode::Fresh) throw approach::RunDirectoryError(approach::refusalMessage(a.out, existing));
-    if (base.runMode == approach::RunMode::Force) std::filesystem::remove(std::filesystem::path(a.out) / "summary.csv");
-  }
+  const auto lock = prepareOut(a.out, kinds, seeds, base.runMode);
 
   struct Summary {
     std::map<std::int64_t, std::vector<double>> bySteps, success, prefs;
@@ -130,7 +138,7 @@ int runExperiments(const ExperimentArgs& a) {
       approach::ExperimentConfig c = base;
       c.approach.kind = kind;
       c.seed = seed;
-      if (!a.out.empty()) c.outDir = trialDir(kind, seed);
+      if (!a.out.empty()) c.outDir = trialFolder(a.out, kind, seed);
       const auto start = std::chrono::steady_clock::now();
       const auto r = approach::runExperiment(*lp, factory, c);
       s.seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

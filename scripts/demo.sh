@@ -16,5 +16,5 @@ echo "Feeding: the simulated world's first request, solved against the scene (cb
 echo
 echo "Cooking: CBTL vs No Personalization (cbtl experiment, seeds 0..2)"
 "$build/bin/cbtl" experiment domains/cooking/cooking.cbtl --approaches cbtl,no-personalization --seeds 0..2 \
-  --steps 10000 --eval-every 100 --eval-tasks 10 --out "$build/demo" || status=1
+  --steps 10000 --eval-every 100 --eval-tasks 10 --out "$build/demo" --force || status=1
 exit $status

@@ -10,22 +10,22 @@ cbtl="$build/bin/cbtl"
 echo "== Figure 3: Cooking, 10 seeds, 10,000 steps, eval every 100 on 10 tasks"
 "$cbtl" experiment "$cooking" --approaches cbtl,no-personalization,free-explore,exploit-only,epsilon-greedy \
   --seeds 0..9 --steps 10000 --eval-every 100 --eval-tasks 10 --columns 0,200,500,1000,2000,5000,10000 \
-  --out "$out/figure3" -q
+  --out "$out/figure3" --force -q
 
 echo "== Table 1: unsatisfiable preferences (50% of restocks), 10 seeds x 10 eval tasks after 2,500 steps"
 "$cbtl" experiment "$cooking" --approaches cbtl --replan --unsatisfiable-stock 0.5 \
-  --seeds 0..9 --steps 2500 --eval-every 2500 --eval-tasks 10 --out "$out/table1-replan" -q
+  --seeds 0..9 --steps 2500 --eval-every 2500 --eval-tasks 10 --out "$out/table1-replan" --force -q
 "$cbtl" experiment "$cooking" --approaches cbtl,no-personalization --unsatisfiable-stock 0.5 \
-  --seeds 0..9 --steps 2500 --eval-every 2500 --eval-tasks 10 --out "$out/table1-noreplan" -q
+  --seeds 0..9 --steps 2500 --eval-every 2500 --eval-tasks 10 --out "$out/table1-noreplan" --force -q
 
 echo "== Figure 5: nonstationary preferences (each range rescaled by U[0.9, 1.1] every 3,000 steps)"
 for mode in no-adapt user-reset periodic-reset; do
   echo "-- cbtl, $mode"
   "$cbtl" experiment "$cooking" --approaches cbtl --nonstationary "$mode" --shift-every 3000 \
     --seeds 0..9 --steps 10000 --eval-every 100 --eval-tasks 10 --columns 0,2900,3100,3500,4000,5900,6500,8900,10000 \
-    --out "$out/figure5-$mode" -q
+    --out "$out/figure5-$mode" --force -q
 done
 echo "-- free-explore, no-adapt"
 "$cbtl" experiment "$cooking" --approaches free-explore --nonstationary no-adapt --shift-every 3000 \
   --seeds 0..9 --steps 10000 --eval-every 100 --eval-tasks 10 --columns 0,2900,3100,3500,4000,5900,6500,8900,10000 \
-  --out "$out/figure5-free-explore" -q
+  --out "$out/figure5-free-explore" --force -q

@@ -1,5 +1,6 @@
 #include "Experiment.h"
 
+#include "Checkpoint.h"
 #include "Planner.h"
 #include "ValueBridge.h"
 
@@ -109,6 +110,207 @@ class Progress {
 
 }  // namespace
 
+namespace {
+
+nlohmann::json configJson(const LoadedProgram& lp, const ExperimentConfig& config, const sim::SimulatorOptions& simOptions, int task) {
+  return {{"file", lp.path()}, {"domain", lp.graph().domain}, {"task", lp.graph().tasks[static_cast<std::size_t>(task)].name},
+          {"approach", toString(config.approach.kind)}, {"epsilon", config.approach.epsilon},
+          {"replan", config.approach.replan}, {"seed", config.seed}, {"steps", config.steps},
+          {"eval_every", config.evalEvery}, {"eval_tasks", config.evalTasks},
+          {"max_eval_episode_steps", config.maxEvalEpisodeSteps}, {"dt", config.dt},
+          {"nonstationary", config.nonstationary}, {"adaptation", toString(config.adaptation)},
+          {"shift_every", simOptions.shiftEvery}, {"unsatisfiable_stock_probability", simOptions.unsatisfiableStockProbability},
+          {"initial_profile", config.initialProfile}, {"periodic_reset_every", config.periodicResetEvery},
+          {"solver", {{"max_iters", config.solverOptions.maxIters}, {"num_improvements", config.solverOptions.numImprovements},
+                      {"max_improvement_attempts", config.solverOptions.maxImprovementAttempts},
+                      {"memory_size", config.solverOptions.memorySize},
+                      {"memory", config.solverOptions.memoryPolicy == solver::MemoryPolicy::Solutions ? "solutions" : "checks"}}}};
+}
+
+std::string trainHeader() {
+  return "step,execution_time,user_satisfaction,env_video_should_pause,solve_outcome,solver_iterations,replanned,labels_learned\n";
+}
+
+std::string evalHeader(int evalTasks) {
+  std::string h = "training_step,training_execution_time";
+  for (int i = 0; i < evalTasks; ++i) h += fmt::format(",eval_episode_{}_user_satisfaction", i);
+  return h + ",eval_mean_user_satisfaction,eval_task_success_rate,eval_preferences_met_rate,eval_replans\n";
+}
+
+// Everything one trial carries from step to step; a checkpoint saves exactly this (Checkpoint.h).
+struct Trial {
+  Trial(const LoadedProgram& lp_, const ExperimentConfig& config_, RunOutput& out_, std::unique_ptr<sim::DomainSimulator> world,
+        std::size_t task)
+      : lp(lp_), config(config_), out(out_), taskIdx(task), trainWorld(std::move(world)),
+        user(lp_.graph(), config_.textBackend), trainSolver(config_.solverOptions, deriveSeed(config_.seed, 1)),
+        evalSolver(config_.solverOptions, deriveSeed(config_.seed + 100000, 1)), approachRng(deriveSeed(config_.seed, 2)),
+        learning(learns(config_.approach)), fallback(fallsBack(config_.approach)) {}
+
+  const LoadedProgram& lp;
+  const ExperimentConfig& config;
+  RunOutput& out;
+  std::size_t taskIdx;
+  RecordingSimulator trainWorld;
+  std::unique_ptr<sim::DomainSimulator> evalWorld;
+  model::UserModel user;
+  solver::Solver trainSolver, evalSolver;
+  rt::Rng approachRng;
+  bool learning, fallback;
+  ExperimentResult result;
+  std::vector<sim::ActionCall> calls;  // the current plan's calls, and the next one to execute
+  std::size_t next = 0;
+  StepWorld planWorld;  // the solution and observation the current calls come from: what feedback is about
+};
+
+// Every plan with a Solved result was re-checked (Planner.h); a refused one is counted with its first violation.
+void countRecheck(ExperimentResult& result, const Plan& plan) {
+  if (!plan.rechecked) return;
+  ++result.rechecks;
+  if (plan.recheck.holds()) return;
+  if (result.recheckViolations++ == 0) result.firstRecheckViolation = plan.recheck.violations.front();
+}
+
+void evaluate(Trial& tr, std::int64_t step) {
+  const ExperimentConfig& config = tr.config;
+  const LoadedProgram& lp = tr.lp;
+  EvalPoint point;
+  point.step = step;
+  model::UserModel evalUser = tr.user;  // the evaluation agent loads the training agent's models
+  int successes = 0, satisfied = 0;
+  for (int i = 0; i < config.evalTasks; ++i) {
+    tr.evalWorld->reset(evaluationTaskSeed(config.seed, i));
+    double satisfaction = 0;
+    bool done = false, failed = false;
+    std::int64_t steps = 0;
+    while (!done && steps < config.maxEvalEpisodeSteps) {
+      lp.syncWorld(*tr.evalWorld);
+      const auto obs = observationVector(lp.program(), tr.evalWorld->observe());
+      Plan plan = makePlan(lp, lp.taskFor(*tr.evalWorld, tr.taskIdx), obs, evaluationChoice(), tr.fallback, tr.evalSolver, evalUser);
+      countRecheck(tr.result, plan);
+      if (plan.replanned) ++point.replans;
+      if (!plan.ok || plan.calls.empty()) break;  // the robot cannot do this task: the episode fails
+      std::size_t next = 0;
+      while (next < plan.calls.size() && !done && steps < config.maxEvalEpisodeSteps) {
+        sim::StepResult r = executeStep(*tr.evalWorld, plan.calls, next);
+        if (r.consumedStep) ++steps;
+        if (r.hasSatisfaction) satisfaction += r.satisfaction;
+        done = r.taskDone;
+        failed = failed || r.taskFailed;
+      }
+    }
+    if (done && !failed) ++successes;
+    if (done && !failed && satisfaction > 0) ++satisfied;
+    point.satisfaction.push_back(satisfaction);
+  }
+  double sum = 0;
+  for (double s : point.satisfaction) sum += s;
+  point.mean = config.evalTasks > 0 ? sum / config.evalTasks : 0;
+  point.taskSuccessRate = config.evalTasks > 0 ? static_cast<double>(successes) / config.evalTasks : 0;
+  point.preferencesMetRate = config.evalTasks > 0 ? static_cast<double>(satisfied) / config.evalTasks : 0;
+  if (tr.out.enabled()) {
+    std::string row = fmt::format("{},{:.6g}", step, static_cast<double>(step) * config.dt);
+    for (double s : point.satisfaction) row += fmt::format(",{:.6g}", s);
+    row += fmt::format(",{:.6g},{:.6g},{:.6g},{}\n", point.mean, point.taskSuccessRate, point.preferencesMetRate, point.replans);
+    tr.out.evalRow(row);
+    tr.out.writeModel(step, tr.user.toJson());
+    if (config.testHook) config.testHook("model", step);
+  }
+  tr.result.evals.push_back(std::move(point));
+}
+
+void trainStep(Trial& tr, std::int64_t t) {
+  const ExperimentConfig& config = tr.config;
+  const LoadedProgram& lp = tr.lp;
+  ExperimentResult& result = tr.result;
+  if (config.nonstationary && config.adaptation == Adaptation::PeriodicReset && t > 0 && t % config.periodicResetEvery == 0) {
+    tr.user.reset();
+  }
+  std::string outcome;
+  std::uint64_t iterations = 0;
+  bool replanned = false;
+  if (tr.next >= tr.calls.size()) {
+    lp.syncWorld(tr.trainWorld);
+    const auto obs = observationVector(lp.program(), tr.trainWorld.observe());
+    Plan plan = makePlan(lp, lp.taskFor(tr.trainWorld, tr.taskIdx), obs, trainingChoice(config.approach, tr.approachRng), tr.fallback,
+                         tr.trainSolver, tr.user);
+    countRecheck(result, plan);
+    ++result.trainSolves;
+    iterations = plan.solve.iterations + (plan.failedFull ? plan.failedFull->iterations : 0);
+    result.solverIterations += iterations;
+    outcome = solver::toString(plan.solve.outcome);
+    replanned = plan.replanned;
+    if (plan.replanned) ++result.trainReplans;
+    if (!plan.ok) ++result.trainSolveFailures;
+    tr.calls = plan.ok ? std::move(plan.calls) : std::vector<sim::ActionCall>{};
+    tr.next = 0;
+    tr.planWorld = StepWorld{plan.ok ? std::move(plan.solve.assignment) : std::vector<double>{}, obs};
+  }
+  sim::StepResult r = tr.next < tr.calls.size() ? executeStep(tr.trainWorld, tr.calls, tr.next) : tr.trainWorld.idle();
+  std::size_t labels = 0;
+  if (tr.learning && !r.feedback.empty()) {
+    const LearnReport report = lp.learner().learn(r.feedback, tr.user, tr.planWorld);
+    labels = report.labels;
+    if (!report.problems.empty()) throw std::runtime_error("feedback does not fit its declaration: " + report.problems.front());
+    if (!report.modelErrors.empty() && result.textModelErrors == 0) result.firstTextModelError = report.modelErrors.front();
+    result.textModelErrors += static_cast<std::int64_t>(report.modelErrors.size());
+  }
+  if (r.preferencesChanged && config.nonstationary && config.adaptation == Adaptation::UserReset) tr.user.reset();
+  if (r.taskDone) {
+    if (!r.taskFailed) ++result.mealsServed;
+    // The task is over (done or failed): calls left in its plan belong to no request.
+    tr.calls.clear();
+    tr.next = 0;
+  }
+  if (r.hasSatisfaction) result.trainSatisfaction += r.satisfaction;
+  if (tr.out.enabled()) {
+    tr.out.trainRow(fmt::format("{},{:.6g},{},False,{},{},{},{}\n", t, static_cast<double>(t) * config.dt,
+                                r.hasSatisfaction ? fmt::format("{}", r.satisfaction) : std::string("nan"), outcome, iterations,
+                                replanned ? 1 : 0, labels));
+  }
+  if (config.testHook) config.testHook("step", t);
+}
+
+void saveCheckpoint(Trial& tr, std::int64_t step) {
+  if (!tr.out.enabled()) return;
+  Checkpoint cp;
+  cp.step = step;
+  cp.worldCalls = tr.trainWorld.calls();
+  cp.trainSolver = tr.trainSolver.saveState();
+  cp.evalSolver = tr.evalSolver.saveState();
+  cp.profile = nlohmann::json::parse(tr.user.toJson());
+  cp.approachRng = tr.approachRng.saveState();
+  const rt::StringTable& strings = tr.lp.program().strings();
+  for (std::uint32_t i = 0; i < strings.size(); ++i) cp.strings.push_back(strings.name(i));
+  cp.pending = tr.calls;
+  cp.next = tr.next;
+  cp.planWorld = tr.planWorld;
+  cp.result = tr.result;
+  tr.out.checkpoint(cp, tr.trainWorld.takeLog());
+}
+
+// Continues from a checkpoint: the state it saved, and the training world rebuilt by replaying its calls.
+void restoreCheckpoint(Trial& tr, const Checkpoint& cp) {
+  tr.trainWorld.replay(tr.out.worldLog(), tr.out.worldLogPath());
+  if (tr.trainWorld.calls() != cp.worldCalls) {
+    throw RunDirectoryError(fmt::format("'{}' holds {} world calls, its checkpoint {}; the run cannot be resumed",
+                                        tr.out.worldLogPath(), tr.trainWorld.calls(), cp.worldCalls));
+  }
+  tr.trainSolver.restoreState(cp.trainSolver);
+  tr.evalSolver.restoreState(cp.evalSolver);
+  tr.user.fromJson(cp.profile.dump(), tr.out.dir() + "/checkpoint.json");
+  if (!tr.approachRng.restoreState(cp.approachRng)) throw RunDirectoryError("the checkpoint's approach RNG state is malformed");
+  rt::StringTable& strings = tr.lp.program().strings();
+  for (std::uint32_t i = 0; i < cp.strings.size(); ++i) {
+    if (strings.intern(cp.strings[i]) != i) throw RunDirectoryError("the checkpoint's texts do not fit this program");
+  }
+  tr.calls = cp.pending;
+  tr.next = cp.next;
+  tr.planWorld = cp.planWorld;
+  tr.result = cp.result;
+}
+
+}  // namespace
+
 ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& factory, const ExperimentConfig& config) {
   const int task = lp.taskIndex(config.task);
   if (task < 0) throw std::runtime_error(config.task.empty() ? "the program has no task" : fmt::format("no task named '{}'", config.task));
@@ -117,153 +319,34 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
 
   sim::SimulatorOptions simOptions = config.simulator;
   if (config.nonstationary && config.adaptation == Adaptation::UserReset) simOptions.announceShifts = true;
-  auto trainWorld = factory(simOptions, config.seed);
-  if (!trainWorld) throw std::runtime_error(fmt::format("no simulator for domain '{}'", lp.graph().domain));
-  auto evalWorld = trainWorld->makeEvaluationTwin();
-
-  const rt::Program& program = lp.program();
-  model::UserModel user(lp.graph(), config.textBackend);
-  if (!config.initialProfile.empty()) user.load(config.initialProfile);
-  solver::Solver trainSolver(config.solverOptions, deriveSeed(config.seed, 1));
-  solver::Solver evalSolver(config.solverOptions, deriveSeed(config.seed + 100000, 1));
-  rt::Rng approachRng(deriveSeed(config.seed, 2));
-  const bool learning = learns(config.approach);
-  const bool fallback = fallsBack(config.approach);
-
-  std::ofstream trainCsv, evalCsv;
-  if (!config.outDir.empty()) {
-    fs::create_directories(fs::path(config.outDir) / "models");
-    trainCsv.open(fs::path(config.outDir) / "train.csv");
-    evalCsv.open(fs::path(config.outDir) / "eval.csv");
-    if (!trainCsv || !evalCsv) throw std::runtime_error(fmt::format("cannot write into '{}'", config.outDir));
-    trainCsv << "step,execution_time,user_satisfaction,env_video_should_pause,solve_outcome,solver_iterations,replanned,"
-                "labels_learned\n";
-    evalCsv << "training_step,training_execution_time";
-    for (int i = 0; i < config.evalTasks; ++i) evalCsv << ",eval_episode_" << i << "_user_satisfaction";
-    evalCsv << ",eval_mean_user_satisfaction,eval_task_success_rate,eval_preferences_met_rate,eval_replans\n";
-    nlohmann::json cfg = {{"file", lp.path()}, {"domain", lp.graph().domain}, {"task", lp.graph().tasks[static_cast<std::size_t>(task)].name},
-                          {"approach", toString(config.approach.kind)}, {"epsilon", config.approach.epsilon},
-                          {"replan", config.approach.replan}, {"seed", config.seed}, {"steps", config.steps},
-                          {"eval_every", config.evalEvery}, {"eval_tasks", config.evalTasks},
-                          {"max_eval_episode_steps", config.maxEvalEpisodeSteps}, {"dt", config.dt},
-                          {"nonstationary", config.nonstationary}, {"adaptation", toString(config.adaptation)},
-                          {"shift_every", simOptions.shiftEvery}, {"unsatisfiable_stock_probability", simOptions.unsatisfiableStockProbability},
-                          {"solver", {{"max_iters", config.solverOptions.maxIters}, {"num_improvements", config.solverOptions.numImprovements},
-                                      {"max_improvement_attempts", config.solverOptions.maxImprovementAttempts},
-                                      {"memory_size", config.solverOptions.memorySize}}}};
-    std::ofstream(fs::path(config.outDir) / "config.json") << cfg.dump(2) << "\n";
+  RunOutput out(config.outDir, config.runMode, configJson(lp, config, simOptions, task), trainHeader(), evalHeader(config.evalTasks));
+  out.hook = config.testHook;
+  if (out.completed()) return *out.completed();  // --resume of a complete run
+  auto world = factory(simOptions, config.seed);
+  if (!world) throw std::runtime_error(fmt::format("no simulator for domain '{}'", lp.graph().domain));
+  Trial tr(lp, config, out, std::move(world), static_cast<std::size_t>(task));
+  std::int64_t start = 0;
+  if (out.resumeFrom()) {
+    restoreCheckpoint(tr, *out.resumeFrom());
+    start = out.resumeFrom()->step;
+  } else if (!config.initialProfile.empty()) {
+    tr.user.load(config.initialProfile);
   }
+  tr.evalWorld = tr.trainWorld.makeEvaluationTwin();
 
-  ExperimentResult result;
   Progress progress(config.progress, config.steps);
-  auto countRecheck = [&result](const Plan& plan) {
-    if (!plan.rechecked) return;
-    ++result.rechecks;
-    if (plan.recheck.holds()) return;
-    if (result.recheckViolations++ == 0) result.firstRecheckViolation = plan.recheck.violations.front();
-  };
-  const auto taskIdx = static_cast<std::size_t>(task);
-
-  auto evaluate = [&](std::int64_t step) {
-    EvalPoint point;
-    point.step = step;
-    model::UserModel evalUser = user;  // the evaluation agent loads the training agent's models
-    int successes = 0, satisfied = 0;
-    for (int i = 0; i < config.evalTasks; ++i) {
-      evalWorld->reset(evaluationTaskSeed(config.seed, i));
-      double satisfaction = 0;
-      bool done = false, failed = false;
-      std::int64_t steps = 0;
-      while (!done && steps < config.maxEvalEpisodeSteps) {
-        lp.syncWorld(*evalWorld);
-        const auto obs = observationVector(program, evalWorld->observe());
-        Plan plan = makePlan(lp, lp.taskFor(*evalWorld, taskIdx), obs, evaluationChoice(), fallback, evalSolver, evalUser);
-        countRecheck(plan);
-        if (plan.replanned) ++point.replans;
-        if (!plan.ok || plan.calls.empty()) break;  // the robot cannot do this task: the episode fails
-        std::size_t next = 0;
-        while (next < plan.calls.size() && !done && steps < config.maxEvalEpisodeSteps) {
-          sim::StepResult r = executeStep(*evalWorld, plan.calls, next);
-          if (r.consumedStep) ++steps;
-          if (r.hasSatisfaction) satisfaction += r.satisfaction;
-          done = r.taskDone;
-          failed = failed || r.taskFailed;
-        }
-      }
-      if (done && !failed) ++successes;
-      if (done && !failed && satisfaction > 0) ++satisfied;
-      point.satisfaction.push_back(satisfaction);
+  for (std::int64_t t = start; t <= config.steps; ++t) {
+    const bool checkpointHere = t % config.evalEvery == 0 || t == config.steps;
+    if (checkpointHere && !(out.resumeFrom() && t == start)) {  // a resumed run starts after its checkpoint's evaluation
+      evaluate(tr, t);
+      saveCheckpoint(tr, t);
     }
-    double sum = 0;
-    for (double s : point.satisfaction) sum += s;
-    point.mean = config.evalTasks > 0 ? sum / config.evalTasks : 0;
-    point.taskSuccessRate = config.evalTasks > 0 ? static_cast<double>(successes) / config.evalTasks : 0;
-    point.preferencesMetRate = config.evalTasks > 0 ? static_cast<double>(satisfied) / config.evalTasks : 0;
-    if (evalCsv.is_open()) {
-      evalCsv << step << "," << fmt::format("{:.6g}", static_cast<double>(step) * config.dt);
-      for (double s : point.satisfaction) evalCsv << "," << s;
-      evalCsv << "," << fmt::format("{:.6g}", point.mean) << "," << fmt::format("{:.6g}", point.taskSuccessRate) << ","
-              << fmt::format("{:.6g}", point.preferencesMetRate) << "," << point.replans << "\n";
-      user.save((fs::path(config.outDir) / "models" / fmt::format("{}.json", step)).string());
-    }
-    result.evals.push_back(std::move(point));
-  };
-
-  std::vector<sim::ActionCall> calls;
-  std::size_t next = 0;
-  StepWorld planWorld;  // the solution and observation the current calls come from: what feedback is about
-  for (std::int64_t t = 0; t <= config.steps; ++t) {
-    if (t % config.evalEvery == 0 || t == config.steps) evaluate(t);
     if (t == config.steps) break;
-    if (config.nonstationary && config.adaptation == Adaptation::PeriodicReset && t > 0 && t % config.periodicResetEvery == 0) {
-      user.reset();
-    }
-    std::string outcome;
-    std::uint64_t iterations = 0;
-    bool replanned = false;
-    if (next >= calls.size()) {
-      lp.syncWorld(*trainWorld);
-      const auto obs = observationVector(program, trainWorld->observe());
-      Plan plan = makePlan(lp, lp.taskFor(*trainWorld, taskIdx), obs, trainingChoice(config.approach, approachRng), fallback,
-                           trainSolver, user);
-      countRecheck(plan);
-      ++result.trainSolves;
-      iterations = plan.solve.iterations + (plan.failedFull ? plan.failedFull->iterations : 0);
-      result.solverIterations += iterations;
-      outcome = solver::toString(plan.solve.outcome);
-      replanned = plan.replanned;
-      if (plan.replanned) ++result.trainReplans;
-      if (!plan.ok) ++result.trainSolveFailures;
-      calls = plan.ok ? std::move(plan.calls) : std::vector<sim::ActionCall>{};
-      next = 0;
-      planWorld = StepWorld{plan.ok ? std::move(plan.solve.assignment) : std::vector<double>{}, obs};
-    }
-    sim::StepResult r = next < calls.size() ? executeStep(*trainWorld, calls, next) : trainWorld->idle();
-    std::size_t labels = 0;
-    if (learning && !r.feedback.empty()) {
-      const LearnReport report = lp.learner().learn(r.feedback, user, planWorld);
-      labels = report.labels;
-      if (!report.problems.empty()) throw std::runtime_error("feedback does not fit its declaration: " + report.problems.front());
-      if (!report.modelErrors.empty() && result.textModelErrors == 0) result.firstTextModelError = report.modelErrors.front();
-      result.textModelErrors += static_cast<std::int64_t>(report.modelErrors.size());
-    }
-    if (r.preferencesChanged && config.nonstationary && config.adaptation == Adaptation::UserReset) user.reset();
-    if (r.taskDone) {
-      if (!r.taskFailed) ++result.mealsServed;
-      // The task is over (done or failed): calls left in its plan belong to no request.
-      calls.clear();
-      next = 0;
-    }
-    if (r.hasSatisfaction) result.trainSatisfaction += r.satisfaction;
-    if (trainCsv.is_open()) {
-      trainCsv << t << "," << fmt::format("{:.6g}", static_cast<double>(t) * config.dt) << ","
-               << (r.hasSatisfaction ? fmt::format("{}", r.satisfaction) : std::string("nan")) << ",False," << outcome << ","
-               << iterations << "," << (replanned ? 1 : 0) << "," << labels << "\n";
-    }
-    progress.update(t + 1, result.evals.empty() ? 0 : result.evals.back().mean);
+    trainStep(tr, t);
+    progress.update(t + 1, tr.result.evals.empty() ? 0 : tr.result.evals.back().mean);
   }
-  if (!config.outDir.empty()) user.save((fs::path(config.outDir) / "profile.json").string());
-  return result;
+  out.finish(tr.user.toJson(), tr.result);
+  return tr.result;
 }
 
 }  // namespace cbtl::approach

@@ -10,12 +10,16 @@
 // scores 0 and counts as a failed task.
 //
 // Outputs (when `outDir` is set): train.csv, eval.csv (the reference's columns plus task-success and
-// preferences-met rates), config.json, models/<step>.json at every checkpoint and profile.json at the end.
+// preferences-met rates), config.json, models/<step>.json at every checkpoint and profile.json at the end,
+// then the completion marker complete.json. A folder that already holds a run is refused, replaced or resumed
+// as `runMode` says; every evaluation point is a checkpoint that `--resume` continues from exactly
+// (RunDirectory.h lists the files and their guarantees, Checkpoint.h what a checkpoint holds).
 #pragma once
 
 #include "Approach.h"
 #include "DomainSimulator.h"
 #include "LoadedProgram.h"
+#include "RunDirectory.h"
 #include "Solver.h"
 
 #include <cstdint>
@@ -56,6 +60,11 @@ struct ExperimentConfig {
   std::string initialProfile;  // a profile to start from (optional)
   // Makes the models of text factors (`model text(...)`); null: the offline descriptor model (no network).
   std::shared_ptr<const textpref::TextBackend> textBackend;
+  RunMode runMode = RunMode::Fresh;  // what to do when outDir already holds a run
+  // Test-only: called as testHook(point, step) at "step" (training step `step` done, its row not yet flushed),
+  // "model" (models/<step>.json written), "checkpoint" (the files of checkpoint `step` durable, checkpoint.json
+  // not yet replaced) and "finish" (profile.json written, complete.json not yet). It may throw or kill the process.
+  std::function<void(const char* point, std::int64_t step)> testHook;
 };
 
 struct EvalPoint {

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <sstream>
+#include <string>
 
 namespace cbtl::rt {
 
@@ -35,6 +37,21 @@ class Rng {
   // Index in [0, n); precondition n > 0.
   std::size_t index(std::size_t n) { return static_cast<std::size_t>(uniformInt(0, static_cast<std::int64_t>(n) - 1)); }
   bool coin(double p = 0.5) { return uniform() < p; }
+  // The engine's whole state as text (the standard's textual form of std::mt19937_64), and back: a restored
+  // Rng continues the exact sequence. restoreState returns false (the Rng unchanged) for text that is not a state.
+  std::string saveState() const {
+    std::ostringstream out;
+    out << engine_;
+    return out.str();
+  }
+  bool restoreState(const std::string& text) {
+    std::istringstream in(text);
+    std::mt19937_64 e;
+    in >> e;
+    if (in.fail()) return false;
+    engine_ = e;
+    return true;
+  }
   // Standard normal (Box-Muller, one of the pair).
   double normal() {
     double u1 = uniform();

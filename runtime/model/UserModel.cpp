@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
+#include <atomic>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -160,14 +163,23 @@ void UserModel::fromJson(const std::string& text, const std::string& source) {
 }
 
 void UserModel::save(const std::string& path) const {
-  const std::string tmp = path + ".tmp";
+  // A temporary name of its own (pid and a per-process counter), so two writers of one path never share it.
+  static std::atomic<unsigned> counter{0};
+  const std::string tmp = fmt::format("{}.tmp.{}.{}", path, static_cast<long>(getpid()), counter++);
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw ProfileError(fmt::format("{}: cannot write", tmp));
     out << toJson();
-    if (!out) throw ProfileError(fmt::format("{}: write failed", tmp));
+    out.close();  // flushes: a full disk shows here
+    if (!out) {
+      std::remove(tmp.c_str());
+      throw ProfileError(fmt::format("{}: write failed (disk full?)", tmp));
+    }
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw ProfileError(fmt::format("{}: cannot replace", path));
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw ProfileError(fmt::format("{}: cannot replace", path));
+  }
 }
 
 void UserModel::load(const std::string& path) {

@@ -7,7 +7,10 @@
 // travel by name, so a simulator never depends on declaration order.
 //
 // Determinism: a simulator owns its RNG; reset(seed) reseeds it completely, so the same seed gives the same
-// task. A simulator is used by one thread.
+// task. A simulator is used by one thread. `--resume` (approach/Checkpoint.h) relies on more: a training world
+// constructed with a seed and given the same sequence of reset/act/idle calls ends in the same state with the
+// same results; observe(), worldState() and requestedTask() change nothing; and an evaluation twin's calls never
+// change its training world (the shared user is only read by the twin).
 #pragma once
 
 #include <cstdint>

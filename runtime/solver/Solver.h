@@ -24,6 +24,8 @@
 #include "PersonalEvaluator.h"
 #include "Rng.h"
 
+#include <nlohmann/json_fwd.hpp>
+
 #include <cstdint>
 #include <map>
 #include <string>
@@ -108,6 +110,14 @@ class Solver {
   SolverOptions options_;
   rt::Rng rng_;
   std::map<std::uint64_t, Memory> memory_;
+
+ public:
+  // SolverState.cpp — checkpoints: the RNG and every constraint's memory (values as the bits of their doubles,
+  // so the state is restored exactly). A solver restored from saveState() of another solver with the same
+  // options solves every later CSP exactly as that one would have. restoreState throws std::runtime_error for a
+  // state that does not fit (other options, a malformed document) and then leaves the solver unchanged.
+  nlohmann::json saveState() const;
+  void restoreState(const nlohmann::json& state);
 };
 
 }  // namespace cbtl::solver

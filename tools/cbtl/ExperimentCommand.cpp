@@ -1,9 +1,14 @@
 // `cbtl experiment FILE --approaches A,B --seeds 0..9 ...`: the same trial for several approaches and seeds,
 // summarized as the paper reports it: mean and standard error over seeds of the evaluation satisfaction at
 // every checkpoint (summary.csv), and a table on stdout. Exit codes: 0 ok, 1 bad input, 2 usage.
+// Every trial writes its own run folder (OUT/<approach>/seed<S>, approach/RunDirectory.h); summary.csv is
+// written last and atomically, so it is present only for a finished experiment. An OUT that holds a summary or
+// any trial's files is refused unless --force (replace them) or --resume (finished trials are read back from
+// their complete.json, interrupted ones continue from their last checkpoint, missing ones run).
 #include "CommandRegistry.h"
 #include "RuntimeSupport.h"
 
+#include "RunDirectory.h"
 #include "UserModel.h"
 
 #include <fmt/core.h>
@@ -14,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -21,7 +27,7 @@ namespace {
 
 struct ExperimentArgs : cbtl::cli::TrialArgs {
   std::string approaches = "cbtl,no-personalization", seeds = "0..9", out, columns;
-  bool quiet = false;
+  bool quiet = false, force = false, resume = false;
 };
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -67,6 +73,32 @@ Stat stat(const std::vector<double>& v) {
   return s;
 }
 
+std::string trialFolder(const std::string& out, cbtl::approach::ApproachKind kind, std::uint64_t seed) {
+  return fmt::format("{}/{}/seed{}", out, cbtl::approach::toString(kind), seed);
+}
+
+// Locks OUT for the whole experiment and applies the mode to what the experiment would write: Fresh refuses
+// an OUT with summary.csv or any trial's files, Force removes summary.csv (each trial clears its own folder).
+std::unique_ptr<cbtl::approach::DirectoryLock> prepareOut(const std::string& out, const std::vector<cbtl::approach::ApproachKind>& kinds,
+                                                          const std::vector<std::uint64_t>& seeds, cbtl::approach::RunMode mode) {
+  using namespace cbtl;
+  if (out.empty()) return nullptr;
+  std::filesystem::create_directories(out);
+  auto lock = std::make_unique<approach::DirectoryLock>(out);
+  std::vector<std::string> existing;
+  if (std::filesystem::exists(std::filesystem::path(out) / "summary.csv")) existing.push_back("summary.csv");
+  for (auto kind : kinds) {
+    for (auto seed : seeds) {
+      for (const auto& f : approach::runFilesIn(trialFolder(out, kind, seed))) {
+        existing.push_back(fmt::format("{}/seed{}/{}", approach::toString(kind), seed, f));
+      }
+    }
+  }
+  if (!existing.empty() && mode == approach::RunMode::Fresh) throw approach::RunDirectoryError(approach::refusalMessage(out, existing));
+  if (mode == approach::RunMode::Force) std::filesystem::remove(std::filesystem::path(out) / "summary.csv");
+  return lock;
+}
+
 int runExperiments(const ExperimentArgs& a) {
   using namespace cbtl;
   std::vector<approach::ApproachKind> kinds;
@@ -90,6 +122,9 @@ int runExperiments(const ExperimentArgs& a) {
   const auto factoryOrNone = cli::domainSimulator("experiment", *lp, base.simulator);
   if (!factoryOrNone) return 1;
   const approach::SimulatorFactory& factory = *factoryOrNone;
+  base.runMode = a.force ? approach::RunMode::Force : a.resume ? approach::RunMode::Resume : approach::RunMode::Fresh;
+  base.testHook = approach::killHookFromEnvironment();
+  const auto lock = prepareOut(a.out, kinds, seeds, base.runMode);
 
   struct Summary {
     std::map<std::int64_t, std::vector<double>> bySteps, success, prefs;
@@ -103,7 +138,7 @@ int runExperiments(const ExperimentArgs& a) {
       approach::ExperimentConfig c = base;
       c.approach.kind = kind;
       c.seed = seed;
-      if (!a.out.empty()) c.outDir = fmt::format("{}/{}/seed{}", a.out, approach::toString(kind), seed);
+      if (!a.out.empty()) c.outDir = trialFolder(a.out, kind, seed);
       const auto start = std::chrono::steady_clock::now();
       const auto r = approach::runExperiment(*lp, factory, c);
       s.seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -126,16 +161,15 @@ int runExperiments(const ExperimentArgs& a) {
     }
   }
   if (!a.out.empty()) {
-    std::filesystem::create_directories(a.out);
-    std::ofstream csv(std::filesystem::path(a.out) / "summary.csv");
-    csv << "approach,training_step,seeds,eval_mean,eval_se,task_success_mean,preferences_met_mean\n";
+    std::string csv = "approach,training_step,seeds,eval_mean,eval_se,task_success_mean,preferences_met_mean\n";
     for (const auto& [name, s] : summaries) {
       for (const auto& [step, v] : s.bySteps) {
         const Stat m = stat(v);
-        csv << fmt::format("{},{},{},{:.6g},{:.6g},{:.6g},{:.6g}\n", name, step, v.size(), m.mean, m.se, stat(s.success.at(step)).mean,
+        csv += fmt::format("{},{},{},{:.6g},{:.6g},{:.6g},{:.6g}\n", name, step, v.size(), m.mean, m.se, stat(s.success.at(step)).mean,
                            stat(s.prefs.at(step)).mean);
       }
     }
+    approach::writeFileAtomic((std::filesystem::path(a.out) / "summary.csv").string(), csv);
   }
   // The table: selected checkpoints (or --columns), the mean over all checkpoints, the last checkpoint's
   // task success and preferences met, and the time per trial.
@@ -187,6 +221,9 @@ void addExperiment(CLI::App& app, int& exitCode) {
   cmd->add_option("--columns", args->columns, "checkpoints to show in the table, comma-separated");
   cmd->add_option("--out", args->out, "write every trial's files and summary.csv here");
   cmd->add_flag("--quiet,-q", args->quiet, "no per-trial lines");
+  auto* force = cmd->add_flag("--force", args->force, "replace the experiment already in --out (only the files runs write)");
+  cmd->add_flag("--resume", args->resume, "continue the experiment in --out: finished trials are kept, the others resume")
+      ->excludes(force);
   cmd->callback([args, &exitCode]() {
     try {
       exitCode = runExperiments(*args);

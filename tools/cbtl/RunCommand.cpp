@@ -1,8 +1,11 @@
 // `cbtl run FILE --approach A --seed S --steps N --eval-every K --eval-tasks M --out DIR`: one trial of the
 // paper's experiment in the domain's simulator. Exit codes: 0 ok, 1 bad input, 2 usage, 70 internal error.
+// An --out folder that holds a run is refused unless --force (replace it) or --resume (continue it from its last
+// checkpoint); approach/RunDirectory.h lists the files and their guarantees.
 #include "CommandRegistry.h"
 #include "RuntimeSupport.h"
 
+#include "RunDirectory.h"
 #include "UserModel.h"
 
 #include <fmt/core.h>
@@ -16,7 +19,7 @@ namespace {
 struct RunArgs : cbtl::cli::TrialArgs {
   std::string approach = "cbtl", out, profile;
   std::uint64_t seed = 0;
-  bool quiet = false;
+  bool quiet = false, force = false, resume = false;
 };
 
 int runTrial(const RunArgs& a) {
@@ -36,6 +39,8 @@ int runTrial(const RunArgs& a) {
   c.outDir = a.out;
   c.progress = !a.quiet;
   c.initialProfile = a.profile;
+  c.runMode = a.force ? approach::RunMode::Force : a.resume ? approach::RunMode::Resume : approach::RunMode::Fresh;
+  c.testHook = approach::killHookFromEnvironment();
   const auto factory = cli::domainSimulator("run", *lp, c.simulator);
   if (!factory) return 1;
   const auto start = std::chrono::steady_clock::now();
@@ -53,7 +58,7 @@ int runTrial(const RunArgs& a) {
       fmt::print("{} text-model updates failed (the old theta was kept); the first: {}\n", r.textModelErrors,
                  r.firstTextModelError);
     }
-    if (!a.out.empty()) fmt::print("wrote {}/train.csv, eval.csv, config.json, profile.json, models/\n", a.out);
+    if (!a.out.empty()) fmt::print("wrote {}/train.csv, eval.csv, config.json, profile.json, models/, complete.json\n", a.out);
   }
   if (r.recheckViolations > 0) {
     // Never executed, but a solution the solver accepted broke a hard constraint: a runtime bug.
@@ -73,6 +78,8 @@ void addRun(CLI::App& app, int& exitCode) {
   cmd->add_option("--seed", args->seed, "run seed (same seed, same results)")->capture_default_str();
   cmd->add_option("--out", args->out, "write train.csv, eval.csv, models and the profile here");
   cmd->add_option("--profile", args->profile, "start from this user profile");
+  auto* force = cmd->add_flag("--force", args->force, "replace the run already in --out (only the files a run writes)");
+  cmd->add_flag("--resume", args->resume, "continue the run in --out from its last checkpoint (same options)")->excludes(force);
   cmd->add_flag("--quiet,-q", args->quiet, "no progress bar or summary");
   cmd->callback([args, &exitCode]() {
     try {

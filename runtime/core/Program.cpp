@@ -233,6 +233,22 @@ std::vector<double> Program::initialAssignment(const std::vector<double>& observ
   obs.resize(std::max(obsWidth_, std::size_t{1}), 0.0);
   std::vector<double> frame(frameSize_, 0.0);
   EvalContext ctx{x.data(), obs.data(), frame.data(), &callContext_};
+  // A variable with no `= init` starts at zero moved into its declared domain: each bounded component
+  // clamped to its bounds, a set domain's first member when zero is not one. Zero alone could lie outside a
+  // domain such as 1 .. 2, and a variable that no sampler writes would keep it.
+  for (const auto& v : graph_.variables) {
+    if (v.init) continue;
+    const DomainCheck& d = domainChecks_[v.id];
+    double* at = x.data() + slots_[v.id].offset;
+    for (std::size_t c = 0; c < d.lo.size() && c < slots_[v.id].type.width; ++c) {
+      if (d.lo[c] != UINT32_MAX) at[c] = std::max(at[c], pool_.evalScalar(d.lo[c], ctx));
+      if (d.hi[c] != UINT32_MAX) at[c] = std::min(at[c], pool_.evalScalar(d.hi[c], ctx));
+      if (slots_[v.id].type.kind == ValueKind::Int) at[c] = std::ceil(at[c]);
+    }
+    if (d.members && !d.members->empty() && std::find(d.members->begin(), d.members->end(), at[0]) == d.members->end()) {
+      at[0] = d.members->front();
+    }
+  }
   double value[kMaxValueWidth];
   for (const auto& [var, node] : inits_) {
     const VarSlot& s = slots_[var];

@@ -152,3 +152,15 @@ task t = act;
   }
   EXPECT_GT(refused, 0) << "with `apart` cached as holding, some accepted solutions have a == b";
 }
+
+TEST(Recheck, AVariableWithoutAnInitialValueOrASamplerStartsInsideItsDomain) {
+  // Found by the runtime fuzzer: x started at 0, outside 1 .. 1, and with no sampler the solver accepted it.
+  auto lp = test::compileOrFail("unsampled.cbtl", "domain unsampled;\nvar x : real in 1 .. 1;\nvar m : text in [\"a\", \"b\"];\nrequire small: x < pi;\n");
+  ASSERT_TRUE(lp->ok());
+  model::UserModel user(lp->graph());
+  solver::Solver s({}, 1);
+  const auto plan = approach::makePlan(*lp, 0, {}, approach::evaluationChoice(), false, s, user);
+  ASSERT_TRUE(plan.ok) << (plan.recheck.violations.empty() ? "" : plan.recheck.violations.front());
+  EXPECT_EQ(plan.solve.assignment[lp->program().slot(0).offset], 1.0);
+  EXPECT_EQ(lp->program().render(lp->program().slot(1).type, &plan.solve.assignment[lp->program().slot(1).offset]), "a");
+}

@@ -2,6 +2,7 @@
 // summarized as the paper reports it: mean and standard error over seeds of the evaluation satisfaction at
 // every checkpoint (summary.csv), and a table on stdout. Exit codes: 0 ok, 1 bad input, 2 usage.
 #include "CommandRegistry.h"
+#include "ErrorHandling.h"
 #include "RuntimeSupport.h"
 
 #include "UserModel.h"
@@ -10,7 +11,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -34,8 +34,9 @@ std::vector<std::string> split(const std::string& s, char sep) {
   return out;
 }
 
-// "0..9", "3", or "1,4,7".
+// "0..9", "3", or "1,4,7"; seeds are unsigned, so a minus sign is refused (std::stoull would wrap it).
 bool parseSeeds(const std::string& text, std::vector<std::uint64_t>& seeds) {
+  if (text.find('-') != std::string::npos) return false;
   try {
     if (auto dots = text.find(".."); dots != std::string::npos) {
       const auto lo = std::stoull(text.substr(0, dots)), hi = std::stoull(text.substr(dots + 2));
@@ -48,6 +49,24 @@ bool parseSeeds(const std::string& text, std::vector<std::uint64_t>& seeds) {
   } catch (...) {
     return false;
   }
+}
+
+// "--columns 0,500,1000": training steps >= 0; anything else is a usage error naming the option.
+std::vector<std::int64_t> parseColumns(const std::string& text) {
+  std::vector<std::int64_t> cols;
+  for (const auto& c : split(text, ',')) {
+    std::size_t used = 0;
+    std::int64_t v = -1;
+    try {
+      v = std::stoll(c, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != c.size() || v < 0)
+      throw cbtl::cli::UsageError(fmt::format("--columns wants comma-separated training steps >= 0, not '{}'", c));
+    cols.push_back(v);
+  }
+  return cols;
 }
 
 struct Stat {
@@ -78,6 +97,7 @@ int runExperiments(const ExperimentArgs& a) {
     }
     kinds.push_back(*k);
   }
+  const std::vector<std::int64_t> requestedColumns = parseColumns(a.columns);  // before the trials: a typo costs nothing
   std::vector<std::uint64_t> seeds;
   if (!parseSeeds(a.seeds, seeds)) {
     fmt::print(stderr, "cbtl experiment: error: --seeds wants 'LO..HI' or a comma-separated list, not '{}'\n", a.seeds);
@@ -141,7 +161,7 @@ int runExperiments(const ExperimentArgs& a) {
   // task success and preferences met, and the time per trial.
   std::vector<std::int64_t> cols;
   if (!a.columns.empty()) {
-    for (const auto& c : split(a.columns, ',')) cols.push_back(std::stoll(c));
+    cols = requestedColumns;
   } else {
     for (std::int64_t c : {std::int64_t{0}, a.steps / 20, a.steps / 10, a.steps / 4, a.steps / 2, a.steps}) {
       const std::int64_t snapped = (c / a.evalEvery) * a.evalEvery;
@@ -188,12 +208,7 @@ void addExperiment(CLI::App& app, int& exitCode) {
   cmd->add_option("--out", args->out, "write every trial's files and summary.csv here");
   cmd->add_flag("--quiet,-q", args->quiet, "no per-trial lines");
   cmd->callback([args, &exitCode]() {
-    try {
-      exitCode = runExperiments(*args);
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "cbtl experiment: error: {}\n", e.what());
-      exitCode = 1;
-    }
+    cbtl::cli::runCommand("experiment", exitCode, [&] { return runExperiments(*args); });
   });
 }
 

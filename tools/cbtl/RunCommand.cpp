@@ -1,6 +1,7 @@
 // `cbtl run FILE --approach A --seed S --steps N --eval-every K --eval-tasks M --out DIR`: one trial of the
 // paper's experiment in the domain's simulator. Exit codes: 0 ok, 1 bad input, 2 usage, 70 internal error.
 #include "CommandRegistry.h"
+#include "ErrorHandling.h"
 #include "RuntimeSupport.h"
 
 #include "UserModel.h"
@@ -8,7 +9,6 @@
 #include <fmt/core.h>
 
 #include <chrono>
-#include <exception>
 #include <string>
 
 namespace {
@@ -63,24 +63,12 @@ void addRun(CLI::App& app, int& exitCode) {
   cbtl::cli::addTrialOptions(cmd, *args);
   cmd->add_option("--approach", args->approach, "cbtl | no-personalization | free-explore | exploit-only | epsilon-greedy")
       ->capture_default_str();
-  cmd->add_option("--seed", args->seed, "run seed (same seed, same results)")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "run seed (same seed, same results)")->capture_default_str()
+      ->check(cbtl::cli::unsignedIn(0));
   cmd->add_option("--out", args->out, "write train.csv, eval.csv, models and the profile here");
   cmd->add_option("--profile", args->profile, "start from this user profile");
   cmd->add_flag("--quiet,-q", args->quiet, "no progress bar or summary");
-  cmd->callback([args, &exitCode]() {
-    try {
-      exitCode = runTrial(*args);
-    } catch (const cbtl::model::ProfileError& e) {
-      fmt::print(stderr, "cbtl run: error: {}\n", e.what());
-      exitCode = 1;
-    } catch (const cbtl::rt::RuntimeError& e) {
-      fmt::print(stderr, "cbtl run: error: {}\n", e.what());
-      exitCode = 1;
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "cbtl run: error: {}\n", e.what());
-      exitCode = 1;
-    }
-  });
+  cmd->callback([args, &exitCode]() { cbtl::cli::runCommand("run", exitCode, [&] { return runTrial(*args); }); });
 }
 
 const cbtl::cli::RegisterCommand registerRun(10, addRun);

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -107,4 +108,51 @@ require textLength("crème") == 6;
 )");
   ASSERT_TRUE(lp->ok()) << lp->errors();
   for (std::size_t i = 0; i < 3; ++i) EXPECT_FALSE(holds(*lp, i)) << "constraint " << i + 1;
+}
+
+// The widths a built-in reads and writes match its declaration: each non-generic extern of the language-level
+// modules is called with exactly its declared argument widths (text arguments a valid string id, everything
+// else 0.5) followed by NaN padding, and an output of its declared result width followed by a sentinel. A
+// built-in that reads past its arguments gets NaN into its result; one that writes past its result changes
+// the sentinel. (The world built-ins need a scene and are bound and exercised in WorldBindingTest.)
+TEST(StdlibBinding, BuiltinsReadAndWriteTheirDeclaredWidths) {
+  auto lp = test::compileOrFail("w.cbtl", "domain w;\nimport std.prelude;\nimport std.geometry;\nimport std.text;\n");
+  ASSERT_TRUE(lp->ok()) << lp->errors();
+  const auto& program = lp->program();
+  const rt::Builtins b = rt::Builtins::standard();
+  const rt::CallContext& cx = *program.callContext();
+  const double textId = cx.strings->intern("Salt");
+  constexpr double kSentinel = 12345.678;
+  std::size_t checked = 0;
+  for (const auto& f : lp->graph().functions) {
+    if (!f.isExtern || f.kind == "action" || !f.typeParams.empty()) continue;
+    std::vector<double> args;
+    std::vector<std::uint16_t> widths;
+    for (const auto& p : f.params) {
+      const rt::ValueType t = program.typeOf(p.type);
+      widths.push_back(static_cast<std::uint16_t>(t.width));
+      args.insert(args.end(), t.width, t.kind == rt::ValueKind::Text ? textId : 0.5);
+    }
+    const std::size_t argWidth = args.size();
+    args.resize(argWidth + 8, std::nan(""));
+    const std::size_t resultWidth = program.typeOf(f.result).width;
+    std::vector<double> out(resultWidth + 8, kSentinel);
+    bool produced = true;
+    if (f.kind == "sampler") {
+      const auto impl = b.sampler(f.name);
+      ASSERT_NE(impl, nullptr) << f.name;
+      rt::Rng rng(1);
+      produced = impl(cx, std::span(args.data(), argWidth), widths, rng, std::span(out.data(), resultWidth));
+    } else {
+      const auto impl = b.function(f.name);
+      ASSERT_NE(impl, nullptr) << f.name;
+      impl(cx, std::span(args.data(), argWidth), widths, std::span(out.data(), resultWidth));
+    }
+    for (std::size_t i = resultWidth; i < out.size(); ++i) EXPECT_EQ(out[i], kSentinel) << f.name << " wrote past its result";
+    if (produced) {
+      for (std::size_t i = 0; i < resultWidth; ++i) EXPECT_FALSE(std::isnan(out[i])) << f.name << " result " << i;
+    }
+    ++checked;
+  }
+  EXPECT_GE(checked, 30u);
 }

@@ -1,6 +1,7 @@
 #include "Experiment.h"
 
 #include "Checkpoint.h"
+#include "InternalError.h"
 #include "Planner.h"
 #include "ValueBridge.h"
 
@@ -58,7 +59,7 @@ namespace {
 
 void requireApplied(const sim::StepResult& r, const sim::ActionCall& call) {
   if (r.status == sim::ActionStatus::UnknownAction) {
-    throw std::runtime_error(fmt::format("the simulator rejected action '{}': {}", call.name, r.message));
+    throw rt::InternalError(fmt::format("the simulator rejected action '{}': {}", call.name, r.message));
   }
 }
 
@@ -316,6 +317,8 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
   if (task < 0) throw std::runtime_error(config.task.empty() ? "the program has no task" : fmt::format("no task named '{}'", config.task));
   if (config.evalEvery <= 0) throw std::runtime_error("--eval-every must be positive");
   if (config.steps < 0) throw std::runtime_error("--steps must not be negative");
+  if (config.nonstationary && config.adaptation == Adaptation::PeriodicReset && config.periodicResetEvery <= 0)
+    throw std::runtime_error("--periodic-reset-every must be positive");
 
   sim::SimulatorOptions simOptions = config.simulator;
   if (config.nonstationary && config.adaptation == Adaptation::UserReset) simOptions.announceShifts = true;

@@ -106,6 +106,38 @@ bool sPointInRectInset(const CallContext&, Args a, Widths, Rng& rng, Out o) {
   return true;
 }
 
+// std.text. Texts are string ids in cx.strings. Case folding is ASCII (bytes A-Z); other bytes, including
+// UTF-8 sequences, are kept as they are. A missing string table (no program) reads every text as "".
+const std::string& textArg(const CallContext& cx, double id) {
+  static const std::string empty;
+  const auto i = static_cast<std::uint32_t>(id);
+  return cx.strings != nullptr && id >= 0 && i < cx.strings->size() ? cx.strings->name(i) : empty;
+}
+
+std::string asciiLower(std::string s) {
+  for (char& c : s) {
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  }
+  return s;
+}
+
+void fContainsText(const CallContext& cx, Args a, Widths, Out o) {
+  o[0] = asciiLower(textArg(cx, a[0])).find(asciiLower(textArg(cx, a[1]))) != std::string::npos ? 1.0 : 0.0;
+}
+
+void fLowercase(const CallContext& cx, Args a, Widths, Out o) {
+  o[0] = cx.strings == nullptr ? 0.0 : static_cast<double>(cx.strings->intern(asciiLower(textArg(cx, a[0]))));
+}
+
+// Characters are Unicode code points of the UTF-8 text: every byte that does not continue a sequence.
+void fTextLength(const CallContext& cx, Args a, Widths, Out o) {
+  std::int64_t n = 0;
+  for (const char c : textArg(cx, a[0])) {
+    if ((static_cast<unsigned char>(c) & 0xC0) != 0x80) ++n;
+  }
+  o[0] = static_cast<double>(n);
+}
+
 }  // namespace
 
 void concatTexts(const CallContext& cx, Args a, Widths, Out o) {
@@ -152,6 +184,9 @@ Builtins Builtins::standard() {
   b.addFunction("xy", fXy);
   b.addFunction("gen3Conf", fGen3Conf);
   b.addFunction("se2", fSe2);
+  b.addFunction("containsText", fContainsText);
+  b.addFunction("lowercase", fLowercase);
+  b.addFunction("textLength", fTextLength);
   b.addSampler("uniformInt", sUniformInt);
   b.addSampler("uniformReal", sUniformReal);
   b.addSampler("bernoulli", sBernoulli);

@@ -49,7 +49,7 @@ void concatTexts(const CallContext& cx, std::span<const double> args, std::span<
 
 class Builtins {
  public:
-  // The prelude and geometry built-ins (std.prelude, std.geometry).
+  // The prelude, geometry and text built-ins (std.prelude, std.geometry, std.text).
   static Builtins standard();
 
   void addFunction(const std::string& name, FunctionImpl f) { functions_[name] = f; }

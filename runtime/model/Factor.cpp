@@ -39,6 +39,13 @@ void Factor::observe(double feature, bool holds) {
   else if (auto* t = std::get_if<ThresholdModel>(&model_)) t->observe(feature, holds);
 }
 
+void Factor::observeAll(std::span<const std::pair<double, bool>> points) {
+  if (auto* i = std::get_if<IntervalModel>(&model_)) i->observeAll(points);
+  else if (auto* t = std::get_if<ThresholdModel>(&model_)) {
+    for (const auto& [x, holds] : points) t->observe(x, holds);  // already constant time per point
+  }
+}
+
 void Factor::observe(const std::string& key, bool holds) {
   if (auto* t = std::get_if<TableModel>(&model_)) t->observe(key, holds);
 }

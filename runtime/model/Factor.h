@@ -39,6 +39,8 @@ class Factor {
   // text: see TextFactor::probability (`available` is the subject's domain for relative scaling)
   double probability(const textpref::Item& subject, std::span<const textpref::Item> available) const;
   void observe(double feature, bool holds);
+  // interval / threshold: observes every (feature, holds) in order, the same as one observe() each but linear.
+  void observeAll(std::span<const std::pair<double, bool>> points);
   void observe(const std::string& key, bool holds);
   // text: learns one (subject, liked) record; the status says whether theta could be updated
   textpref::Status observe(const textpref::Item& subject, bool holds);

@@ -12,6 +12,11 @@ void IntervalModel::observe(double x, bool holds) {
   refit();
 }
 
+void IntervalModel::observeAll(std::span<const std::pair<double, bool>> points) {
+  data_.insert(data_.end(), points.begin(), points.end());
+  refit();  // the fit depends on the data only, not on the order it arrived in
+}
+
 void IntervalModel::reset() {
   data_.clear();
   refit();

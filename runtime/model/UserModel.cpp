@@ -1,10 +1,12 @@
 #include "UserModel.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <fstream>
@@ -32,7 +34,7 @@ std::vector<Factor>& GeneratorState::mutableFactors(const std::string& key) {
 }
 
 UserModel::UserModel(const ir::ConstraintGraph& graph, std::shared_ptr<const textpref::TextBackend> textBackend)
-    : domain_(graph.domain) {
+    : domain_(graph.domain), graph_(&graph) {
   if (!textBackend) textBackend = defaultTextBackend();
   for (const auto& g : graph.generators) generators_.emplace_back(g, textBackend);
 }
@@ -88,6 +90,111 @@ std::string UserModel::toJson() const {
   return root.dump(2) + "\n";
 }
 
+namespace {
+
+[[noreturn]] void failAt(const std::string& source, const std::string& path, const std::string& what) {
+  throw ProfileError(fmt::format("{}: {}: {}", source, path, what));
+}
+
+// Loads the saved data of one factor whose kind the program declares as `spec.kind`.
+void loadFactor(Factor& f, const ir::ModelFactor& spec, const json& j, const std::string& source, const std::string& fpath) {
+  auto fail = [&](const std::string& path, const std::string& what) { failAt(source, path, what); };
+  if (!j.is_object()) fail(fpath, "expected an object");
+  if (!j.contains("kind") || !j["kind"].is_string() || j["kind"].get<std::string>() != spec.kind) {
+    const std::string saved = j.contains("kind") ? j["kind"].dump() : std::string("nothing");
+    fail(fpath + ".kind", fmt::format("expected \"{}\" (the program declares a {} model), the profile has {}", spec.kind,
+                                      spec.kind, saved));
+  }
+  if (auto* textFactor = std::get_if<TextFactor>(&f.model())) {
+    if (!j.contains("backend") || !j["backend"].is_string()) fail(fpath + ".backend", "expected the text backend's id");
+    const std::string backend = j["backend"].get<std::string>();
+    if (backend != textFactor->backendId()) {
+      fail(fpath + ".backend", fmt::format("saved by the '{}' text backend, this run uses '{}'", backend, textFactor->backendId()));
+    }
+    if (!j.contains("state") || !j["state"].is_object()) fail(fpath + ".state", "expected the text model's state object");
+    if (const textpref::Status st = textFactor->loadState(j["state"]); !st.ok()) fail(fpath + ".state", st.error().message);
+    return;
+  }
+  if (f.isTable()) {
+    if (!j.contains("entries") || !j["entries"].is_object()) fail(fpath + ".entries", "expected an object");
+    for (const auto& [k, v] : j["entries"].items()) {
+      if (!v.is_boolean()) fail(fpath + ".entries." + k, "expected true or false");
+      f.observe(k, v.get<bool>());
+    }
+    return;
+  }
+  if (!j.contains("data") || !j["data"].is_array()) fail(fpath + ".data", "expected an array of [x, label]");
+  const json& data = j["data"];
+  std::vector<std::pair<double, bool>> points;
+  points.reserve(data.size());
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    const json& d = data[i];
+    if (!d.is_array() || d.size() != 2 || !d[0].is_number() || !d[1].is_boolean()) {
+      fail(fmt::format("{}.data[{}]", fpath, i), "expected [number, true|false]");
+    }
+    points.emplace_back(d[0].get<double>(), d[1].get<bool>());
+  }
+  f.observeAll(points);  // one fit for all points: linear in the profile's size
+}
+
+// Which enum a per-key part of kind "enum" ranges over, or null.
+const ir::Enum* findEnum(const ir::ConstraintGraph& graph, const std::string& name) {
+  for (const auto& e : graph.enums) {
+    if (e.name == name) return &e;
+  }
+  return nullptr;
+}
+
+// A model key is the generator's `per` parts joined by '|' (Personalization.cpp, Learner.cpp): as many parts as
+// `per` names (more only when a free-text part may itself hold '|'), a bool part true|false, an int part an
+// integer, an enum part one of the enum's members.
+void checkKey(const ir::ConstraintGraph& graph, const ir::Generator& g, const std::string& key, const std::string& source,
+              const std::string& kpath) {
+  std::vector<std::string> parts;
+  if (!g.perKeys.empty()) {
+    std::size_t from = 0;
+    for (std::size_t bar = key.find('|'); bar != std::string::npos; bar = key.find('|', from)) {
+      parts.push_back(key.substr(from, bar - from));
+      from = bar + 1;
+    }
+    parts.push_back(key.substr(from));
+  } else if (!key.empty()) {
+    failAt(source, kpath, fmt::format("generator '{}' has no 'per' keys, so its only model key is \"\"", g.name));
+  }
+  bool freeText = false;
+  std::vector<const ir::TypeDesc*> types;
+  for (const auto& name : g.perKeys) {
+    const ir::TypeDesc* type = nullptr;
+    for (const auto& p : g.params) {
+      if (p.name == name) type = &p.type;
+    }
+    freeText = freeText || type == nullptr || type->kind == "text";
+    types.push_back(type);
+  }
+  if (parts.size() < g.perKeys.size() || (parts.size() > g.perKeys.size() && !freeText)) {
+    failAt(source, kpath, fmt::format("expected {} '|'-separated part{} (per {}), found {}", g.perKeys.size(),
+                                      g.perKeys.size() == 1 ? "" : "s", fmt::join(g.perKeys, ", "), parts.size()));
+  }
+  if (parts.size() != g.perKeys.size()) return;  // a free-text part holds a '|': the parts cannot be told apart
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (types[i] == nullptr) continue;  // a capture: any text
+    const std::string& kind = types[i]->kind;
+    const std::string& part = parts[i];
+    std::string problem;
+    if (kind == "bool" && part != "true" && part != "false") problem = "true or false";
+    if (kind == "int" && (part.empty() || part.find_first_not_of("-0123456789") != std::string::npos)) problem = "an integer";
+    if (kind == "enum") {
+      const ir::Enum* e = findEnum(graph, types[i]->spelling);
+      if (e != nullptr && std::find(e->members.begin(), e->members.end(), part) == e->members.end())
+        problem = fmt::format("a member of {} ({})", e->name, fmt::join(e->members, ", "));
+    }
+    if (!problem.empty())
+      failAt(source, kpath, fmt::format("part {} ('{}', per {}) should be {}", i + 1, part, g.perKeys[i], problem));
+  }
+}
+
+}  // namespace
+
 void UserModel::fromJson(const std::string& text, const std::string& source) {
   json root;
   try {
@@ -95,15 +202,14 @@ void UserModel::fromJson(const std::string& text, const std::string& source) {
   } catch (const json::parse_error& e) {
     throw ProfileError(fmt::format("{}: not valid JSON (byte {}): {}", source, e.byte, e.what()));
   }
-  auto fail = [&](const std::string& path, const std::string& what) {
-    throw ProfileError(fmt::format("{}: {}: {}", source, path, what));
-  };
+  auto fail = [&](const std::string& path, const std::string& what) { failAt(source, path, what); };
   if (!root.is_object() || root.value("format", "") != "cbtl-profile") fail("format", "expected \"cbtl-profile\"");
   if (!root.contains("version") || !root["version"].is_number_integer() || root["version"].get<int>() != 1) {
     fail("version", "expected 1");
   }
-  if (root.value("domain", "") != domain_) {
-    fail("domain", fmt::format("profile is for domain '{}', this program is '{}'", root.value("domain", ""), domain_));
+  if (!root.contains("domain") || !root["domain"].is_string() || root["domain"].get<std::string>() != domain_) {
+    fail("domain", fmt::format("profile is for domain {}, this program is '{}'",
+                               root.contains("domain") ? root["domain"].dump() : "(none)", domain_));
   }
   if (!root.contains("generators") || !root["generators"].is_object()) fail("generators", "expected an object");
   // Parse into a copy first, so a bad profile leaves the current model untouched.
@@ -119,45 +225,20 @@ void UserModel::fromJson(const std::string& text, const std::string& source) {
     if (!keys.is_object()) fail(gpath, "expected an object of model keys");
     for (const auto& [key, factors] : keys.items()) {
       const std::string kpath = gpath + "[\"" + key + "\"]";
+      checkKey(*graph_, state->spec(), key, source, kpath);
       if (!factors.is_object()) fail(kpath, "expected an object of factors");
       auto& fs = state->mutableFactors(key);
-      for (auto& f : fs) {
-        const std::string fpath = kpath + "." + f.label();
-        if (!factors.contains(f.label())) fail(fpath, "missing factor");
-        const json& j = factors[f.label()];
-        if (!j.is_object()) fail(fpath, "expected an object");
-        if (auto* textFactor = std::get_if<TextFactor>(&f.model())) {
-          if (!j.contains("kind") || j["kind"] != "text") fail(fpath + ".kind", "expected \"text\" (the program declares a text model)");
-          if (!j.contains("backend") || !j["backend"].is_string()) fail(fpath + ".backend", "expected the text backend's id");
-          const std::string backend = j["backend"].get<std::string>();
-          if (backend != textFactor->backendId()) {
-            fail(fpath + ".backend", fmt::format("saved by the '{}' text backend, this run uses '{}'", backend, textFactor->backendId()));
-          }
-          if (!j.contains("state") || !j["state"].is_object()) fail(fpath + ".state", "expected the text model's state object");
-          if (const textpref::Status s = textFactor->loadState(j["state"]); !s.ok()) fail(fpath + ".state", s.error().message);
-          continue;
-        }
-        if (f.isTable()) {
-          if (!j.contains("entries") || !j["entries"].is_object()) fail(fpath + ".entries", "expected an object");
-          for (const auto& [k, v] : j["entries"].items()) {
-            if (!v.is_boolean()) fail(fpath + ".entries." + k, "expected true or false");
-            f.observe(k, v.get<bool>());
-          }
-          continue;
-        }
-        if (!j.contains("data") || !j["data"].is_array()) fail(fpath + ".data", "expected an array of [x, label]");
-        std::size_t i = 0;
-        for (const auto& d : j["data"]) {
-          if (!d.is_array() || d.size() != 2 || !d[0].is_number() || !d[1].is_boolean()) {
-            fail(fmt::format("{}.data[{}]", fpath, i), "expected [number, true|false]");
-          }
-          f.observe(d[0].get<double>(), d[1].get<bool>());
-          ++i;
-        }
+      for (const auto& [label, j] : factors.items()) {
+        const bool known = std::any_of(fs.begin(), fs.end(), [&](const Factor& f) { return f.label() == label; });
+        if (!known) fail(kpath + "." + label, "no such factor in this generator");
+      }
+      for (std::size_t k = 0; k < fs.size(); ++k) {
+        const std::string fpath = kpath + "." + fs[k].label();
+        if (!factors.contains(fs[k].label())) fail(fpath, "missing factor");
+        loadFactor(fs[k], state->spec().factors[k], factors[fs[k].label()], source, fpath);
       }
     }
   }
-  for (auto& g : parsed) g.touch();
   generators_ = std::move(parsed);
   for (auto& g : generators_) g.touch();
 }

@@ -9,8 +9,9 @@
 //                                                    "state": {...the text model's saveState()...}}}}}}
 // Only the data is stored; the fitted state is recomputed on load, so a profile can never disagree with
 // itself (a text model's state is its feedback history, plus theta for a language model). Loading validates
-// everything and reports the first problem with its JSON path; a text factor's state must come from the backend
-// this run uses.
+// everything against the program and reports the first problem with its JSON path: every generator, factor label
+// and factor kind must be the program's, a model key must have the shape of the generator's `per` parts, and a
+// text factor's state must come from the backend this run uses. Loading is linear in the number of data points.
 //
 // Copying a UserModel deep-copies every factor, text models included (TextFactor.h): the copy learns alone.
 #pragma once
@@ -75,6 +76,7 @@ class UserModel {
 
  private:
   std::string domain_;
+  const ir::ConstraintGraph* graph_;  // the program the profile must fit (outlives the model, like the generators' specs)
   std::vector<GeneratorState> generators_;
 };
 

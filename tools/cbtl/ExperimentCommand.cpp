@@ -6,6 +6,7 @@
 // any trial's files is refused unless --force (replace them) or --resume (finished trials are read back from
 // their complete.json, interrupted ones continue from their last checkpoint, missing ones run).
 #include "CommandRegistry.h"
+#include "ErrorHandling.h"
 #include "RuntimeSupport.h"
 
 #include "RunDirectory.h"
@@ -15,7 +16,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -40,8 +40,9 @@ std::vector<std::string> split(const std::string& s, char sep) {
   return out;
 }
 
-// "0..9", "3", or "1,4,7".
+// "0..9", "3", or "1,4,7"; seeds are unsigned, so a minus sign is refused (std::stoull would wrap it).
 bool parseSeeds(const std::string& text, std::vector<std::uint64_t>& seeds) {
+  if (text.find('-') != std::string::npos) return false;
   try {
     if (auto dots = text.find(".."); dots != std::string::npos) {
       const auto lo = std::stoull(text.substr(0, dots)), hi = std::stoull(text.substr(dots + 2));
@@ -54,6 +55,24 @@ bool parseSeeds(const std::string& text, std::vector<std::uint64_t>& seeds) {
   } catch (...) {
     return false;
   }
+}
+
+// "--columns 0,500,1000": training steps >= 0; anything else is a usage error naming the option.
+std::vector<std::int64_t> parseColumns(const std::string& text) {
+  std::vector<std::int64_t> cols;
+  for (const auto& c : split(text, ',')) {
+    std::size_t used = 0;
+    std::int64_t v = -1;
+    try {
+      v = std::stoll(c, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != c.size() || v < 0)
+      throw cbtl::cli::UsageError(fmt::format("--columns wants comma-separated training steps >= 0, not '{}'", c));
+    cols.push_back(v);
+  }
+  return cols;
 }
 
 struct Stat {
@@ -110,6 +129,7 @@ int runExperiments(const ExperimentArgs& a) {
     }
     kinds.push_back(*k);
   }
+  const std::vector<std::int64_t> requestedColumns = parseColumns(a.columns);  // before the trials: a typo costs nothing
   std::vector<std::uint64_t> seeds;
   if (!parseSeeds(a.seeds, seeds)) {
     fmt::print(stderr, "cbtl experiment: error: --seeds wants 'LO..HI' or a comma-separated list, not '{}'\n", a.seeds);
@@ -132,6 +152,8 @@ int runExperiments(const ExperimentArgs& a) {
     std::vector<double> finalSuccess, finalPrefs, finalPrefsWhenServed;  // per seed, at the last checkpoint
   };
   std::map<std::string, Summary> summaries;
+  std::int64_t rechecks = 0, refused = 0;
+  std::string firstRefusal;
   for (auto kind : kinds) {
     Summary& s = summaries[approach::toString(kind)];
     for (auto seed : seeds) {
@@ -148,6 +170,9 @@ int runExperiments(const ExperimentArgs& a) {
         s.prefs[e.step].push_back(e.preferencesMetRate);
       }
       s.meanOverCheckpoints.push_back(r.meanEval());
+      rechecks += r.rechecks;
+      if (r.recheckViolations > 0 && refused == 0) firstRefusal = r.firstRecheckViolation;
+      refused += r.recheckViolations;
       if (!r.evals.empty()) {
         const auto& last = r.evals.back();
         s.finalSuccess.push_back(last.taskSuccessRate);
@@ -175,7 +200,7 @@ int runExperiments(const ExperimentArgs& a) {
   // task success and preferences met, and the time per trial.
   std::vector<std::int64_t> cols;
   if (!a.columns.empty()) {
-    for (const auto& c : split(a.columns, ',')) cols.push_back(std::stoll(c));
+    cols = requestedColumns;
   } else {
     for (std::int64_t c : {std::int64_t{0}, a.steps / 20, a.steps / 10, a.steps / 4, a.steps / 2, a.steps}) {
       const std::int64_t snapped = (c / a.evalEvery) * a.evalEvery;
@@ -208,7 +233,13 @@ int runExperiments(const ExperimentArgs& a) {
   fmt::print("columns: eval satisfaction per checkpoint and over all checkpoints (mean ± standard error over seeds); task\n"
              "success, preferences met (of all tasks) and preferences met of the served meals at the last checkpoint\n"
              "(mean ± standard deviation over seeds); wall-clock seconds per trial\n");
+  fmt::print("{} solutions re-checked before execution, {} refused\n", rechecks, refused);
   if (!a.out.empty()) fmt::print("wrote {}/summary.csv and one folder per approach and seed\n", a.out);
+  if (refused > 0) {
+    fmt::print(stderr, "cbtl experiment: internal error: {} accepted solutions failed the independent re-check and were refused; the first: {}\n",
+               refused, firstRefusal);
+    return 70;
+  }
   return 0;
 }
 
@@ -225,12 +256,7 @@ void addExperiment(CLI::App& app, int& exitCode) {
   cmd->add_flag("--resume", args->resume, "continue the experiment in --out: finished trials are kept, the others resume")
       ->excludes(force);
   cmd->callback([args, &exitCode]() {
-    try {
-      exitCode = runExperiments(*args);
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "cbtl experiment: error: {}\n", e.what());
-      exitCode = 1;
-    }
+    cbtl::cli::runCommand("experiment", exitCode, [&] { return runExperiments(*args); });
   });
 }
 

@@ -9,6 +9,7 @@
 // Exit codes: 0 ok/usable, 1 bad input or unusable server, 2 usage (CLI11), 70 internal error. The API key is read
 // from the environment variable named by --api-key-env and is never printed.
 #include "CommandRegistry.h"
+#include "ErrorHandling.h"
 
 #include "textpref/ChatClient.h"
 #include "textpref/RatingReader.h"
@@ -239,23 +240,9 @@ void addLlmCommand(CLI::App& app, int& exitCode) {
   booksCmd->add_option("--attempts", books->attempts, "Attempts per request")
       ->capture_default_str()
       ->check(CLI::Range(1, 10));
-  booksCmd->callback([books, &exitCode] {
-    try {
-      exitCode = runBooks(*books);
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "cbtl llm books: internal error: {}\n", e.what());
-      exitCode = 70;
-    }
-  });
+  booksCmd->callback([books, &exitCode] { cbtl::cli::runCommand("llm books", exitCode, [&] { return runBooks(*books); }); });
 
-  probe->callback([options, &exitCode] {
-    try {
-      exitCode = runProbe(*options);
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "cbtl llm probe: internal error: {}\n", e.what());
-      exitCode = 70;
-    }
-  });
+  probe->callback([options, &exitCode] { cbtl::cli::runCommand("llm probe", exitCode, [&] { return runProbe(*options); }); });
 }
 
 static cbtl::cli::RegisterCommand reg(60, addLlmCommand);

@@ -2,6 +2,8 @@
 // rendered offscreen (EGL, no display needed). Exit codes: 0 ok, 1 bad input (scene, state or output file),
 // 2 usage, 70 internal error (including no usable EGL/OpenGL).
 #include "CommandRegistry.h"
+#include "ErrorHandling.h"
+#include "OptionChecks.h"
 
 #include "PngWriter.h"
 #include "Renderer.h"
@@ -88,10 +90,11 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--camera", args->camera, "a named camera of the scene (default: free camera)");
   cmd->add_option("--width", args->width, "image width in pixels")->check(CLI::Range(1, 8192));
   cmd->add_option("--height", args->height, "image height in pixels")->check(CLI::Range(1, 8192));
-  cmd->add_option("--azimuth", args->azimuth, "free camera azimuth, degrees");
-  cmd->add_option("--elevation", args->elevation, "free camera elevation, degrees");
-  cmd->add_option("--distance", args->distance, "free camera distance, metres (default from the scene)");
-  cmd->callback([args, &exitCode] { exitCode = runRender(*args); });
+  cmd->add_option("--azimuth", args->azimuth, "free camera azimuth, degrees")->check(cbtl::cli::realIn(-360, 360));
+  cmd->add_option("--elevation", args->elevation, "free camera elevation, degrees")->check(cbtl::cli::realIn(-90, 90));
+  cmd->add_option("--distance", args->distance, "free camera distance, metres (default, or 0: from the scene)")
+      ->check(cbtl::cli::realIn(0, 1e6));
+  cmd->callback([args, &exitCode] { cbtl::cli::runCommand("render", exitCode, [&] { return runRender(*args); }); });
 }
 
 static cbtl::cli::RegisterCommand reg(50, addRenderCommand);

@@ -3,6 +3,7 @@
 // An --out folder that holds a run is refused unless --force (replace it) or --resume (continue it from its last
 // checkpoint); approach/RunDirectory.h lists the files and their guarantees.
 #include "CommandRegistry.h"
+#include "ErrorHandling.h"
 #include "RuntimeSupport.h"
 
 #include "RunDirectory.h"
@@ -11,7 +12,6 @@
 #include <fmt/core.h>
 
 #include <chrono>
-#include <exception>
 #include <string>
 
 namespace {
@@ -75,26 +75,14 @@ void addRun(CLI::App& app, int& exitCode) {
   cbtl::cli::addTrialOptions(cmd, *args);
   cmd->add_option("--approach", args->approach, "cbtl | no-personalization | free-explore | exploit-only | epsilon-greedy")
       ->capture_default_str();
-  cmd->add_option("--seed", args->seed, "run seed (same seed, same results)")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "run seed (same seed, same results)")->capture_default_str()
+      ->check(cbtl::cli::unsignedIn(0));
   cmd->add_option("--out", args->out, "write train.csv, eval.csv, models and the profile here");
   cmd->add_option("--profile", args->profile, "start from this user profile");
   auto* force = cmd->add_flag("--force", args->force, "replace the run already in --out (only the files a run writes)");
   cmd->add_flag("--resume", args->resume, "continue the run in --out from its last checkpoint (same options)")->excludes(force);
   cmd->add_flag("--quiet,-q", args->quiet, "no progress bar or summary");
-  cmd->callback([args, &exitCode]() {
-    try {
-      exitCode = runTrial(*args);
-    } catch (const cbtl::model::ProfileError& e) {
-      fmt::print(stderr, "cbtl run: error: {}\n", e.what());
-      exitCode = 1;
-    } catch (const cbtl::rt::RuntimeError& e) {
-      fmt::print(stderr, "cbtl run: error: {}\n", e.what());
-      exitCode = 1;
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "cbtl run: error: {}\n", e.what());
-      exitCode = 1;
-    }
-  });
+  cmd->callback([args, &exitCode]() { cbtl::cli::runCommand("run", exitCode, [&] { return runTrial(*args); }); });
 }
 
 const cbtl::cli::RegisterCommand registerRun(10, addRun);

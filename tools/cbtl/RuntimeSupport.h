@@ -3,6 +3,7 @@
 #pragma once
 
 #include "DomainRegistry.h"
+#include "OptionChecks.h"
 #include "Experiment.h"
 #include "LoadedProgram.h"
 #include "Solver.h"
@@ -11,6 +12,7 @@
 
 #include <fmt/core.h>
 
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -37,11 +39,13 @@ inline approach::SimulatorFactory simulatorFactory(const std::string& domain) {
 }
 
 inline void addSolverOptions(CLI::App* cmd, solver::SolverOptions& o) {
-  cmd->add_option("--max-iters", o.maxIters, "solver iterations per CSP")->capture_default_str();
-  cmd->add_option("--num-improvements", o.numImprovements, "stop after this many improvements (N_improve)")->capture_default_str();
+  cmd->add_option("--max-iters", o.maxIters, "solver iterations per CSP")->capture_default_str()->check(unsignedIn(1));
+  cmd->add_option("--num-improvements", o.numImprovements, "stop after this many improvements (N_improve; 0: the first solution)")
+      ->capture_default_str()->check(unsignedIn(0));
   cmd->add_option("--max-improvement-attempts", o.maxImprovementAttempts,
-                  "stop this many iterations after the first solution")->capture_default_str();
-  cmd->add_option("--memory-size", o.memorySize, "remembered satisfying values per constraint")->capture_default_str();
+                  "stop this many iterations after the first solution")->capture_default_str()->check(unsignedIn(0));
+  cmd->add_option("--memory-size", o.memorySize, "remembered satisfying values per constraint")->capture_default_str()
+      ->check(unsignedIn(1));
   static const std::map<std::string, solver::MemoryPolicy> policies = {
       {"checks", solver::MemoryPolicy::EverySatisfiedCheck}, {"solutions", solver::MemoryPolicy::Solutions}};
   cmd->add_option("--memory", o.memoryPolicy,
@@ -99,22 +103,28 @@ struct TrialArgs {
   TextBackendArgs text;
 };
 
+// Ranges: --steps >= 0; --eval-every, --eval-tasks, --max-eval-steps, --shift-every, --periodic-reset-every >= 1;
+// --epsilon and --unsatisfiable-stock in [0, 1]. A value outside is a usage error (exit 2) naming the option.
 inline void addTrialOptions(CLI::App* cmd, TrialArgs& a) {
   cmd->add_option("file", a.file, "the domain's .cbtl file")->required();
-  cmd->add_option("--steps", a.steps, "training steps")->capture_default_str();
-  cmd->add_option("--eval-every", a.evalEvery, "evaluate every K steps")->capture_default_str();
-  cmd->add_option("--eval-tasks", a.evalTasks, "held-out tasks per evaluation")->capture_default_str();
-  cmd->add_option("--max-eval-steps", a.maxEvalSteps, "step limit of one evaluation episode")->capture_default_str();
+  cmd->add_option("--steps", a.steps, "training steps")->capture_default_str()->check(integerIn(0));
+  cmd->add_option("--eval-every", a.evalEvery, "evaluate every K steps")->capture_default_str()->check(integerIn(1));
+  cmd->add_option("--eval-tasks", a.evalTasks, "held-out tasks per evaluation")->capture_default_str()
+      ->check(integerIn(1, std::numeric_limits<int>::max()));
+  cmd->add_option("--max-eval-steps", a.maxEvalSteps, "step limit of one evaluation episode")->capture_default_str()
+      ->check(integerIn(1));
   cmd->add_option("--task", a.task, "task to run (default: the first)");
   cmd->add_flag("--replan", a.replan, "when the full CSP is unsatisfiable, replan without personalized constraints");
-  cmd->add_option("--epsilon", a.epsilon, "epsilon-greedy's exploration probability")->capture_default_str();
+  cmd->add_option("--epsilon", a.epsilon, "epsilon-greedy's exploration probability")->capture_default_str()
+      ->check(realIn(0, 1));
   cmd->add_option("--nonstationary", a.nonstationary,
                   "shift the user's preferences: none | no-adapt | user-reset | periodic-reset")->capture_default_str();
-  cmd->add_option("--shift-every", a.shiftEvery, "steps between preference shifts")->capture_default_str();
+  cmd->add_option("--shift-every", a.shiftEvery, "steps between preference shifts")->capture_default_str()
+      ->check(integerIn(1));
   cmd->add_option("--periodic-reset-every", a.periodicEvery, "steps between model resets (periodic-reset)")
-      ->capture_default_str();
+      ->capture_default_str()->check(integerIn(1));
   cmd->add_option("--unsatisfiable-stock", a.unsatisfiable, "probability that a restock cannot satisfy the user (Cooking)")
-      ->capture_default_str();
+      ->capture_default_str()->check(realIn(0, 1));
   cmd->add_option("--stdlib", a.stdlibDir, "standard library folder (default: embedded)");
   addSolverOptions(cmd, a.solver);
   addTextBackendOptions(cmd, a.text);

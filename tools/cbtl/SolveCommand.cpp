@@ -2,6 +2,7 @@
 // world for that seed, its solution and action plan, or why there is none. Exit codes: 0 solved, 3 no
 // solution within the budget, 1 bad input, 2 usage, 70 internal error.
 #include "CommandRegistry.h"
+#include "ErrorHandling.h"
 #include "RuntimeSupport.h"
 
 #include "Planner.h"
@@ -11,7 +12,6 @@
 #include <fmt/core.h>
 
 #include <algorithm>
-#include <exception>
 #include <string>
 
 namespace {
@@ -120,7 +120,8 @@ void addSolve(CLI::App& app, int& exitCode) {
   CLI::App* cmd = app.add_subcommand("solve", "solve one CSP of a task and print its solution and plan, or why there is none");
   cmd->add_option("file", args->file, "the domain's .cbtl file")->required();
   cmd->add_option("--task", args->task, "task to solve (default: the first)");
-  cmd->add_option("--seed", args->seed, "seed of the world and the solver")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "seed of the world and the solver")->capture_default_str()
+      ->check(cbtl::cli::unsignedIn(0));
   cmd->add_option("--csp", args->csp,
                   "exploit: hard + personalized constraints; explore: hard constraints, maximize entropy; hard: hard only")
       ->capture_default_str();
@@ -130,14 +131,7 @@ void addSolve(CLI::App& app, int& exitCode) {
   cmd->add_option("--stdlib", args->stdlibDir, "standard library folder (default: embedded)");
   cbtl::cli::addSolverOptions(cmd, args->solver);
   cbtl::cli::addTextBackendOptions(cmd, args->text);
-  cmd->callback([args, &exitCode]() {
-    try {
-      exitCode = runSolve(*args);
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "cbtl solve: error: {}\n", e.what());
-      exitCode = 1;
-    }
-  });
+  cmd->callback([args, &exitCode]() { cbtl::cli::runCommand("solve", exitCode, [&] { return runSolve(*args); }); });
 }
 
 const cbtl::cli::RegisterCommand registerSolve(20, addSolve);

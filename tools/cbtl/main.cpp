@@ -1,10 +1,8 @@
 // cbtl — run, solve and inspect CBTL constraint graphs. Subcommands register themselves (CommandRegistry.h).
 #include "CommandRegistry.h"
-
-#include <fmt/core.h>
+#include "ErrorHandling.h"
 
 #include <algorithm>
-#include <exception>
 
 int main(int argc, char** argv) {
   CLI::App app{"cbtl: run CBTL constraint graphs: solve, personalize, learn, render"};
@@ -22,10 +20,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "cbtl: internal error: {}\nthis is a bug; please report it with the command line.\n",
-               e.what());
-    return 70;
+  } catch (...) {  // commands catch their own (ErrorHandling.h); this is for anything thrown outside them
+    return cbtl::cli::reportCurrentException("");
   }
   return exitCode;
 }

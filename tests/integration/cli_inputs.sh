@@ -1,0 +1,104 @@
+#!/usr/bin/env bash
+# Every validated numeric option of every `cbtl` command: a bad value is a usage error (exit 2) whose message
+# names the option, before any work starts; a good boundary value is accepted. Also the error format of bad
+# input (exit 1, "cbtl <command>: error: ...").
+# usage: cli_inputs.sh CBTL DOMAINS_DIR
+set -u
+cbtl=$1
+domains=$2
+cooking=$domains/cooking/cooking.cbtl
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+
+expect() {  # expect CODE PATTERN -- command...
+  local code=$1 pattern=$2
+  shift 3
+  local out rc
+  out=$("$@" 2>&1)
+  rc=$?
+  if [[ $rc -ne $code ]]; then
+    echo "FAIL (exit $rc, wanted $code): $*"; echo "$out" | head -10; failures=$((failures + 1)); return
+  fi
+  if [[ -n $pattern ]] && ! grep -qE -- "$pattern" <<<"$out"; then
+    echo "FAIL (output lacks /$pattern/): $*"; echo "$out" | head -10; failures=$((failures + 1)); return
+  fi
+  echo "ok ($rc): $*"
+}
+
+# bad OPTION VALUE...: each value is rejected with exit 2 and a message naming OPTION, for run and experiment.
+bad_trial() {
+  local option=$1
+  shift
+  for value in "$@"; do
+    expect 2 "^$option: " -- "$cbtl" run "$cooking" "$option" "$value" -q
+    expect 2 "^$option: " -- "$cbtl" experiment "$cooking" "$option" "$value" -q --seeds 0
+  done
+}
+
+bad_trial --steps -1 x 1.5
+bad_trial --eval-every 0 -3
+bad_trial --eval-tasks 0 -1 99999999999
+bad_trial --max-eval-steps 0 -1
+bad_trial --epsilon -0.1 1.01 nan inf
+bad_trial --shift-every 0 -10
+bad_trial --periodic-reset-every 0 -1
+bad_trial --unsatisfiable-stock -0.5 2 nan
+bad_trial --max-iters 0 -1
+bad_trial --num-improvements -1
+bad_trial --max-improvement-attempts -1
+bad_trial --memory-size 0 -1
+
+# --seed is unsigned: "-1" used to wrap to 2^64 - 1.
+for value in -1 -0 abc 1.5 18446744073709551616; do
+  expect 2 "^--seed: " -- "$cbtl" run "$cooking" --seed "$value" -q
+  expect 2 "^--seed: " -- "$cbtl" solve "$cooking" --seed "$value"
+done
+for option in --max-iters --memory-size; do
+  expect 2 "^$option: " -- "$cbtl" solve "$cooking" "$option" 0
+done
+expect 2 "^--num-improvements: " -- "$cbtl" solve "$cooking" --num-improvements -2
+expect 2 "^--max-improvement-attempts: " -- "$cbtl" solve "$cooking" --max-improvement-attempts -2
+
+# experiment's own lists.
+for value in -1..3 0..-2 x "" 5..2; do
+  expect 2 "cbtl experiment: error: --seeds" -- "$cbtl" experiment "$cooking" --seeds "$value" -q
+done
+for value in x -100 10,y; do
+  expect 2 "cbtl experiment: error: --columns" -- "$cbtl" experiment "$cooking" --columns "$value" -q --seeds 0 --steps 10
+done
+
+# render: camera angles and distance (checked before the scene is read).
+scene=$domains/feeding/feeding.xml
+expect 2 "^--elevation: " -- "$cbtl" render "$scene" --out "$work/x.png" --elevation 91
+expect 2 "^--elevation: " -- "$cbtl" render "$scene" --out "$work/x.png" --elevation nan
+expect 2 "^--azimuth: " -- "$cbtl" render "$scene" --out "$work/x.png" --azimuth 1e9
+expect 2 "^--distance: " -- "$cbtl" render "$scene" --out "$work/x.png" --distance -1
+expect 2 "^--width: " -- "$cbtl" render "$scene" --out "$work/x.png" --width 0
+expect 2 "^--height: " -- "$cbtl" render "$scene" --out "$work/x.png" --height -5
+
+# llm: timeouts, attempts and rounds (checked before any request).
+expect 2 "^--timeout-ms: " -- "$cbtl" llm probe --base-url http://127.0.0.1:9/v1 --model m --timeout-ms 0
+expect 2 "^--connect-timeout-ms: " -- "$cbtl" llm probe --base-url http://127.0.0.1:9/v1 --model m --connect-timeout-ms -1
+expect 2 "^--attempts: " -- "$cbtl" llm probe --base-url http://127.0.0.1:9/v1 --model m --attempts 0
+expect 2 "^--rounds: " -- "$cbtl" llm books --rounds 0
+expect 2 "^--attempts: " -- "$cbtl" llm books --attempts 11
+
+# Boundary values are accepted: a periodic reset every step, epsilon 0 and 1, zero training steps.
+expect 0 "" -- "$cbtl" run "$cooking" --steps 4 --eval-every 2 --eval-tasks 1 --max-eval-steps 1 -q \
+  --nonstationary periodic-reset --periodic-reset-every 1 --shift-every 1
+expect 0 "" -- "$cbtl" run "$cooking" --steps 0 --eval-tasks 1 --max-eval-steps 1 -q --approach epsilon-greedy --epsilon 1
+expect 0 "" -- "$cbtl" run "$cooking" --steps 2 --eval-every 1 --eval-tasks 1 --max-eval-steps 1 -q --epsilon 0 \
+  --unsatisfiable-stock 1 --seed 18446744073709551615
+expect 0 "" -- "$cbtl" experiment "$cooking" --steps 2 --eval-every 1 --eval-tasks 1 --max-eval-steps 1 -q --seeds 0 \
+  --columns 0,2
+
+# Bad input: exit 1 with "cbtl <command>: error:".
+expect 1 "^cbtl run: error: .*missing.json" -- "$cbtl" run "$cooking" --steps 1 --profile "$work/missing.json"
+expect 1 "^cbtl solve: error: .*missing.json" -- "$cbtl" solve "$cooking" --profile "$work/missing.json"
+: >"$work/plainfile"
+expect 1 "^cbtl experiment: error: .*plainfile" -- "$cbtl" experiment "$cooking" --seeds 0 --steps 1 --eval-tasks 1 -q \
+  --out "$work/plainfile/sub"
+
+echo "$failures failed"
+[[ $failures -eq 0 ]]

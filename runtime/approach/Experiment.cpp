@@ -3,6 +3,8 @@
 #include "Planner.h"
 #include "ValueBridge.h"
 
+#include "textpref/RunReport.h"
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -120,6 +122,7 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
   auto trainWorld = factory(simOptions, config.seed);
   if (!trainWorld) throw std::runtime_error(fmt::format("no simulator for domain '{}'", lp.graph().domain));
   auto evalWorld = trainWorld->makeEvaluationTwin();
+  textpref::beginRunFaults(config.textBackend.get());
 
   const rt::Program& program = lp.program();
   model::UserModel user(lp.graph(), config.textBackend);
@@ -151,6 +154,7 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
                           {"solver", {{"max_iters", config.solverOptions.maxIters}, {"num_improvements", config.solverOptions.numImprovements},
                                       {"max_improvement_attempts", config.solverOptions.maxImprovementAttempts},
                                       {"memory_size", config.solverOptions.memorySize}}}};
+    cfg["text_backend"] = textpref::textBackendJson(config.textBackend.get());
     std::ofstream(fs::path(config.outDir) / "config.json") << cfg.dump(2) << "\n";
   }
 
@@ -253,6 +257,11 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
     progress.update(t + 1, result.evals.empty() ? 0 : result.evals.back().mean);
   }
   if (!config.outDir.empty()) user.save((fs::path(config.outDir) / "profile.json").string());
+  result.llmFaults = textpref::runFaults(config.textBackend.get());
+  if (!config.outDir.empty()) {
+    if (auto s = textpref::writeLlmReport(config.outDir, config.textBackend.get(), result.llmFaults); !s.ok())
+      throw std::runtime_error(s.error().describe());
+  }
   return result;
 }
 

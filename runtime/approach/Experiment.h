@@ -10,13 +10,16 @@
 // scores 0 and counts as a failed task.
 //
 // Outputs (when `outDir` is set): train.csv, eval.csv (the reference's columns plus task-success and
-// preferences-met rates), config.json, models/<step>.json at every checkpoint and profile.json at the end.
+// preferences-met rates), config.json (with the text backend, server and model), models/<step>.json at every
+// checkpoint, and at the end profile.json and llm.json (the text backend and its failure counts, RunReport.h).
 #pragma once
 
 #include "Approach.h"
 #include "DomainSimulator.h"
 #include "LoadedProgram.h"
 #include "Solver.h"
+
+#include "textpref/FaultStats.h"
 
 #include <cstdint>
 #include <functional>
@@ -76,6 +79,8 @@ struct ExperimentResult {
   // Learning steps whose text model kept its old theta (e.g. a language-model server failed), and the first one.
   std::int64_t textModelErrors = 0;
   std::string firstTextModelError;
+  // The language model's failures in this run: ratings that fell back, by kind, and the circuit breaker.
+  textpref::FaultReport llmFaults;
   double meanEval() const;
 };
 

@@ -97,6 +97,7 @@ int runExperiments(const ExperimentArgs& a) {
     std::vector<double> finalSuccess, finalPrefs, finalPrefsWhenServed;  // per seed, at the last checkpoint
   };
   std::map<std::string, Summary> summaries;
+  cbtl::textpref::FaultReport llmFaults;  // over every trial
   for (auto kind : kinds) {
     Summary& s = summaries[approach::toString(kind)];
     for (auto seed : seeds) {
@@ -106,6 +107,7 @@ int runExperiments(const ExperimentArgs& a) {
       if (!a.out.empty()) c.outDir = fmt::format("{}/{}/seed{}", a.out, approach::toString(kind), seed);
       const auto start = std::chrono::steady_clock::now();
       const auto r = approach::runExperiment(*lp, factory, c);
+      llmFaults.add(r.llmFaults);
       s.seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       for (const auto& e : r.evals) {
         s.bySteps[e.step].push_back(e.mean);
@@ -122,6 +124,7 @@ int runExperiments(const ExperimentArgs& a) {
       if (!a.quiet) {
         fmt::print(stderr, "{} seed {}: mean eval {:+.3f}, final {:+.2f} ({:.2f} s)\n", approach::toString(kind), seed, r.meanEval(),
                    r.evals.empty() ? 0.0 : r.evals.back().mean, s.seconds.back());
+        if (r.llmFaults.any()) fmt::print(stderr, "{}", r.llmFaults.summary());
       }
     }
   }
@@ -174,6 +177,7 @@ int runExperiments(const ExperimentArgs& a) {
   fmt::print("columns: eval satisfaction per checkpoint and over all checkpoints (mean ± standard error over seeds); task\n"
              "success, preferences met (of all tasks) and preferences met of the served meals at the last checkpoint\n"
              "(mean ± standard deviation over seeds); wall-clock seconds per trial\n");
+  cli::printLlmFaults(stdout, llmFaults);
   if (!a.out.empty()) fmt::print("wrote {}/summary.csv and one folder per approach and seed\n", a.out);
   return 0;
 }

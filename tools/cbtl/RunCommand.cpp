@@ -52,7 +52,10 @@ int runTrial(const RunArgs& a) {
       fmt::print("{} text-model updates failed (the old theta was kept); the first: {}\n", r.textModelErrors,
                  r.firstTextModelError);
     }
-    if (!a.out.empty()) fmt::print("wrote {}/train.csv, eval.csv, config.json, profile.json, models/\n", a.out);
+    cli::printLlmFaults(stdout, r.llmFaults);
+    if (!a.out.empty()) fmt::print("wrote {}/train.csv, eval.csv, config.json, llm.json, profile.json, models/\n", a.out);
+  } else {
+    cli::printLlmFaults(stderr, r.llmFaults);
   }
   return 0;
 }

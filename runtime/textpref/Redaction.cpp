@@ -6,6 +6,8 @@
 namespace cbtl::textpref {
 namespace {
 
+constexpr std::size_t kMinBearerToken = 8;  // "the bearer of bad news" is not a credential
+
 bool isKeyChar(char c) {
   return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '*' || c == '.';
 }
@@ -53,7 +55,7 @@ std::string redactSecrets(std::string_view text, std::string_view secret) {
       std::size_t j = i + 6;
       while (j < s.size() && s[j] == ' ') ++j;
       const std::size_t n = keyRun(s, j);
-      if (n > 0) {
+      if (n >= kMinBearerToken) {
         out.append(s.substr(i, 6));
         out.push_back(' ');
         out.append(kRedacted);

@@ -7,7 +7,8 @@
 // Contract of redactSecrets(text, secret):
 //  - every occurrence of `secret` is replaced by kRedacted, when `secret` has at least kMinSecretLength
 //    characters (a shorter value would garble ordinary words; such a key is still caught by the patterns below);
-//  - every "Bearer <token>" (case-insensitive "bearer", one or more spaces) becomes "Bearer [redacted]";
+//  - every "Bearer <token>" (case-insensitive "bearer", one or more spaces, a token of at least 8 key characters)
+//    becomes "Bearer [redacted]";
 //  - every token that starts with "sk-" at a word boundary and continues with at least 4 key characters
 //    (letters, digits, '-', '_', '*', '.') becomes kRedacted;
 //  - nothing else changes. The result never contains `secret` (when long enough) and is idempotent.

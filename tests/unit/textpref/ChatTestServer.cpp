@@ -131,9 +131,8 @@ ChatTestServer::Handler echoAuthorization(int status) {
 }
 
 int unusedLoopbackPort() {
-  httplib::Server probe;
-  const int port = probe.bind_to_any_port("127.0.0.1");
-  return port;  // the socket closes with `probe`; nothing listens there afterwards
+  ChatTestServer gone;  // listens, then stops and closes its socket
+  return gone.port();
 }
 
 }  // namespace cbtl::textpref::testing

@@ -206,6 +206,7 @@ int runBooks(const BooksOptions& o) {
       fmt::print(stderr, "cbtl llm books: learning failed, theta unchanged: {}\n", s.error().describe());
   }
   fmt::print("theta: {}\n", model->thetaText());
+  if (const FaultReport faults = backend.faultReport(); faults.any()) fmt::print(stderr, "{}", faults.summary());
   return 0;
 }
 

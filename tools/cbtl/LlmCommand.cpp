@@ -44,6 +44,31 @@ struct Question {
   int answer;
 };
 
+// Does the server continue a pre-filled assistant turn? Then "0" should follow "1" for the answer 10.
+void reportSplitFollowUp(cbtl::textpref::ChatClient& client, const char* question) {
+  using namespace cbtl::textpref;
+  ChatRequest followUp;
+  followUp.messages = {{"user", question}, {"assistant", "1"}};
+  followUp.maxTokens = 1;
+  followUp.seed = 0;
+  followUp.topLogprobs = 20;
+  auto next = client.complete(followUp);
+  double zero = 0.0;
+  if (next && next.value().hasLogprobs)
+    for (const auto& t : next.value().firstTokenTop)
+      if (t.token == "0") zero += std::exp(t.logprob);
+  if (!next) {
+    fmt::print("split follow-up: failed: {}\n", next.error().describe());
+  } else if (zero >= 0.5) {
+    fmt::print("split follow-up: the server continues a pre-filled answer (P(\"0\" after \"1\") = {:.3f}).\n", zero);
+  } else {
+    fmt::print(
+        "split follow-up: P(\"0\" after \"1\") = {:.3f}: the server may not continue a pre-filled answer "
+        "(vLLM needs continue_final_message); high ratings may be read as 1.\n",
+        zero);
+  }
+}
+
 int runProbe(const ProbeOptions& o) {
   using namespace cbtl::textpref;
   if (o.baseUrl.rfind("http://", 0) != 0 && o.baseUrl.rfind("https://", 0) != 0) {
@@ -120,27 +145,7 @@ int runProbe(const ProbeOptions& o) {
       fmt::print("\"10\" is a single token.\n");
     } else if (sawSplitOne) {
       fmt::print("\"10\" is split into \"1\" + \"0\": rating queries need the split follow-up (policy auto or always).\n");
-      // Does the server continue a pre-filled assistant turn? Then "0" should follow "1" for the answer 10.
-      ChatRequest followUp;
-      followUp.messages = {{"user", questions[1].text}, {"assistant", "1"}};
-      followUp.maxTokens = 1;
-      followUp.seed = 0;
-      followUp.topLogprobs = 20;
-      auto next = client.complete(followUp);
-      double zero = 0.0;
-      if (next && next.value().hasLogprobs)
-        for (const auto& t : next.value().firstTokenTop)
-          if (t.token == "0") zero += std::exp(t.logprob);
-      if (!next) {
-        fmt::print("split follow-up: failed: {}\n", next.error().describe());
-      } else if (zero >= 0.5) {
-        fmt::print("split follow-up: the server continues a pre-filled answer (P(\"0\" after \"1\") = {:.3f}).\n", zero);
-      } else {
-        fmt::print(
-            "split follow-up: P(\"0\" after \"1\") = {:.3f}: the server may not continue a pre-filled answer "
-            "(vLLM needs continue_final_message); high ratings may be read as 1.\n",
-            zero);
-      }
+      reportSplitFollowUp(client, questions[1].text);
     } else {
       fmt::print("could not tell how \"10\" is tokenized; keep the split policy at auto.\n");
     }

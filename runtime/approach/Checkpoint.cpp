@@ -121,7 +121,9 @@ json toJson(const ExperimentResult& r) {
           {"train_solves", r.trainSolves}, {"train_solve_failures", r.trainSolveFailures}, {"train_replans", r.trainReplans},
           {"solver_iterations", r.solverIterations}, {"text_model_errors", r.textModelErrors},
           {"first_text_model_error", r.firstTextModelError}, {"rechecks", r.rechecks},
-          {"recheck_violations", r.recheckViolations}, {"first_recheck_violation", r.firstRecheckViolation}};
+          {"recheck_violations", r.recheckViolations}, {"first_recheck_violation", r.firstRecheckViolation},
+          // Written for people reading complete.json; not read back (a resumed process counts its own faults).
+          {"llm_faults", r.llmFaults.toJson()}};
 }
 
 ExperimentResult experimentResultFromJson(const json& j) {

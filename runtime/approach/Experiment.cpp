@@ -5,6 +5,8 @@
 #include "Planner.h"
 #include "ValueBridge.h"
 
+#include "textpref/RunReport.h"
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -125,7 +127,8 @@ nlohmann::json configJson(const LoadedProgram& lp, const ExperimentConfig& confi
           {"solver", {{"max_iters", config.solverOptions.maxIters}, {"num_improvements", config.solverOptions.numImprovements},
                       {"max_improvement_attempts", config.solverOptions.maxImprovementAttempts},
                       {"memory_size", config.solverOptions.memorySize},
-                      {"memory", config.solverOptions.memoryPolicy == solver::MemoryPolicy::Solutions ? "solutions" : "checks"}}}};
+                      {"memory", config.solverOptions.memoryPolicy == solver::MemoryPolicy::Solutions ? "solutions" : "checks"}}},
+          {"text_backend", textpref::textBackendJson(config.textBackend.get())}};
 }
 
 std::string trainHeader() {
@@ -322,6 +325,7 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
 
   sim::SimulatorOptions simOptions = config.simulator;
   if (config.nonstationary && config.adaptation == Adaptation::UserReset) simOptions.announceShifts = true;
+  textpref::beginRunFaults(config.textBackend.get());
   RunOutput out(config.outDir, config.runMode, configJson(lp, config, simOptions, task), trainHeader(), evalHeader(config.evalTasks));
   out.hook = config.testHook;
   if (out.completed()) return *out.completed();  // --resume of a complete run
@@ -347,6 +351,12 @@ ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& 
     if (t == config.steps) break;
     trainStep(tr, t);
     progress.update(t + 1, tr.result.evals.empty() ? 0 : tr.result.evals.back().mean);
+  }
+  tr.result.llmFaults = textpref::runFaults(config.textBackend.get());
+  if (out.enabled()) {
+    if (auto s = textpref::writeLlmReport(out.dir(), config.textBackend.get(), tr.result.llmFaults); !s.ok()) {
+      throw std::runtime_error(s.error().describe());
+    }
   }
   out.finish(tr.user.toJson(), tr.result);
   return tr.result;

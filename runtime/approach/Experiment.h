@@ -10,7 +10,8 @@
 // scores 0 and counts as a failed task.
 //
 // Outputs (when `outDir` is set): train.csv, eval.csv (the reference's columns plus task-success and
-// preferences-met rates), config.json, models/<step>.json at every checkpoint and profile.json at the end,
+// preferences-met rates), config.json (with the text backend, server and model), models/<step>.json at every
+// checkpoint and, at the end, profile.json, llm.json (the text backend and its failure counts, RunReport.h) and
 // then the completion marker complete.json. A folder that already holds a run is refused, replaced or resumed
 // as `runMode` says; every evaluation point is a checkpoint that `--resume` continues from exactly
 // (RunDirectory.h lists the files and their guarantees, Checkpoint.h what a checkpoint holds).
@@ -21,6 +22,8 @@
 #include "LoadedProgram.h"
 #include "RunDirectory.h"
 #include "Solver.h"
+
+#include "textpref/FaultStats.h"
 
 #include <cstdint>
 #include <functional>
@@ -89,6 +92,8 @@ struct ExperimentResult {
   // (Recheck.h: a runtime bug; never executed), with the first violation.
   std::int64_t rechecks = 0, recheckViolations = 0;
   std::string firstRecheckViolation;
+  // The language model's failures in this run: ratings that fell back, by kind, and the circuit breaker.
+  textpref::FaultReport llmFaults;
   double meanEval() const;
 };
 

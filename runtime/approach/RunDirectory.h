@@ -12,6 +12,7 @@
 //   world-calls.jsonl  the training world's calls (append-only), replayed by `--resume` (Checkpoint.h)
 //   checkpoint.json    the last complete checkpoint (atomic; written after the files above are durable)
 //   profile.json       the final profile (atomic)
+//   llm.json           the text backend and its failure counts (atomic, at the end; textpref/RunReport.h)
 //   complete.json      the completion marker, written last (atomic), with the run's summary
 //   *.tmp.<pid>.<n>    temporaries of the atomic writes (left only by a killed process)
 // plus DIR/.lock, the lock file, which stays (it is empty and harmless; removing it while others wait would break

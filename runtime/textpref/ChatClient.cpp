@@ -1,5 +1,7 @@
 #include "textpref/ChatClient.h"
 
+#include "textpref/Redaction.h"
+
 #include <fmt/core.h>
 
 #include <cstdlib>
@@ -96,6 +98,14 @@ Result<nlohmann::json> ChatClient::requestBody(const ChatRequest& request) const
 }
 
 Result<ChatResponse> ChatClient::complete(const ChatRequest& request) {
+  auto result = completeUnredacted(request);
+  if (result) return result;
+  Error e = result.error();
+  e.message = redactSecrets(e.message, secretFromEnvironment(config_.apiKeyEnv));
+  return e;
+}
+
+Result<ChatResponse> ChatClient::completeUnredacted(const ChatRequest& request) {
   try {
     auto body = requestBody(request);
     if (!body) return body.error();
@@ -115,7 +125,12 @@ Result<ChatResponse> ChatClient::complete(const ChatRequest& request) {
                      server()};
       }
     }
+    if (breaker_ && breaker_->isOpen()) return breaker_->openError(server());
     auto response = send(body.value());
+    if (breaker_) {
+      if (response) breaker_->recordAnswer();
+      else breaker_->recordFailure(response.error());
+    }
     if (response && cache_ != nullptr && (request.topLogprobs == 0 || response.value().hasLogprobs)) {
       // Store the raw JSON so replays parse exactly what the server said.
       cache_->store(body.value(), response.value().raw);

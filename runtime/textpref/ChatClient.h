@@ -6,13 +6,17 @@
 // logprobs = true and top_logprobs. The API key is read from the environment variable named by
 // ChatConfig::apiKeyEnv at each request and sent only as an Authorization header: it is never part of the
 // request body, so it never reaches the cache, an error message or a log line. If the variable is unset or
-// empty no Authorization header is sent (local servers need none; OpenAI then answers 401).
+// empty no Authorization header is sent (local servers need none; OpenAI then answers 401). A server that echoes
+// the key back is quoted only after redactSecrets() (Redaction.h): every Error this client returns is redacted.
+// Circuit breaker (optional, shared, setBreaker): while it is open, a request the cache cannot answer is a
+// CircuitOpen error and the network is not used; each request's transport outcome is reported to it.
 //
 // A client is used from one thread at a time (its backoff RNG is not shared); make one client per thread.
 // Cache (optional, not owned, must outlive the client): looked up before the network; in ReadOnly mode a miss is
 // a CacheMiss error and the network is never reached. Only parsed, usable 2xx responses are stored.
 #pragma once
 
+#include "textpref/CircuitBreaker.h"
 #include "textpref/ResponseCache.h"
 #include "textpref/Result.h"
 #include "textpref/RetryPolicy.h"
@@ -20,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <random>
 #include <string>
@@ -84,16 +89,21 @@ class ChatClient {
   // The request body that is sent (and hashed for the cache); Configuration error for invalid options.
   Result<nlohmann::json> requestBody(const ChatRequest& request) const;
 
-  // Sends the request (or answers from the cache). Never throws.
+  // Sends the request (or answers from the cache). Never throws. Errors are redacted (Redaction.h).
   Result<ChatResponse> complete(const ChatRequest& request);
 
+  // Shares a circuit breaker (null: none). Set before the first request.
+  void setBreaker(std::shared_ptr<CircuitBreaker> breaker) { breaker_ = std::move(breaker); }
+
  private:
+  Result<ChatResponse> completeUnredacted(const ChatRequest& request);
   Result<ChatResponse> send(const nlohmann::json& body);
 
   ChatConfig config_;
   ResponseCache* cache_;
   SleepFunction sleep_;
   std::mt19937_64 rng_;
+  std::shared_ptr<CircuitBreaker> breaker_;
 };
 
 }  // namespace cbtl::textpref

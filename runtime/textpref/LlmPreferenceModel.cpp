@@ -29,8 +29,12 @@ LlmModelOptions referenceParityOptions(PromptTemplates prompts) {
   return o;
 }
 
-LlmPreferenceModel::LlmPreferenceModel(std::shared_ptr<ChatClient> client, LlmModelOptions options)
-    : client_(std::move(client)), options_(std::move(options)), theta_(options_.prompts.initialTheta) {}
+LlmPreferenceModel::LlmPreferenceModel(std::shared_ptr<ChatClient> client, LlmModelOptions options,
+                                       std::shared_ptr<FaultStats> faults)
+    : client_(std::move(client)),
+      faults_(std::move(faults)),
+      options_(std::move(options)),
+      theta_(options_.prompts.initialTheta) {}
 
 Result<Assessment> LlmPreferenceModel::assess(const Item& item, const Context& context) {
   return assessWithTheta(item, context, theta_);
@@ -38,6 +42,12 @@ Result<Assessment> LlmPreferenceModel::assess(const Item& item, const Context& c
 
 Result<Assessment> LlmPreferenceModel::assessWithTheta(const Item& item, const Context& context,
                                                        const std::string& theta) {
+  auto result = rate(item, context, theta);
+  if (!result && faults_) faults_->recordRatingFailure(result.error());
+  return result;
+}
+
+Result<Assessment> LlmPreferenceModel::rate(const Item& item, const Context& context, const std::string& theta) {
   if (!client_) return Error{ErrorKind::Configuration, "the language-model backend has no chat client"};
   const std::string server = client_->server();
   if (options_.topLogprobs < 1)
@@ -89,6 +99,12 @@ Result<Assessment> LlmPreferenceModel::assessWithTheta(const Item& item, const C
 
 Status LlmPreferenceModel::learn(std::span<const FeedbackRecord> records) {
   history_.insert(history_.end(), records.begin(), records.end());
+  Status status = rewriteTheta();
+  if (!status && faults_) faults_->recordLearningFailure(status.error());
+  return status;
+}
+
+Status LlmPreferenceModel::rewriteTheta() {
   if (!client_) return Error{ErrorKind::Configuration, "the language-model backend has no chat client"};
   ChatRequest request;
   request.messages = {{"user", renderLearningPrompt(options_.prompts, theta_, history_)}};

@@ -5,10 +5,13 @@
 // including the split-"10" follow-up). learn(): appends the records to the history and rewrites theta from the
 // whole history with the LearningPrompt (temperature and seed from the options, no log-probabilities); the whole
 // reply becomes theta. Every failure is an Error naming the server; the caller falls back as its generator
-// declares (assessOrFallback in TextPreferenceModel.h).
+// declares (assessOrFallback in TextPreferenceModel.h). With a FaultStats (optional, shared with the backend's
+// other models) every failed rating query and every failed learning request is also counted there, so that a
+// run reports its fallbacks (FaultStats.h).
 #pragma once
 
 #include "textpref/ChatClient.h"
+#include "textpref/FaultStats.h"
 #include "textpref/Prompts.h"
 #include "textpref/RatingReader.h"
 #include "textpref/TextPreferenceModel.h"
@@ -44,8 +47,10 @@ class LlmPreferenceModel final : public TextPreferenceModel {
  public:
   static constexpr const char* kBackendId = "openai-compatible";
 
-  // `client` is shared (several constraints may use one server and one cache); it must not be null.
-  LlmPreferenceModel(std::shared_ptr<ChatClient> client, LlmModelOptions options);
+  // `client` is shared (several constraints may use one server and one cache); it must not be null. `faults`
+  // (may be null) counts this model's failures.
+  LlmPreferenceModel(std::shared_ptr<ChatClient> client, LlmModelOptions options,
+                     std::shared_ptr<FaultStats> faults = nullptr);
 
   std::string backendId() const override { return kBackendId; }
   Result<Assessment> assess(const Item& item, const Context& context) override;
@@ -61,7 +66,11 @@ class LlmPreferenceModel final : public TextPreferenceModel {
   const LlmModelOptions& options() const { return options_; }
 
  private:
+  Result<Assessment> rate(const Item& item, const Context& context, const std::string& theta);
+  Status rewriteTheta();
+
   std::shared_ptr<ChatClient> client_;
+  std::shared_ptr<FaultStats> faults_;
   LlmModelOptions options_;
   std::string theta_;
   std::vector<FeedbackRecord> history_;

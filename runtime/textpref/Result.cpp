@@ -1,5 +1,7 @@
 #include "textpref/Result.h"
 
+#include "textpref/Redaction.h"
+
 #include <fmt/core.h>
 
 namespace cbtl::textpref {
@@ -15,6 +17,7 @@ const char* errorKindName(ErrorKind kind) {
     case ErrorKind::NoLogprobs: return "no-logprobs";
     case ErrorKind::UnusableRating: return "unusable-rating";
     case ErrorKind::CacheMiss: return "cache-miss";
+    case ErrorKind::CircuitOpen: return "circuit-open";
     case ErrorKind::InvalidState: return "invalid-state";
     case ErrorKind::Io: return "io";
   }
@@ -29,7 +32,7 @@ std::string Error::describe() const {
   if (attempts > 0) out += fmt::format(" after {} attempt{}", attempts, attempts == 1 ? "" : "s");
   if (!server.empty() || httpStatus != 0 || attempts > 0) out += ":";
   out += " ";
-  out += message;
+  out += redactSecrets(message);
   return out;
 }
 

@@ -22,6 +22,7 @@ enum class ErrorKind {
   NoLogprobs,         // the response has no usable top_logprobs for the first token
   UnusableRating,     // logprobs present but too little probability mass on the 11 rating tokens
   CacheMiss,          // read-only cache mode and the entry is absent: the network is never reached
+  CircuitOpen,        // the circuit breaker is open (CircuitBreaker.h): the server is no longer called
   InvalidState,       // a saved model state is not valid JSON or does not match the expected schema
   Io,                 // a file could not be read or written
 };
@@ -36,13 +37,14 @@ struct Error {
         attempts(attempts_) {}
 
   ErrorKind kind = ErrorKind::Io;
-  std::string message;  // what went wrong, in one sentence; never contains the API key
+  std::string message;  // what went wrong, in one sentence; never contains the API key (Redaction.h)
   std::string server;   // "host:port" of the server involved, empty when no server was involved
   int httpStatus = 0;   // last HTTP status seen, 0 when there was none
   int attempts = 0;     // number of HTTP attempts made, 0 when none were made
 
   // One line: "<kind>: server <server> returned HTTP <status> after <n> attempts: <message>" with the parts
-  // that are unknown left out.
+  // that are unknown left out. The message is passed through redactSecrets() (Redaction.h) once more, so a
+  // "Bearer ..." or "sk-..." token never reaches a printed line even if a message was built unredacted.
   std::string describe() const;
 };
 

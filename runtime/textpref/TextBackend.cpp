@@ -1,5 +1,7 @@
 #include "textpref/TextBackend.h"
 
+#include "textpref/Redaction.h"
+
 #include <fmt/core.h>
 
 #include <set>
@@ -22,7 +24,7 @@ Result<TextBackendConfig> textBackendConfigFromJson(const nlohmann::json& j) {
   static const std::set<std::string> known{
       "backend",     "base_url",    "model",     "api_key_env", "max_tokens_field", "connect_timeout_ms",
       "request_timeout_ms", "max_attempts", "cache_dir", "cache_mode", "scale", "renormalize", "split",
-      "min_coverage", "top_logprobs", "seed"};
+      "min_coverage", "top_logprobs", "seed", "breaker_threshold"};
   for (const auto& [key, value] : j.items())
     if (!known.count(key)) return bad(fmt::format("unknown text-backend option \"{}\"", key));
 
@@ -49,7 +51,8 @@ Result<TextBackendConfig> textBackendConfigFromJson(const nlohmann::json& j) {
                  integer("connect_timeout_ms", c.chat.connectTimeoutMs, 1, 3600000),
                  integer("request_timeout_ms", c.chat.requestTimeoutMs, 1, 3600000),
                  integer("max_attempts", c.chat.retry.maxAttempts, 1, 100),
-                 integer("top_logprobs", c.topLogprobs, 1, 20), integer("seed", c.seed, 0, INT64_MAX)})
+                 integer("top_logprobs", c.topLogprobs, 1, 20), integer("seed", c.seed, 0, INT64_MAX),
+                 integer("breaker_threshold", c.breakerThreshold, 0, 1000)})
     if (e) return *e;
   if (j.contains("renormalize")) {
     if (!j["renormalize"].is_boolean()) return bad("text-backend option \"renormalize\" must be a boolean");
@@ -90,10 +93,34 @@ struct ClientWithCache {
 TextBackend::TextBackend(TextBackendConfig config, WarningSink warn, SleepFunction sleep)
     : config_(std::move(config)) {
   if (config_.kind == BackendKind::OpenAiCompatible) {
+    breaker_ = std::make_shared<CircuitBreaker>(config_.breakerThreshold, warn);
     cache_ = std::make_shared<ResponseCache>(config_.cacheDir, config_.cacheMode, std::move(warn));
     auto holder = std::make_shared<ClientWithCache>(cache_, config_.chat, std::move(sleep));
     client_ = std::shared_ptr<ChatClient>(holder, &holder->client);  // aliasing: owns the holder
+    client_->setBreaker(breaker_);
   }
+}
+
+FaultReport TextBackend::faultReport() const {
+  FaultReport r = faults_->snapshot();
+  r.backend = config_.kind == BackendKind::OfflineDescriptor ? "offline" : "openai";
+  if (breaker_) {
+    r.breakerThreshold = breaker_->threshold();
+    r.breakerOpen = breaker_->isOpen();
+    r.breakerReason = breaker_->reason();
+  }
+  return r;
+}
+
+nlohmann::json TextBackend::identityJson() const {
+  if (config_.kind == BackendKind::OfflineDescriptor)
+    return nlohmann::json{{"backend", "offline"}, {"base_url", nullptr}, {"model", nullptr}};
+  return nlohmann::json{{"backend", "openai"},
+                        {"base_url", redactSecrets(config_.chat.baseUrl)},
+                        {"model", config_.chat.model},
+                        {"request_timeout_ms", config_.chat.requestTimeoutMs},
+                        {"max_attempts", config_.chat.retry.maxAttempts},
+                        {"breaker_threshold", config_.breakerThreshold}};
 }
 
 LlmModelOptions TextBackend::llmOptions(const PromptTemplates& prompts) const {
@@ -113,12 +140,12 @@ std::unique_ptr<TextPreferenceModel> TextBackend::makeModel(const PromptTemplate
   if (config_.kind == BackendKind::OfflineDescriptor) return std::make_unique<OfflineDescriptorModel>(config_.offline);
   LlmModelOptions options = llmOptions(prompts);
   if (scale) options.scale = *scale;
-  return std::make_unique<LlmPreferenceModel>(client_, std::move(options));
+  return std::make_unique<LlmPreferenceModel>(client_, std::move(options), faults_);
 }
 
 std::shared_ptr<LlmPreferenceModel> TextBackend::makeJudge(const PromptTemplates& prompts) const {
   if (config_.kind == BackendKind::OfflineDescriptor) return nullptr;
-  return std::make_shared<LlmPreferenceModel>(client_, llmOptions(prompts));
+  return std::make_shared<LlmPreferenceModel>(client_, llmOptions(prompts), faults_);
 }
 
 }  // namespace cbtl::textpref

@@ -5,9 +5,16 @@
 // language-model backend all models share one ChatClient and one ResponseCache (owned by the TextBackend, which
 // must outlive its models only through the shared pointers it hands out). With the offline backend the prompts are
 // ignored and every model is an independent OfflineDescriptorModel.
+//
+// Faults: the backend owns one FaultStats that all its language models share (every failed rating and learning
+// request is counted there, FaultStats.h) and, for the language-model backend, one CircuitBreaker shared by its
+// client (CircuitBreaker.h; it opens after `breakerThreshold` consecutive transport failures and then says so
+// once through the WarningSink). Both are thread-safe and may be read or reset through a const backend.
 #pragma once
 
 #include "textpref/ChatClient.h"
+#include "textpref/CircuitBreaker.h"
+#include "textpref/FaultStats.h"
 #include "textpref/LlmPreferenceModel.h"
 #include "textpref/OfflineDescriptorModel.h"
 #include "textpref/ResponseCache.h"
@@ -37,6 +44,7 @@ struct TextBackendConfig {
   double minCoverage = 0.5;
   int topLogprobs = 20;
   std::int64_t seed = 0;
+  int breakerThreshold = 3;  // consecutive transport failures that open the circuit breaker; 0 disables it
   OfflineModelOptions offline;
 };
 
@@ -44,7 +52,8 @@ struct TextBackendConfig {
 //   {"backend": "openai-compatible", "base_url": "http://127.0.0.1:8080/v1", "model": "qwen2.5",
 //    "api_key_env": "OPENAI_API_KEY", "max_tokens_field": "max_tokens", "connect_timeout_ms": 5000,
 //    "request_timeout_ms": 60000, "max_attempts": 5, "cache_dir": "cache/llm", "cache_mode": "read-only",
-//    "scale": "digits", "renormalize": true, "split": "auto", "min_coverage": 0.5, "top_logprobs": 20, "seed": 0}
+//    "scale": "digits", "renormalize": true, "split": "auto", "min_coverage": 0.5, "top_logprobs": 20, "seed": 0,
+//    "breaker_threshold": 3}
 // Every key is optional; unknown keys and wrong types are Configuration errors naming the key.
 Result<TextBackendConfig> textBackendConfigFromJson(const nlohmann::json& j);
 
@@ -62,12 +71,22 @@ class TextBackend {
   // The shared cache (null with the offline backend).
   const ResponseCache* cache() const { return cache_.get(); }
 
+  // The failures counted so far, with the backend's name ("offline" or "openai") and the breaker's state.
+  FaultReport faultReport() const;
+  // Forgets the counted failures (a new trial starts); an open breaker stays open.
+  void resetFaultCounts() const { faults_->reset(); }
+  // {"backend": "openai", "base_url", "model", "request_timeout_ms", "max_attempts", "breaker_threshold"} for
+  // the language-model backend; {"backend": "offline", "base_url": null, "model": null} for the offline one.
+  nlohmann::json identityJson() const;
+
  private:
   LlmModelOptions llmOptions(const PromptTemplates& prompts) const;
 
   TextBackendConfig config_;
   std::shared_ptr<ResponseCache> cache_;
   std::shared_ptr<ChatClient> client_;
+  std::shared_ptr<FaultStats> faults_ = std::make_shared<FaultStats>();
+  std::shared_ptr<CircuitBreaker> breaker_;
 };
 
 }  // namespace cbtl::textpref

@@ -154,6 +154,7 @@ int runExperiments(const ExperimentArgs& a) {
   std::map<std::string, Summary> summaries;
   std::int64_t rechecks = 0, refused = 0;
   std::string firstRefusal;
+  cbtl::textpref::FaultReport llmFaults;  // over every trial
   for (auto kind : kinds) {
     Summary& s = summaries[approach::toString(kind)];
     for (auto seed : seeds) {
@@ -163,6 +164,7 @@ int runExperiments(const ExperimentArgs& a) {
       if (!a.out.empty()) c.outDir = trialFolder(a.out, kind, seed);
       const auto start = std::chrono::steady_clock::now();
       const auto r = approach::runExperiment(*lp, factory, c);
+      llmFaults.add(r.llmFaults);
       s.seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       for (const auto& e : r.evals) {
         s.bySteps[e.step].push_back(e.mean);
@@ -182,6 +184,7 @@ int runExperiments(const ExperimentArgs& a) {
       if (!a.quiet) {
         fmt::print(stderr, "{} seed {}: mean eval {:+.3f}, final {:+.2f} ({:.2f} s)\n", approach::toString(kind), seed, r.meanEval(),
                    r.evals.empty() ? 0.0 : r.evals.back().mean, s.seconds.back());
+        if (r.llmFaults.any()) fmt::print(stderr, "{}", r.llmFaults.summary());
       }
     }
   }
@@ -234,6 +237,7 @@ int runExperiments(const ExperimentArgs& a) {
              "success, preferences met (of all tasks) and preferences met of the served meals at the last checkpoint\n"
              "(mean ± standard deviation over seeds); wall-clock seconds per trial\n");
   fmt::print("{} solutions re-checked before execution, {} refused\n", rechecks, refused);
+  cli::printLlmFaults(stdout, llmFaults);
   if (!a.out.empty()) fmt::print("wrote {}/summary.csv and one folder per approach and seed\n", a.out);
   if (refused > 0) {
     fmt::print(stderr, "cbtl experiment: internal error: {} accepted solutions failed the independent re-check and were refused; the first: {}\n",

@@ -4,15 +4,19 @@
 // rating constraints can use? Two one-token questions (answers 4 and 10) with top_logprobs = 20; reports whether
 // top_logprobs came back, their mass on the numerals 0..10, whether "10" is one token or split into "1" + "0",
 // and, when split, whether the server continues a pre-filled "1" (the rating reader's follow-up needs that).
+// The verdict names the first failure (ProbeVerdict.h): transport error, HTTP status, quota, malformed reply, no
+// logprobs or low coverage. After a transport failure the remaining questions are not asked.
 // `cbtl llm books`: the simulated Books user's preference learned round by round by the offline descriptor model
 // (default, no server) or by a language-model server.
 // Exit codes: 0 ok/usable, 1 bad input or unusable server, 2 usage (CLI11), 70 internal error. The API key is read
 // from the environment variable named by --api-key-env and is never printed.
 #include "CommandRegistry.h"
 #include "ErrorHandling.h"
+#include "ProbeVerdict.h"
 
 #include "textpref/ChatClient.h"
 #include "textpref/RatingReader.h"
+#include "textpref/Redaction.h"
 #include "textpref/SimulatedUsers.h"
 #include "textpref/TextBackend.h"
 
@@ -21,6 +25,7 @@
 #include <cmath>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace {
@@ -39,6 +44,31 @@ struct Question {
   const char* text;
   int answer;
 };
+
+// Does the server continue a pre-filled assistant turn? Then "0" should follow "1" for the answer 10.
+void reportSplitFollowUp(cbtl::textpref::ChatClient& client, const char* question) {
+  using namespace cbtl::textpref;
+  ChatRequest followUp;
+  followUp.messages = {{"user", question}, {"assistant", "1"}};
+  followUp.maxTokens = 1;
+  followUp.seed = 0;
+  followUp.topLogprobs = 20;
+  auto next = client.complete(followUp);
+  double zero = 0.0;
+  if (next && next.value().hasLogprobs)
+    for (const auto& t : next.value().firstTokenTop)
+      if (t.token == "0") zero += std::exp(t.logprob);
+  if (!next) {
+    fmt::print("split follow-up: failed: {}\n", next.error().describe());
+  } else if (zero >= 0.5) {
+    fmt::print("split follow-up: the server continues a pre-filled answer (P(\"0\" after \"1\") = {:.3f}).\n", zero);
+  } else {
+    fmt::print(
+        "split follow-up: P(\"0\" after \"1\") = {:.3f}: the server may not continue a pre-filled answer "
+        "(vLLM needs continue_final_message); high ratings may be read as 1.\n",
+        zero);
+  }
+}
 
 int runProbe(const ProbeOptions& o) {
   using namespace cbtl::textpref;
@@ -67,10 +97,15 @@ int runProbe(const ProbeOptions& o) {
        "else.",
        10},
   };
-  bool usable = true;
+  const std::string key = secretFromEnvironment(o.apiKeyEnv);
+  std::optional<Error> failure;  // the first thing that makes the server unusable
   bool sawTen = false;
   bool sawSplitOne = false;
   for (const auto& q : questions) {
+    if (failure && (failure->kind == ErrorKind::Transport || failure->kind == ErrorKind::Timeout)) {
+      fmt::print("question (answer {}): not asked: the server did not answer the previous one\n", q.answer);
+      continue;
+    }
     ChatRequest request;
     request.messages = {{"user", q.text}};
     request.maxTokens = 1;
@@ -80,13 +115,14 @@ int runProbe(const ProbeOptions& o) {
     auto response = client.complete(request);
     if (!response) {
       fmt::print("question (answer {}): failed: {}\n", q.answer, response.error().describe());
-      usable = false;
+      if (!failure) failure = response.error();
       continue;
     }
     const auto& r = response.value();
+    const std::string reply = redactSecrets(r.content, key);
     if (!r.hasLogprobs) {
-      fmt::print("question (answer {}): reply '{}' came without top_logprobs\n", q.answer, r.content);
-      usable = false;
+      fmt::print("question (answer {}): reply '{}' came without top_logprobs\n", q.answer, reply);
+      if (!failure) failure = Error{ErrorKind::NoLogprobs, "the reply came without top_logprobs", client.server()};
       continue;
     }
     const LabelMass labels = readLabels(r.firstTokenTop);
@@ -96,46 +132,28 @@ int runProbe(const ProbeOptions& o) {
     for (int k = 1; k <= 10; ++k)
       if (labels[k] > labels[best]) best = k;
     fmt::print("question (answer {}): reply '{}', {} top tokens, {:.3f} of the mass on 0..10, most likely {}\n",
-               q.answer, r.content, r.firstTokenTop.size(), coverage, best);
-    if (coverage < 0.5) usable = false;
+               q.answer, reply, r.firstTokenTop.size(), coverage, best);
+    if (coverage < 0.5 && !failure)
+      failure = Error{ErrorKind::UnusableRating,
+                      fmt::format("only {:.3f} of the probability mass is on the numerals 0..10", coverage),
+                      client.server()};
     if (labels[10] > 0.0) sawTen = true;
     if (q.answer == 10 && labels[10] <= 0.0 && labels[1] > 0.0) sawSplitOne = true;
   }
+  const bool usable = !failure;
   if (usable) {
     if (sawTen) {
       fmt::print("\"10\" is a single token.\n");
     } else if (sawSplitOne) {
       fmt::print("\"10\" is split into \"1\" + \"0\": rating queries need the split follow-up (policy auto or always).\n");
-      // Does the server continue a pre-filled assistant turn? Then "0" should follow "1" for the answer 10.
-      ChatRequest followUp;
-      followUp.messages = {{"user", questions[1].text}, {"assistant", "1"}};
-      followUp.maxTokens = 1;
-      followUp.seed = 0;
-      followUp.topLogprobs = 20;
-      auto next = client.complete(followUp);
-      double zero = 0.0;
-      if (next && next.value().hasLogprobs)
-        for (const auto& t : next.value().firstTokenTop)
-          if (t.token == "0") zero += std::exp(t.logprob);
-      if (!next) {
-        fmt::print("split follow-up: failed: {}\n", next.error().describe());
-      } else if (zero >= 0.5) {
-        fmt::print("split follow-up: the server continues a pre-filled answer (P(\"0\" after \"1\") = {:.3f}).\n", zero);
-      } else {
-        fmt::print(
-            "split follow-up: P(\"0\" after \"1\") = {:.3f}: the server may not continue a pre-filled answer "
-            "(vLLM needs continue_final_message); high ratings may be read as 1.\n",
-            zero);
-      }
+      reportSplitFollowUp(client, questions[1].text);
     } else {
       fmt::print("could not tell how \"10\" is tokenized; keep the split policy at auto.\n");
     }
     fmt::print("verdict: usable: the server returns log-probabilities for rating constraints.\n");
     return 0;
   }
-  fmt::print(
-      "verdict: unusable: rating constraints need top_logprobs. Use another server or model, or the offline "
-      "descriptor model (the default backend, no server needed).\n");
+  fmt::print("{}\n", cbtl::cli::probeVerdict(*failure, o.apiKeyEnv));
   return 1;
 }
 
@@ -194,6 +212,7 @@ int runBooks(const BooksOptions& o) {
       fmt::print(stderr, "cbtl llm books: learning failed, theta unchanged: {}\n", s.error().describe());
   }
   fmt::print("theta: {}\n", model->thetaText());
+  if (const FaultReport faults = backend.faultReport(); faults.any()) fmt::print(stderr, "{}", faults.summary());
   return 0;
 }
 

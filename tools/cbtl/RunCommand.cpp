@@ -58,7 +58,10 @@ int runTrial(const RunArgs& a) {
       fmt::print("{} text-model updates failed (the old theta was kept); the first: {}\n", r.textModelErrors,
                  r.firstTextModelError);
     }
-    if (!a.out.empty()) fmt::print("wrote {}/train.csv, eval.csv, config.json, profile.json, models/, complete.json\n", a.out);
+    cli::printLlmFaults(stdout, r.llmFaults);
+    if (!a.out.empty()) fmt::print("wrote {}/train.csv, eval.csv, config.json, llm.json, profile.json, models/, complete.json\n", a.out);
+  } else {
+    cli::printLlmFaults(stderr, r.llmFaults);
   }
   if (r.recheckViolations > 0) {
     // Never executed, but a solution the solver accepted broke a hard constraint: a runtime bug.

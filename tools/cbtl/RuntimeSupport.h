@@ -12,6 +12,8 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <memory>
@@ -56,11 +58,19 @@ inline void addSolverOptions(CLI::App* cmd, solver::SolverOptions& o) {
 
 // `--text-backend offline|openai`, `--llm-base-url`, `--llm-model`: which model text factors use. The offline
 // descriptor model is the default (no network, no key). The language-model backend reads its key from the
-// environment variable OPENAI_API_KEY at each request (never printed), keeps its response cache in memory, and
-// talks to any OpenAI-compatible server (docs/textpref.md).
+// environment variable OPENAI_API_KEY at each request (never printed: server messages are redacted), keeps its
+// response cache in memory, and talks to any OpenAI-compatible server (docs/textpref.md).
+// Fault bounds (language-model backend only; -1 = not given, the backend's default):
+//   --llm-timeout-ms T  whole-request timeout per attempt, 1..3600000 (default 60000; connect timeout min(5000, T))
+//   --llm-attempts N    attempts per request, retries included, 1..100 (default 5)
+//   --llm-breaker N     open the circuit breaker after N consecutive transport failures, 0..1000 (default 3;
+//                       0 = never): the server is then not called for the rest of the command, ratings fall back
+// Out-of-range values are usage errors (exit 2) naming the option.
 struct TextBackendArgs {
   std::string backend = "offline";
   std::string baseUrl, model;
+  long timeoutMs = -1;
+  int attempts = -1, breaker = -1;
 };
 
 inline void addTextBackendOptions(CLI::App* cmd, TextBackendArgs& a) {
@@ -68,14 +78,24 @@ inline void addTextBackendOptions(CLI::App* cmd, TextBackendArgs& a) {
       ->capture_default_str();
   cmd->add_option("--llm-base-url", a.baseUrl, "OpenAI-compatible server for --text-backend openai (default: api.openai.com)");
   cmd->add_option("--llm-model", a.model, "language model for --text-backend openai (default: gpt-4o-mini)");
+  cmd->add_option("--llm-timeout-ms", a.timeoutMs, "per-request timeout in ms for --text-backend openai (default 60000)")
+      ->check(CLI::Range(1L, 3600000L));
+  cmd->add_option("--llm-attempts", a.attempts, "attempts per request, retries included, >= 1 (default 5)")
+      ->check(CLI::Range(1, 100));
+  cmd->add_option("--llm-breaker", a.breaker,
+                  "stop calling the server after N consecutive transport failures (default 3, 0 = never)")
+      ->check(CLI::Range(0, 1000));
 }
 
 // The backend the options ask for, or nullopt after printing a usage error. A null backend is the offline default.
 inline std::optional<std::shared_ptr<const textpref::TextBackend>> makeTextBackend(const std::string& command,
                                                                                    const TextBackendArgs& a) {
   if (a.backend == "offline") {
-    if (!a.baseUrl.empty() || !a.model.empty()) {
-      fmt::print(stderr, "cbtl {}: error: --llm-base-url and --llm-model need --text-backend openai\n", command);
+    const char* openaiOnly = !a.baseUrl.empty() ? "--llm-base-url" : !a.model.empty() ? "--llm-model"
+                             : a.timeoutMs >= 0 ? "--llm-timeout-ms" : a.attempts >= 0 ? "--llm-attempts"
+                             : a.breaker >= 0   ? "--llm-breaker" : nullptr;
+    if (openaiOnly != nullptr) {
+      fmt::print(stderr, "cbtl {}: error: {} needs --text-backend openai\n", command, openaiOnly);
       return std::nullopt;
     }
     return std::shared_ptr<const textpref::TextBackend>();
@@ -88,8 +108,19 @@ inline std::optional<std::shared_ptr<const textpref::TextBackend>> makeTextBacke
   config.kind = textpref::BackendKind::OpenAiCompatible;
   if (!a.baseUrl.empty()) config.chat.baseUrl = a.baseUrl;
   if (!a.model.empty()) config.chat.model = a.model;
+  if (a.timeoutMs >= 0) {
+    config.chat.requestTimeoutMs = a.timeoutMs;
+    config.chat.connectTimeoutMs = std::min(config.chat.connectTimeoutMs, a.timeoutMs);
+  }
+  if (a.attempts >= 0) config.chat.retry.maxAttempts = a.attempts;
+  if (a.breaker >= 0) config.breakerThreshold = a.breaker;
   auto warn = [command](const std::string& message) { fmt::print(stderr, "cbtl {}: warning: {}\n", command, message); };
   return std::make_shared<const textpref::TextBackend>(std::move(config), warn);
+}
+
+// Prints what the language model's failures cost a run (FaultReport::summary()); nothing when there were none.
+inline void printLlmFaults(std::FILE* out, const textpref::FaultReport& faults) {
+  if (faults.any()) fmt::print(out, "{}", faults.summary());
 }
 
 // The options of one trial of the experiment protocol, shared by `cbtl run` and `cbtl experiment`.

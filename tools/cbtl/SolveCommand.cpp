@@ -102,6 +102,7 @@ int runSolve(const SolveArgs& a) {
     for (const auto& c : plan.calls) fmt::print("  {}\n", renderCall(c));
   }
   if (a.explain || !plan.ok) explain(plan);
+  if (*textBackend) cli::printLlmFaults(stdout, (*textBackend)->faultReport());
   if (plan.rechecked) {
     fmt::print("re-check: {} constraints and {} variables evaluated from scratch: {}\n", plan.recheck.constraintsChecked,
                plan.recheck.variablesChecked, plan.recheck.holds() ? "all hold" : "VIOLATED");

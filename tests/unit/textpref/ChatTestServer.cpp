@@ -39,6 +39,14 @@ ChatTestServer::~ChatTestServer() {
   if (thread_.joinable()) thread_.join();
 }
 
+ChatTestServer::Handler ChatTestServer::hang() const {
+  return [this](const httplib::Request&, httplib::Response& res) {
+    for (int i = 0; i < 2000 && !stopping(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    res.status = 500;  // only sent if the client is still waiting after the bounded wait
+    res.set_content(errorBody("the test server hung", "server_error", "test_hang"), "application/json");
+  };
+}
+
 std::string ChatTestServer::baseUrl() const { return "http://127.0.0.1:" + std::to_string(port_) + "/v1"; }
 
 void ChatTestServer::push(Handler handler) {
@@ -107,6 +115,24 @@ ChatTestServer::Handler reply(int status, std::string body, std::vector<std::pai
 
 ChatTestServer::Handler replyRating(const std::vector<std::pair<std::string, double>>& top) {
   return reply(200, ratingBody(top));
+}
+
+}  // namespace cbtl::textpref::testing
+
+namespace cbtl::textpref::testing {
+
+ChatTestServer::Handler echoAuthorization(int status) {
+  return [status](const httplib::Request& req, httplib::Response& res) {
+    res.status = status;
+    const std::string message = "Incorrect API key provided: " + req.get_header_value("Authorization") +
+                                ". You can find your API key at https://example.invalid/keys.";
+    res.set_content(errorBody(message, "invalid_request_error", "invalid_api_key"), "application/json");
+  };
+}
+
+int unusedLoopbackPort() {
+  ChatTestServer gone;  // listens, then stops and closes its socket
+  return gone.port();
 }
 
 }  // namespace cbtl::textpref::testing

@@ -2,6 +2,10 @@
 //
 // Each request is answered by the next scripted handler, or by the default handler when the script is empty.
 // Every request is recorded (body and Authorization header). The server never binds anything but 127.0.0.1.
+// Fault injection: hang() accepts a request and never answers it (until the client gives up, the server stops,
+// or a bounded 10 s pass); echoAuthorization() quotes the Authorization header back in an error body, as servers
+// that print "Incorrect API key provided: ..." do; reply(200, "garbage") gives a malformed reply; a port
+// nothing listens on (unusedLoopbackPort()) gives a transport failure.
 #pragma once
 
 #include <httplib.h>
@@ -42,6 +46,8 @@ class ChatTestServer {
   int requestCount() const;
   // True once the destructor started; slow handlers poll it so that shutdown is quick.
   bool stopping() const { return stopping_; }
+  // A handler that never answers: it waits (polling stopping(), at most 10 s) and then closes without a reply.
+  Handler hang() const;
 
  private:
   httplib::Server server_;
@@ -66,5 +72,10 @@ std::string errorBody(const std::string& message, const std::string& type, const
 ChatTestServer::Handler reply(int status, std::string body,
                               std::vector<std::pair<std::string, std::string>> headers = {});
 ChatTestServer::Handler replyRating(const std::vector<std::pair<std::string, double>>& top);
+// `status` with an OpenAI error body "Incorrect API key provided: <the request's Authorization header>".
+ChatTestServer::Handler echoAuthorization(int status);
+
+// A loopback port on which nothing listens (bound once, then released).
+int unusedLoopbackPort();
 
 }  // namespace cbtl::textpref::testing

@@ -1,31 +1,13 @@
 // `cbtl llm probe` end to end: the cbtl binary against the loopback server (path given by CBTL_BINARY).
 #include "ChatTestServer.h"
+#include "CommandRun.h"
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <string>
-#include <sys/wait.h>
 
 namespace cbtl::textpref::testing {
 namespace {
-
-struct CommandRun {
-  int exitCode = -1;
-  std::string output;
-};
-
-CommandRun runCbtl(const std::string& arguments) {
-  CommandRun run;
-  const std::string command = std::string(CBTL_BINARY) + " " + arguments + " 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return run;
-  char buffer[512];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) run.output += buffer;
-  const int status = ::pclose(pipe);
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
 
 TEST(LlmProbeCommand, UsableServerExitsZeroAndReportsSplitTen) {
   ChatTestServer server;
@@ -47,7 +29,59 @@ TEST(LlmProbeCommand, ServerWithoutLogprobsExitsOne) {
   server.setDefault(reply(200, textBody("4")));
   const CommandRun run = runCbtl("llm probe --base-url " + server.baseUrl() + " --model test-model --attempts 1");
   EXPECT_EQ(run.exitCode, 1) << run.output;
+  EXPECT_NE(run.output.find("verdict: unusable: no logprobs:"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("offline descriptor model"), std::string::npos) << run.output;
+}
+
+// Each failure gets its own verdict, naming it (ProbeVerdict.h).
+std::string probeAgainst(ChatTestServer& server, const std::string& environment = {}) {
+  const CommandRun run = runCbtl("llm probe --base-url " + server.baseUrl() +
+                                     " --model test-model --attempts 1 --timeout-ms 200 --connect-timeout-ms 200",
+                                 environment);
+  EXPECT_EQ(run.exitCode, 1) << run.output;
+  return run.output;
+}
+
+TEST(LlmProbeCommand, VerdictNamesAnHttpStatusAndRedactsTheEchoedKey) {
+  ChatTestServer server;
+  server.setDefault(echoAuthorization(401));
+  const std::string out = probeAgainst(server, "OPENAI_API_KEY=sk-proj-PROBESECRET987654321 ");
+  EXPECT_NE(out.find("verdict: unusable: HTTP status 401:"), std::string::npos) << out;
+  EXPECT_NE(out.find("Check the API key in $OPENAI_API_KEY"), std::string::npos) << out;
+  EXPECT_NE(out.find("Bearer [redacted]"), std::string::npos) << out;
+  EXPECT_EQ(out.find("PROBESECRET"), std::string::npos) << out;
+}
+
+TEST(LlmProbeCommand, VerdictNamesQuotaMalformedRepliesAndLowCoverage) {
+  ChatTestServer quota;
+  quota.setDefault(reply(429, errorBody("You exceeded your current quota", "insufficient_quota", "insufficient_quota")));
+  const std::string q = probeAgainst(quota);
+  EXPECT_NE(q.find("verdict: unusable: quota exceeded (HTTP 429)"), std::string::npos) << q;
+
+  ChatTestServer garbage;
+  garbage.setDefault(reply(200, "<html>not a chat completion</html>"));
+  const std::string g = probeAgainst(garbage);
+  EXPECT_NE(g.find("verdict: unusable: malformed reply:"), std::string::npos) << g;
+
+  ChatTestServer words;
+  words.setDefault(replyRating({{"four", 0.9}, {"Four", 0.1}}));
+  const std::string w = probeAgainst(words);
+  EXPECT_NE(w.find("verdict: unusable: low coverage:"), std::string::npos) << w;
+}
+
+TEST(LlmProbeCommand, VerdictNamesATransportErrorForARefusedOrSilentServer) {
+  const CommandRun refused = runCbtl("llm probe --base-url http://127.0.0.1:" + std::to_string(unusedLoopbackPort()) +
+                                     "/v1 --model m --attempts 1 --timeout-ms 2000 --connect-timeout-ms 2000");
+  EXPECT_EQ(refused.exitCode, 1) << refused.output;
+  EXPECT_NE(refused.output.find("verdict: unusable: transport error:"), std::string::npos) << refused.output;
+
+  ChatTestServer silent;
+  silent.setDefault(silent.hang());
+  const std::string out = probeAgainst(silent);
+  EXPECT_NE(out.find("verdict: unusable: transport error:"), std::string::npos) << out;
+  EXPECT_NE(out.find("timeout"), std::string::npos) << out;
+  EXPECT_NE(out.find("not asked"), std::string::npos) << out;  // one silent question is enough
+  EXPECT_EQ(silent.requestCount(), 1);
 }
 
 TEST(LlmProbeCommand, BadUrlExitsOneAndMissingOptionExitsTwo) {

@@ -6,25 +6,7 @@
 set -u
 cbtl=$1
 domains=$2
-cooking=$domains/cooking/cooking.cbtl
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-
-expect() {  # expect CODE PATTERN -- command...
-  local code=$1 pattern=$2
-  shift 3
-  local out rc
-  out=$("$@" 2>&1)
-  rc=$?
-  if [[ $rc -ne $code ]]; then
-    echo "FAIL (exit $rc, wanted $code): $*"; echo "$out" | head -10; failures=$((failures + 1)); return
-  fi
-  if [[ -n $pattern ]] && ! grep -qE -- "$pattern" <<<"$out"; then
-    echo "FAIL (output lacks /$pattern/): $*"; echo "$out" | head -10; failures=$((failures + 1)); return
-  fi
-  echo "ok ($rc): $*"
-}
+source "$(dirname "$0")/expect.sh"
 
 # bad OPTION VALUE...: each value is rejected with exit 2 and a message naming OPTION, for run and experiment.
 bad_trial() {

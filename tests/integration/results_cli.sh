@@ -6,26 +6,7 @@
 set -u
 cbtl=$1
 domains=$2
-cooking=$domains/cooking/cooking.cbtl
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-
-expect() {  # expect CODE PATTERN -- command...
-  local code=$1 pattern=$2
-  shift 3
-  local out rc
-  out=$("$@" 2>&1)
-  rc=$?
-  if [[ $rc -ne $code ]]; then
-    echo "FAIL (exit $rc, wanted $code): $*"; echo "$out" | head -20; failures=$((failures + 1)); return
-  fi
-  if [[ -n $pattern ]] && ! grep -qE -- "$pattern" <<<"$out"; then
-    echo "FAIL (output lacks /$pattern/): $*"; echo "$out" | head -20; failures=$((failures + 1)); return
-  fi
-  echo "ok: $*"
-}
+source "$(dirname "$0")/expect.sh"
 
 # Every file present parses: JSON files as JSON, CSV files as rows of the header's width.
 parses() {  # parses DIR

@@ -4,25 +4,7 @@
 set -u
 cbtl=$1
 domains=$2
-cooking=$domains/cooking/cooking.cbtl
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-
-expect() {  # expect CODE PATTERN -- command...
-  local code=$1 pattern=$2
-  shift 3
-  local out rc
-  out=$("$@" 2>&1)
-  rc=$?
-  if [[ $rc -ne $code ]]; then
-    echo "FAIL (exit $rc, wanted $code): $*"; echo "$out" | head -20; failures=$((failures + 1)); return
-  fi
-  if [[ -n $pattern ]] && ! grep -qE -- "$pattern" <<<"$out"; then
-    echo "FAIL (output lacks /$pattern/): $*"; echo "$out" | head -20; failures=$((failures + 1)); return
-  fi
-  echo "ok: $*"
-}
+source "$(dirname "$0")/expect.sh"
 
 # A short Cooking trial writes every output; the same seed reproduces it byte for byte.
 expect 0 "eval satisfaction" -- "$cbtl" run "$cooking" --steps 300 --eval-every 100 --eval-tasks 2 --seed 3 --out "$work/a"

@@ -228,7 +228,8 @@ void UserModel::fromJson(const std::string& text, const std::string& source) {
       checkKey(*graph_, state->spec(), key, source, kpath);
       if (!factors.is_object()) fail(kpath, "expected an object of factors");
       auto& fs = state->mutableFactors(key);
-      for (const auto& [label, j] : factors.items()) {
+      for (const auto& entry : factors.items()) {
+        const std::string& label = entry.key();  // not a structured binding: clang 14 cannot capture those
         const bool known = std::any_of(fs.begin(), fs.end(), [&](const Factor& f) { return f.label() == label; });
         if (!known) fail(kpath + "." + label, "no such factor in this generator");
       }

@@ -1,5 +1,6 @@
 # Every third-party dependency of the product, found once here, from Debian bookworm packages.
-# The Debian packaging workarounds (P1, P2, P4, P7 in docs/toolchain.md) live here and nowhere else.
+# The Debian packaging workarounds (numbered P1, P2, P4, P7, each explained where it is applied) live here and
+# nowhere else.
 # scripts/install-deps.sh installs the packages these calls need.
 
 find_package(Threads REQUIRED)

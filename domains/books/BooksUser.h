@@ -3,9 +3,9 @@
 //
 // The paper's user (paperDefault): hidden text "I only like two kinds of books: fictional romances, and
 // grand, nonfictional reflections on the universe"; among the nine standard books the reference's ground
-// truth enjoys exactly Cosmos and Pride and Prejudice (seed-code.md §3.6), so the simulated user enjoys
+// truth enjoys exactly Cosmos and Pride and Prejudice, so the simulated user enjoys
 // those two entries. Range of motion: a handover at point p is reachable iff the distance from p to the
-// sphere centre lies in [0.1, 0.3] m (bounds included; the reference's hidden interval, seed-code.md §3.4);
+// sphere centre lies in [0.1, 0.3] m (bounds included; the reference's hidden interval);
 // the centre is the hand frame moved romHandOffset along its z (books.cbtl romCentre).
 // Utterances: unreachable "I can't reach there." (the paper's words); reached and enjoyed "Thank you, I love
 // <title>!"; reached and not enjoyed "Thanks, but <title> is not for me." — the title is named so a text

@@ -1,7 +1,7 @@
 // CleaningUser.h — the hidden preference of the Cleaning user: the surfaces they let the robot clean.
 //
 // The paper's user (appendix, Cleaning: "only two surfaces should be cleaned by the robot") and the
-// reference code's ground truth (seed-code.md §4.2: the user lets the robot clean the middle shelf layer
+// reference code's ground truth (the user lets the robot clean the middle shelf layer
 // and the first side table) — paperDefault() — welcomes a wipe of shelfMiddle or sideTable0 ("Thanks for
 // cleaning there") and admonishes one of any other surface ("Don't clean there"). Surfaces are the members
 // of cleaning.cbtl's `enum Surface`. The robot never reads this set: it learns it from the reactions.

@@ -3,7 +3,7 @@
 //
 // The user knows some meals by name; a meal lists its required ingredients, each with a closed temperature
 // range (temperature units: 1.0 = 10 ticks) and a closed quantity range. The paper's user (paperDefault):
-// "seasoning" = salt and pepper, each temperature [2.8, 3.2] and quantity [0.95, 1.0] (seed-code.md §4.1).
+// "seasoning" = salt and pepper, each temperature [2.8, 3.2] and quantity [0.95, 1.0].
 // The robot never reads these ranges: it learns them from critiques. Tests and the experiment loop may.
 //
 // Critiques follow the seed: per ingredient, "good" when the value lies in the range (bounds included),

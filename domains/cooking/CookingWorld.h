@@ -5,7 +5,7 @@
 // along its edges; a pot is a disc of fixed radius (pot0..pot3: 0.5, 1.0, 0.5, 0.5) whose centre is given in
 // that frame. Quantities are in the units of cooking.cbtl's `stock` (the spec's 0.9 .. 1.1). Temperatures
 // are kept as integer *ticks*: one tick is 0.1 temperature units, the heat a pot gains in one cooking tick
-// (seed-code.md §8 item 15: float accumulation put values such as 3.2 on either side of a bound).
+// (the reference's float accumulation put values such as 3.2 on either side of a bound).
 //
 // Time: the cooking clock advances only in tick(): every pot holding an ingredient gains one temperature
 // tick if it is on the stove, or loses one (never below 0) if it is off; then the additions queued since

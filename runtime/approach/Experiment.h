@@ -1,4 +1,4 @@
-// Experiment.h — the paper's experiment loop (seed-code.md §6, fixed where the reference was wrong).
+// Experiment.h — the paper's experiment loop (the reference's, fixed where the reference was wrong).
 //
 // Train for `steps` steps in one world that is never reset (a served meal restocks it); every `evalEvery`
 // steps (and at step 0 and at the end), copy what was learned into an evaluation agent and run `evalTasks`

@@ -277,6 +277,7 @@ RunOutput::RunOutput(const std::string& dir, RunMode mode, const json& config, c
   const std::vector<std::string> existing = runFilesIn(dir_);
   if (!existing.empty() && mode == RunMode::Fresh) throw RunDirectoryError(refusalMessage(dir_, existing));
   if (!existing.empty() && mode == RunMode::Resume && fs::exists(path("config.json"))) {
+    removeTemporaries(dir_);  // a killed process's half-written files: never part of a run
     openForResume(config);
     if (completed_ || checkpoint_) return;
   }

@@ -110,6 +110,15 @@ void removeRunFiles(const std::string& dir) {
   if (fs::is_directory(models, ec) && fs::is_empty(models, ec)) fs::remove(models, ec);
 }
 
+void removeTemporaries(const std::string& dir) {
+  for (const auto& rel : runFilesIn(dir)) {
+    if (withoutTempSuffix(fs::path(rel).filename().string()) == fs::path(rel).filename().string()) continue;
+    std::error_code ec;
+    fs::remove(fs::path(dir) / rel, ec);
+    if (ec) throw RunDirectoryError(fmt::format("cannot remove '{}': {}", (fs::path(dir) / rel).string(), ec.message()));
+  }
+}
+
 std::string refusalMessage(const std::string& dir, const std::vector<std::string>& files) {
   std::string list;
   const std::size_t shown = std::min<std::size_t>(files.size(), 4);

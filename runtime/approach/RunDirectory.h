@@ -49,6 +49,9 @@ bool isRunFileName(const std::string& relative);
 std::vector<std::string> runFilesIn(const std::string& dir);
 // Removes the run files present in `dir` (and `models/` when that leaves it empty). Throws RunDirectoryError.
 void removeRunFiles(const std::string& dir);
+// Removes the temporaries of atomic writes (`*.tmp.<pid>.<n>`) that a killed process left in `dir` or its
+// models/: a resumed run ends with the files of an uninterrupted one. Throws RunDirectoryError.
+void removeTemporaries(const std::string& dir);
 // The refusal: "'DIR' already holds a run (FILES); pass --force to replace it or --resume to continue it".
 std::string refusalMessage(const std::string& dir, const std::vector<std::string>& files);
 

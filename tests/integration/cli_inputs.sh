@@ -13,8 +13,8 @@ bad_trial() {
   local option=$1
   shift
   for value in "$@"; do
-    expect 2 "^$option: " -- "$cbtl" run "$cooking" "$option" "$value" -q
-    expect 2 "^$option: " -- "$cbtl" experiment "$cooking" "$option" "$value" -q --seeds 0
+    expect 2 "^cbtl [a-z ]+: error: $option: " -- "$cbtl" run "$cooking" "$option" "$value" -q
+    expect 2 "^cbtl [a-z ]+: error: $option: " -- "$cbtl" experiment "$cooking" "$option" "$value" -q --seeds 0
   done
 }
 
@@ -33,14 +33,14 @@ bad_trial --memory-size 0 -1
 
 # --seed is unsigned: "-1" used to wrap to 2^64 - 1.
 for value in -1 -0 abc 1.5 18446744073709551616; do
-  expect 2 "^--seed: " -- "$cbtl" run "$cooking" --seed "$value" -q
-  expect 2 "^--seed: " -- "$cbtl" solve "$cooking" --seed "$value"
+  expect 2 "^cbtl [a-z ]+: error: --seed: " -- "$cbtl" run "$cooking" --seed "$value" -q
+  expect 2 "^cbtl [a-z ]+: error: --seed: " -- "$cbtl" solve "$cooking" --seed "$value"
 done
 for option in --max-iters --memory-size; do
-  expect 2 "^$option: " -- "$cbtl" solve "$cooking" "$option" 0
+  expect 2 "^cbtl [a-z ]+: error: $option: " -- "$cbtl" solve "$cooking" "$option" 0
 done
-expect 2 "^--num-improvements: " -- "$cbtl" solve "$cooking" --num-improvements -2
-expect 2 "^--max-improvement-attempts: " -- "$cbtl" solve "$cooking" --max-improvement-attempts -2
+expect 2 "^cbtl [a-z ]+: error: --num-improvements: " -- "$cbtl" solve "$cooking" --num-improvements -2
+expect 2 "^cbtl [a-z ]+: error: --max-improvement-attempts: " -- "$cbtl" solve "$cooking" --max-improvement-attempts -2
 
 # experiment's own lists.
 for value in -1..3 0..-2 x "" 5..2; do
@@ -52,19 +52,19 @@ done
 
 # render: camera angles and distance (checked before the scene is read).
 scene=$domains/feeding/feeding.xml
-expect 2 "^--elevation: " -- "$cbtl" render "$scene" --out "$work/x.png" --elevation 91
-expect 2 "^--elevation: " -- "$cbtl" render "$scene" --out "$work/x.png" --elevation nan
-expect 2 "^--azimuth: " -- "$cbtl" render "$scene" --out "$work/x.png" --azimuth 1e9
-expect 2 "^--distance: " -- "$cbtl" render "$scene" --out "$work/x.png" --distance -1
-expect 2 "^--width: " -- "$cbtl" render "$scene" --out "$work/x.png" --width 0
-expect 2 "^--height: " -- "$cbtl" render "$scene" --out "$work/x.png" --height -5
+expect 2 "^cbtl [a-z ]+: error: --elevation: " -- "$cbtl" render "$scene" --out "$work/x.png" --elevation 91
+expect 2 "^cbtl [a-z ]+: error: --elevation: " -- "$cbtl" render "$scene" --out "$work/x.png" --elevation nan
+expect 2 "^cbtl [a-z ]+: error: --azimuth: " -- "$cbtl" render "$scene" --out "$work/x.png" --azimuth 1e9
+expect 2 "^cbtl [a-z ]+: error: --distance: " -- "$cbtl" render "$scene" --out "$work/x.png" --distance -1
+expect 2 "^cbtl [a-z ]+: error: --width: " -- "$cbtl" render "$scene" --out "$work/x.png" --width 0
+expect 2 "^cbtl [a-z ]+: error: --height: " -- "$cbtl" render "$scene" --out "$work/x.png" --height -5
 
 # llm: timeouts, attempts and rounds (checked before any request).
-expect 2 "^--timeout-ms: " -- "$cbtl" llm probe --base-url http://127.0.0.1:9/v1 --model m --timeout-ms 0
-expect 2 "^--connect-timeout-ms: " -- "$cbtl" llm probe --base-url http://127.0.0.1:9/v1 --model m --connect-timeout-ms -1
-expect 2 "^--attempts: " -- "$cbtl" llm probe --base-url http://127.0.0.1:9/v1 --model m --attempts 0
-expect 2 "^--rounds: " -- "$cbtl" llm books --rounds 0
-expect 2 "^--attempts: " -- "$cbtl" llm books --attempts 11
+expect 2 "^cbtl [a-z ]+: error: --timeout-ms: " -- "$cbtl" llm probe --base-url http://127.0.0.1:9/v1 --model m --timeout-ms 0
+expect 2 "^cbtl [a-z ]+: error: --connect-timeout-ms: " -- "$cbtl" llm probe --base-url http://127.0.0.1:9/v1 --model m --connect-timeout-ms -1
+expect 2 "^cbtl [a-z ]+: error: --attempts: " -- "$cbtl" llm probe --base-url http://127.0.0.1:9/v1 --model m --attempts 0
+expect 2 "^cbtl [a-z ]+: error: --rounds: " -- "$cbtl" llm books --rounds 0
+expect 2 "^cbtl [a-z ]+: error: --attempts: " -- "$cbtl" llm books --attempts 11
 
 # Boundary values are accepted: a periodic reset every step, epsilon 0 and 1, zero training steps.
 expect 0 "" -- "$cbtl" run "$cooking" --steps 4 --eval-every 2 --eval-tasks 1 --max-eval-steps 1 -q \

@@ -2,7 +2,10 @@
 #include "CommandRegistry.h"
 #include "ErrorHandling.h"
 
+#include <fmt/core.h>
+
 #include <algorithm>
+#include <string>
 
 int main(int argc, char** argv) {
   CLI::App app{"cbtl: run CBTL constraint graphs: solve, personalize, learn, render"};
@@ -18,8 +21,15 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // A usage error names the command it belongs to, like every other error of cbtl.
+    std::string command = "cbtl";
+    for (const CLI::App* sub = &app; !sub->get_subcommands().empty();) {
+      sub = sub->get_subcommands().front();
+      command += " " + sub->get_name();
+    }
+    fmt::print(stderr, "{}: error: {}\nRun '{} --help' for more information.\n", command, e.what(), command);
+    return 2;
   } catch (...) {  // commands catch their own (ErrorHandling.h); this is for anything thrown outside them
     return cbtl::cli::reportCurrentException("");
   }

@@ -219,6 +219,24 @@ TEST(RunDirectory, ResumingACompleteRunRunsNothing) {
   EXPECT_EQ(test::readFile(dir + "/train.csv"), train);
 }
 
+TEST(RunDirectory, ResumeRemovesTheTemporariesOfAKilledWrite) {
+  // kill -9 during an atomic write leaves "<file>.tmp.<pid>.<n>"; a resumed run must not keep them (found by
+  // results_cli.sh's kill at an arbitrary moment).
+  const Variant v{"cbtl", approach::ApproachKind::Cbtl, false};
+  const std::string dir = tempDir("temporaries");
+  approach::ExperimentConfig c = config(v, dir);
+  c.steps = 200;
+  runFresh(c);
+  std::ofstream(dir + "/models/300.json.tmp.4242.0") << "{";
+  std::ofstream(dir + "/checkpoint.json.tmp.4242.1") << "{";
+  std::ofstream(dir + "/notes.tmp.txt") << "mine";  // not a run file: left alone
+  c.runMode = approach::RunMode::Resume;
+  runFresh(c);
+  EXPECT_FALSE(fs::exists(dir + "/models/300.json.tmp.4242.0"));
+  EXPECT_FALSE(fs::exists(dir + "/checkpoint.json.tmp.4242.1"));
+  EXPECT_TRUE(fs::exists(dir + "/notes.tmp.txt"));
+}
+
 TEST(RunDirectory, ASecondProcessCannotShareTheFolder) {
   const std::string dir = tempDir("lock");
   fs::create_directories(dir);

@@ -1,16 +1,16 @@
-#include "DomainRegistry.h"
+#include "domains/DomainRegistry.h"
 
 #if defined(CBTL_HAVE_DOMAIN_BOOKS)
-#include "books/BooksSimulator.h"
+#include "domains/books/BooksSimulator.h"
 #endif
 #if defined(CBTL_HAVE_DOMAIN_CLEANING)
-#include "cleaning/CleaningSimulator.h"
+#include "domains/cleaning/CleaningSimulator.h"
 #endif
 #if defined(CBTL_HAVE_DOMAIN_COOKING)
-#include "cooking/CookingSimulator.h"
+#include "domains/cooking/CookingSimulator.h"
 #endif
 #if defined(CBTL_HAVE_DOMAIN_FEEDING)
-#include "feeding/FeedingSimulator.h"
+#include "domains/feeding/FeedingSimulator.h"
 #endif
 
 #include <algorithm>

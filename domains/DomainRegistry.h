@@ -4,7 +4,7 @@
 // CMakeLists.txt. The registry owns nothing: each call makes a new, independent simulator.
 #pragma once
 
-#include "DomainSimulator.h"
+#include "runtime/sim/DomainSimulator.h"
 
 #include <cstdint>
 #include <memory>

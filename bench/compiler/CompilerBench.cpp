@@ -7,7 +7,7 @@
 //                              extern, conditional and per-member samplers; plus a generator, a skill and a
 //                              task. Target: < 0.5 s.
 //   BM_CheckDomain/<name>      domains/<name>/<name>.cbtl (or domains/<name>.cbtl). Target: < 50 ms each.
-#include "driver/Pipeline.h"
+#include "compiler/driver/Pipeline.h"
 
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>

@@ -1,8 +1,8 @@
 // Profile loading (docs/runtime.md): BM_LoadProfile/<points> parses and loads a Cooking profile whose one model
 // key holds <points> labelled examples in its temperature interval factor (and one in the quantity factor), the
 // shape of a user who has been served for a long time. The JSON text is built once, outside the timing.
-#include "LoadedProgram.h"
-#include "UserModel.h"
+#include "runtime/approach/LoadedProgram.h"
+#include "runtime/model/UserModel.h"
 
 #include <benchmark/benchmark.h>
 #include <nlohmann/json.hpp>

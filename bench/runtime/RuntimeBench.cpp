@@ -3,13 +3,13 @@
 //     evaluations of 10 held-out tasks — target under 1 s on one core (the reference: 75-121 s).
 //   BM_SolverThroughput/<csp>: candidates per second of the sampling solver on Cooking CSPs: exploit (hard and
 //     personalized constraints, first feasible), explore (hard constraints, maximize entropy, learned models).
-#include "DomainRegistry.h"
-#include "Experiment.h"
-#include "LoadedProgram.h"
-#include "Planner.h"
-#include "Solver.h"
-#include "UserModel.h"
-#include "ValueBridge.h"
+#include "domains/DomainRegistry.h"
+#include "runtime/approach/Experiment.h"
+#include "runtime/approach/LoadedProgram.h"
+#include "runtime/approach/Planner.h"
+#include "runtime/solver/Solver.h"
+#include "runtime/model/UserModel.h"
+#include "runtime/approach/ValueBridge.h"
 
 #include <benchmark/benchmark.h>
 

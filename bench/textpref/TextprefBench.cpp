@@ -1,8 +1,8 @@
 // How long the offline descriptor model and the response cache take per call. The reference code paid a disk
 // round trip per rating query (about 80 per Books step); these numbers are the C++ costs of the same queries.
-#include "textpref/OfflineDescriptorModel.h"
-#include "textpref/ResponseCache.h"
-#include "textpref/SimulatedUsers.h"
+#include "runtime/textpref/OfflineDescriptorModel.h"
+#include "runtime/textpref/ResponseCache.h"
+#include "runtime/textpref/SimulatedUsers.h"
 
 #include <benchmark/benchmark.h>
 

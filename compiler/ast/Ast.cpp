@@ -1,4 +1,4 @@
-#include "ast/Ast.h"
+#include "compiler/ast/Ast.h"
 
 namespace cbtl {
 

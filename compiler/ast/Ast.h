@@ -6,7 +6,7 @@
 // declaration) are plain pointers that stay valid as long as the owning Module lives.
 #pragma once
 
-#include "source/SourceManager.h"
+#include "compiler/source/SourceManager.h"
 
 #include <memory>
 #include <string>

@@ -1,6 +1,6 @@
-#include "ast/AstBuilder.h"
+#include "compiler/ast/AstBuilder.h"
 
-#include "CbtlParser.h"
+#include "grammar/CbtlParser.h"
 
 #include <antlr4-runtime.h>
 

@@ -5,7 +5,7 @@
 // file with syntax errors still yields an AST; the pipeline stops after parsing in that case anyway.
 #pragma once
 
-#include "ast/Ast.h"
+#include "compiler/ast/Ast.h"
 
 #include <functional>
 #include <memory>

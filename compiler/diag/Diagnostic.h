@@ -6,7 +6,7 @@
 // checks this on every golden input and thousands of mutations of them, and the fuzzer on random input.
 #pragma once
 
-#include "source/SourceManager.h"
+#include "compiler/source/SourceManager.h"
 
 #include <string>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "diag/DiagnosticCodes.h"
+#include "compiler/diag/DiagnosticCodes.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "diag/DiagnosticEngine.h"
+#include "compiler/diag/DiagnosticEngine.h"
 
 #include <algorithm>
 #include <tuple>

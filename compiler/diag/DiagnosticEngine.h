@@ -6,7 +6,7 @@
 // not kept, and the renderer says how many were dropped.
 #pragma once
 
-#include "diag/Diagnostic.h"
+#include "compiler/diag/Diagnostic.h"
 
 #include <cstddef>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "diag/DiagnosticRenderer.h"
+#include "compiler/diag/DiagnosticRenderer.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

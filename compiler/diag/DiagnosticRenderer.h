@@ -8,8 +8,8 @@
 // byte offsets, children, and the rendered text (rustc-like field names; see docs/diagnostics.md).
 #pragma once
 
-#include "diag/Diagnostic.h"
-#include "source/SourceManager.h"
+#include "compiler/diag/Diagnostic.h"
+#include "compiler/source/SourceManager.h"
 
 #include <string>
 

@@ -1,6 +1,6 @@
-#include "driver/AstPrinter.h"
+#include "compiler/driver/AstPrinter.h"
 
-#include "sema/Type.h"
+#include "compiler/sema/Type.h"
 
 #include <fmt/format.h>
 

@@ -1,8 +1,8 @@
 // AstPrinter.h — a dump of the AST, with resolutions and types once the semantic passes have run.
 #pragma once
 
-#include "ast/Ast.h"
-#include "source/SourceManager.h"
+#include "compiler/ast/Ast.h"
+#include "compiler/source/SourceManager.h"
 
 #include <string>
 

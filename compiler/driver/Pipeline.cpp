@@ -1,15 +1,15 @@
-#include "driver/Pipeline.h"
+#include "compiler/driver/Pipeline.h"
 
-#include "driver/AstPrinter.h"
-#include "driver/EmbeddedStdlib.h"
+#include "compiler/driver/AstPrinter.h"
+#include "compiler/driver/EmbeddedStdlib.h"
 #include "ir/GraphPrinter.h"
 #include "ir/Validator.h"
-#include "lower/Lowering.h"
-#include "parse/Parser.h"
-#include "sema/GeneratorChecker.h"
-#include "sema/NameResolver.h"
-#include "sema/TypeChecker.h"
-#include "util/Suggest.h"
+#include "compiler/lower/Lowering.h"
+#include "compiler/parse/Parser.h"
+#include "compiler/sema/GeneratorChecker.h"
+#include "compiler/sema/NameResolver.h"
+#include "compiler/sema/TypeChecker.h"
+#include "compiler/util/Suggest.h"
 
 #include <fmt/format.h>
 

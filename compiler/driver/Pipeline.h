@@ -7,7 +7,7 @@
 // input) or after the pass named in `stopAfter`.
 #pragma once
 
-#include "driver/TranslationUnit.h"
+#include "compiler/driver/TranslationUnit.h"
 
 #include <string>
 #include <vector>

@@ -3,12 +3,12 @@
 // two translation units never share anything, so compilations can run side by side.
 #pragma once
 
-#include "ast/Ast.h"
-#include "diag/DiagnosticEngine.h"
+#include "compiler/ast/Ast.h"
+#include "compiler/diag/DiagnosticEngine.h"
 #include "ir/ConstraintGraph.h"
-#include "sema/Symbols.h"
-#include "sema/Type.h"
-#include "source/SourceManager.h"
+#include "compiler/sema/Symbols.h"
+#include "compiler/sema/Type.h"
+#include "compiler/source/SourceManager.h"
 
 #include <map>
 #include <memory>

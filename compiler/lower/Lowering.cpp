@@ -1,11 +1,11 @@
-#include "lower/Lowering.h"
+#include "compiler/lower/Lowering.h"
 
 #include "ir/Pattern.h"
 #include "ir/ReadSet.h"
-#include "lower/UsageWarnings.h"
-#include "sema/GeneratorChecker.h"
-#include "sema/Type.h"
-#include "sema/TypeChecker.h"
+#include "compiler/lower/UsageWarnings.h"
+#include "compiler/sema/GeneratorChecker.h"
+#include "compiler/sema/Type.h"
+#include "compiler/sema/TypeChecker.h"
 
 #include <fmt/format.h>
 

@@ -9,10 +9,10 @@
 // E0317 when families, unrolling and skill instances would make the graph too large.
 #pragma once
 
-#include "ast/Ast.h"
-#include "diag/DiagnosticEngine.h"
+#include "compiler/ast/Ast.h"
+#include "compiler/diag/DiagnosticEngine.h"
 #include "ir/ConstraintGraph.h"
-#include "sema/Symbols.h"
+#include "compiler/sema/Symbols.h"
 
 #include <memory>
 #include <vector>

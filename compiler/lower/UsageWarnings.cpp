@@ -1,4 +1,4 @@
-#include "lower/UsageWarnings.h"
+#include "compiler/lower/UsageWarnings.h"
 
 #include "ir/Pattern.h"
 #include "ir/ReadSet.h"

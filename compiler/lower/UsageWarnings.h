@@ -10,8 +10,8 @@
 // W0502 when a used one is unbounded, unsampled and without an initial value.
 #pragma once
 
-#include "ast/Ast.h"
-#include "diag/DiagnosticEngine.h"
+#include "compiler/ast/Ast.h"
+#include "compiler/diag/DiagnosticEngine.h"
 #include "ir/ConstraintGraph.h"
 
 #include <vector>

@@ -1,10 +1,10 @@
-#include "parse/Parser.h"
+#include "compiler/parse/Parser.h"
 
-#include "ast/AstBuilder.h"
-#include "parse/SyntaxErrors.h"
+#include "compiler/ast/AstBuilder.h"
+#include "compiler/parse/SyntaxErrors.h"
 
-#include "CbtlLexer.h"
-#include "CbtlParser.h"
+#include "grammar/CbtlLexer.h"
+#include "grammar/CbtlParser.h"
 
 #include <antlr4-runtime.h>
 

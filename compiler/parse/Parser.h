@@ -6,9 +6,9 @@
 // unless a dump of it is requested.
 #pragma once
 
-#include "ast/Ast.h"
-#include "diag/DiagnosticEngine.h"
-#include "source/SourceManager.h"
+#include "compiler/ast/Ast.h"
+#include "compiler/diag/DiagnosticEngine.h"
+#include "compiler/source/SourceManager.h"
 
 #include <memory>
 #include <string>

@@ -1,8 +1,8 @@
-#include "parse/SyntaxErrors.h"
+#include "compiler/parse/SyntaxErrors.h"
 
-#include "util/Suggest.h"
+#include "compiler/util/Suggest.h"
 
-#include "CbtlParser.h"
+#include "grammar/CbtlParser.h"
 
 #include <fmt/format.h>
 

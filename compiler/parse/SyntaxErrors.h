@@ -6,7 +6,7 @@
 // comments and for stray characters.
 #pragma once
 
-#include "diag/DiagnosticEngine.h"
+#include "compiler/diag/DiagnosticEngine.h"
 
 #include <antlr4-runtime.h>
 

@@ -1,8 +1,8 @@
-#include "sema/GeneratorChecker.h"
+#include "compiler/sema/GeneratorChecker.h"
 
 #include "ir/Pattern.h"
-#include "sema/Type.h"
-#include "util/Suggest.h"
+#include "compiler/sema/Type.h"
+#include "compiler/util/Suggest.h"
 
 #include <fmt/format.h>
 

@@ -10,9 +10,9 @@
 // names and is reported by lowering.)
 #pragma once
 
-#include "ast/Ast.h"
-#include "diag/DiagnosticEngine.h"
-#include "sema/Symbols.h"
+#include "compiler/ast/Ast.h"
+#include "compiler/diag/DiagnosticEngine.h"
+#include "compiler/sema/Symbols.h"
 
 #include <memory>
 #include <vector>

@@ -1,6 +1,6 @@
-#include "sema/NameResolver.h"
+#include "compiler/sema/NameResolver.h"
 
-#include "util/Suggest.h"
+#include "compiler/util/Suggest.h"
 
 #include <fmt/format.h>
 

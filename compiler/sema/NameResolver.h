@@ -8,10 +8,10 @@
 // type-argument errors E0309; suggests the closest name for typos.
 #pragma once
 
-#include "ast/Ast.h"
-#include "diag/DiagnosticEngine.h"
-#include "sema/Symbols.h"
-#include "sema/Type.h"
+#include "compiler/ast/Ast.h"
+#include "compiler/diag/DiagnosticEngine.h"
+#include "compiler/sema/Symbols.h"
+#include "compiler/sema/Type.h"
 
 #include <memory>
 #include <vector>

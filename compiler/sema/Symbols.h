@@ -2,7 +2,7 @@
 // its imports in one flat namespace, plus enum members (which may be used bare when unambiguous).
 #pragma once
 
-#include "ast/Ast.h"
+#include "compiler/ast/Ast.h"
 
 #include <map>
 #include <string>

@@ -1,4 +1,4 @@
-#include "sema/Type.h"
+#include "compiler/sema/Type.h"
 
 #include <fmt/format.h>
 

@@ -1,6 +1,6 @@
-#include "sema/TypeChecker.h"
+#include "compiler/sema/TypeChecker.h"
 
-#include "util/Suggest.h"
+#include "compiler/util/Suggest.h"
 
 #include <fmt/format.h>
 

@@ -11,10 +11,10 @@
 // meaning is checked by the `check-generators` pass.
 #pragma once
 
-#include "ast/Ast.h"
-#include "diag/DiagnosticEngine.h"
-#include "sema/Symbols.h"
-#include "sema/Type.h"
+#include "compiler/ast/Ast.h"
+#include "compiler/diag/DiagnosticEngine.h"
+#include "compiler/sema/Symbols.h"
+#include "compiler/sema/Type.h"
 
 #include <memory>
 #include <vector>

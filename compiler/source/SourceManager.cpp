@@ -1,4 +1,4 @@
-#include "source/SourceManager.h"
+#include "compiler/source/SourceManager.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "util/Suggest.h"
+#include "compiler/util/Suggest.h"
 
 #include <algorithm>
 #include <limits>

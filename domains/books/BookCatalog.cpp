@@ -1,4 +1,4 @@
-#include "books/BookCatalog.h"
+#include "domains/books/BookCatalog.h"
 
 namespace cbtl::domains::books {
 

@@ -1,11 +1,11 @@
-#include "books/BooksSimulator.h"
+#include "domains/books/BooksSimulator.h"
 
-#include "books/BookCatalog.h"
-#include "robot/CallArguments.h"
-#include "robot/HomeEpisode.h"
-#include "robot/HomeScene.h"
-#include "robot/HomeSurfaces.h"
-#include "robot/SurfaceGeometry.h"
+#include "domains/books/BookCatalog.h"
+#include "domains/robot/CallArguments.h"
+#include "domains/robot/HomeEpisode.h"
+#include "domains/robot/HomeScene.h"
+#include "domains/robot/HomeSurfaces.h"
+#include "domains/robot/SurfaceGeometry.h"
 
 #include <stdexcept>
 

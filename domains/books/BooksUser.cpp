@@ -1,6 +1,6 @@
-#include "books/BooksUser.h"
+#include "domains/books/BooksUser.h"
 
-#include "books/BookCatalog.h"
+#include "domains/books/BookCatalog.h"
 
 #include <cmath>
 #include <stdexcept>

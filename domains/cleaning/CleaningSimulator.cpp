@@ -1,9 +1,9 @@
-#include "cleaning/CleaningSimulator.h"
+#include "domains/cleaning/CleaningSimulator.h"
 
-#include "robot/HomeEpisode.h"
-#include "robot/HomeScene.h"
-#include "robot/HomeSurfaces.h"
-#include "robot/SurfaceGeometry.h"
+#include "domains/robot/HomeEpisode.h"
+#include "domains/robot/HomeScene.h"
+#include "domains/robot/HomeSurfaces.h"
+#include "domains/robot/SurfaceGeometry.h"
 
 #include <stdexcept>
 

@@ -35,11 +35,11 @@
 // Lifetime state (not touched by reset): the user, shared with evaluation twins.
 #pragma once
 
-#include "DomainSimulator.h"
-#include "cleaning/CleaningUser.h"
-#include "robot/RobotActions.h"
+#include "runtime/sim/DomainSimulator.h"
+#include "domains/cleaning/CleaningUser.h"
+#include "domains/robot/RobotActions.h"
 
-#include "world/Builtins.h"
+#include "runtime/world/Builtins.h"
 
 #include <cstdint>
 #include <map>

@@ -1,6 +1,6 @@
-#include "cleaning/CleaningUser.h"
+#include "domains/cleaning/CleaningUser.h"
 
-#include "robot/HomeSurfaces.h"
+#include "domains/robot/HomeSurfaces.h"
 
 #include <stdexcept>
 

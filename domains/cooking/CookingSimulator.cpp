@@ -1,4 +1,4 @@
-#include "cooking/CookingSimulator.h"
+#include "domains/cooking/CookingSimulator.h"
 
 #include <cmath>
 #include <initializer_list>

@@ -35,10 +35,10 @@
 // the stock is then set to exactly 0.9 (the least the spec allows), which may leave the user satisfiable.
 #pragma once
 
-#include "DomainSimulator.h"
-#include "cooking/CookingRandom.h"
-#include "cooking/CookingUser.h"
-#include "cooking/CookingWorld.h"
+#include "runtime/sim/DomainSimulator.h"
+#include "domains/cooking/CookingRandom.h"
+#include "domains/cooking/CookingUser.h"
+#include "domains/cooking/CookingWorld.h"
 
 #include <cstdint>
 #include <memory>

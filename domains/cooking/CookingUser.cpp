@@ -1,4 +1,4 @@
-#include "cooking/CookingUser.h"
+#include "domains/cooking/CookingUser.h"
 
 #include <algorithm>
 #include <utility>

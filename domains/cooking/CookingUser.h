@@ -11,8 +11,8 @@
 // is known, every required ingredient is present, and every critique is good on both axes.
 #pragma once
 
-#include "cooking/CookingRandom.h"
-#include "cooking/Ingredient.h"
+#include "domains/cooking/CookingRandom.h"
+#include "domains/cooking/Ingredient.h"
 
 #include <map>
 #include <optional>

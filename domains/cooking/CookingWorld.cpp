@@ -1,4 +1,4 @@
-#include "cooking/CookingWorld.h"
+#include "domains/cooking/CookingWorld.h"
 
 #include <algorithm>
 #include <cmath>

@@ -14,7 +14,7 @@
 // on the stove, is served at exactly T - s - 1 ticks — cooking.cbtl's heatTicks(start, total).
 #pragma once
 
-#include "cooking/Ingredient.h"
+#include "domains/cooking/Ingredient.h"
 
 #include <array>
 #include <optional>

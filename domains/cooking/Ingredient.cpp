@@ -1,4 +1,4 @@
-#include "cooking/Ingredient.h"
+#include "domains/cooking/Ingredient.h"
 
 namespace cbtl::domains::cooking {
 

@@ -1,7 +1,7 @@
-#include "feeding/FeedingSimulator.h"
+#include "domains/feeding/FeedingSimulator.h"
 
-#include "robot/CallArguments.h"
-#include "robot/HomeEpisode.h"
+#include "domains/robot/CallArguments.h"
+#include "domains/robot/HomeEpisode.h"
 
 #include <fmt/format.h>
 

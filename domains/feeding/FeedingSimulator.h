@@ -30,11 +30,11 @@
 // request, the drink position). SimulatorOptions (preference shifts, unsatisfiable stock) do not apply.
 #pragma once
 
-#include "DomainSimulator.h"
-#include "feeding/FeedingUser.h"
-#include "robot/RobotActions.h"
+#include "runtime/sim/DomainSimulator.h"
+#include "domains/feeding/FeedingUser.h"
+#include "domains/robot/RobotActions.h"
 
-#include "world/Builtins.h"
+#include "runtime/world/Builtins.h"
 
 #include <cstdint>
 #include <memory>

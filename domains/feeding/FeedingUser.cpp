@@ -1,4 +1,4 @@
-#include "feeding/FeedingUser.h"
+#include "domains/feeding/FeedingUser.h"
 
 #include <algorithm>
 

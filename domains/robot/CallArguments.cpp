@@ -1,4 +1,4 @@
-#include "robot/CallArguments.h"
+#include "domains/robot/CallArguments.h"
 
 #include <cmath>
 

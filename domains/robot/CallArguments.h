@@ -7,8 +7,8 @@
 // nullopt so the caller can fail the action explicitly.
 #pragma once
 
-#include "DomainSimulator.h"
-#include "Pose.h"
+#include "runtime/sim/DomainSimulator.h"
+#include "runtime/world/Pose.h"
 
 #include <cstddef>
 #include <initializer_list>

@@ -1,7 +1,7 @@
-#include "robot/HomeEpisode.h"
+#include "domains/robot/HomeEpisode.h"
 
-#include "robot/HomeScene.h"
-#include "robot/StandardGrasps.h"
+#include "domains/robot/HomeScene.h"
+#include "domains/robot/StandardGrasps.h"
 
 #include <algorithm>
 #include <numeric>

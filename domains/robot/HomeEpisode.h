@@ -7,7 +7,7 @@
 // Random draws use std::uniform_*_distribution over world::Rng (one platform's results are reproducible).
 #pragma once
 
-#include "world/Builtins.h"
+#include "runtime/world/Builtins.h"
 
 #include <cstddef>
 #include <map>

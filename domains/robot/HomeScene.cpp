@@ -1,4 +1,4 @@
-#include "robot/HomeScene.h"
+#include "domains/robot/HomeScene.h"
 
 #include <stdexcept>
 

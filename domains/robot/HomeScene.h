@@ -4,7 +4,7 @@
 // Frames and units: world frame of the scene (z up, metres, radians); the mobile base starts at the origin.
 #pragma once
 
-#include "Scene.h"
+#include "runtime/world/Scene.h"
 
 #include <cstddef>
 #include <memory>

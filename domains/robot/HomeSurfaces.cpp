@@ -1,4 +1,4 @@
-#include "robot/HomeSurfaces.h"
+#include "domains/robot/HomeSurfaces.h"
 
 namespace cbtl::domains::robot {
 

@@ -2,7 +2,7 @@
 // (`enum Surface`), with their scene geoms (the files' `surfaceGeom` table), and the hand frame of the user.
 #pragma once
 
-#include "world/Builtins.h"
+#include "runtime/world/Builtins.h"
 
 #include <array>
 #include <optional>

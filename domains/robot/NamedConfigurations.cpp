@@ -1,6 +1,6 @@
-#include "robot/NamedConfigurations.h"
+#include "domains/robot/NamedConfigurations.h"
 
-#include "world/NamedConfigurations.h"
+#include "runtime/world/NamedConfigurations.h"
 
 namespace cbtl::domains::robot {
 

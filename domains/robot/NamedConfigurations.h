@@ -5,7 +5,7 @@
 // up first by the executor, as by std.kinova's namedConf.
 #pragma once
 
-#include "Pose.h"
+#include "runtime/world/Pose.h"
 
 #include <map>
 #include <optional>

@@ -1,11 +1,11 @@
-#include "robot/RobotActions.h"
+#include "domains/robot/RobotActions.h"
 
-#include "world/NamedConfigurations.h"
+#include "runtime/world/NamedConfigurations.h"
 
-#include "robot/CallArguments.h"
-#include "robot/StandardGrasps.h"
-#include "robot/SurfaceGeometry.h"
-#include "robot/WipeSweep.h"
+#include "domains/robot/CallArguments.h"
+#include "domains/robot/StandardGrasps.h"
+#include "domains/robot/SurfaceGeometry.h"
+#include "domains/robot/WipeSweep.h"
 
 #include <fmt/core.h>
 

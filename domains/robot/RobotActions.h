@@ -47,10 +47,10 @@
 //   wait(n)                     n steps pass (InvalidArgument for a negative or fractional n).
 #pragma once
 
-#include "robot/NamedConfigurations.h"
+#include "domains/robot/NamedConfigurations.h"
 
-#include "world/Builtins.h"
-#include "DomainSimulator.h"
+#include "runtime/world/Builtins.h"
+#include "runtime/sim/DomainSimulator.h"
 
 #include <optional>
 #include <string>

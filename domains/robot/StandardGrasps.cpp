@@ -1,4 +1,4 @@
-#include "robot/StandardGrasps.h"
+#include "domains/robot/StandardGrasps.h"
 
 #include <numbers>
 

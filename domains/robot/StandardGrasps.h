@@ -15,7 +15,7 @@
 // Frames: an "X in Y" pose is X's frame expressed in Y's frame; units metres and radians.
 #pragma once
 
-#include "world/Builtins.h"
+#include "runtime/world/Builtins.h"
 
 #include <optional>
 #include <string_view>

@@ -1,4 +1,4 @@
-#include "robot/SurfaceGeometry.h"
+#include "domains/robot/SurfaceGeometry.h"
 
 #include <cmath>
 

@@ -5,9 +5,9 @@
 // Frames: world; units: metres.
 #pragma once
 
-#include "SurfaceFace.h"
+#include "runtime/world/SurfaceFace.h"
 
-#include "world/Builtins.h"
+#include "runtime/world/Builtins.h"
 
 #include <optional>
 #include <string>

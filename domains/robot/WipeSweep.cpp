@@ -1,6 +1,6 @@
-#include "robot/WipeSweep.h"
+#include "domains/robot/WipeSweep.h"
 
-#include "robot/SurfaceGeometry.h"
+#include "domains/robot/SurfaceGeometry.h"
 
 #include <fmt/core.h>
 

@@ -18,8 +18,8 @@
 // collides: the detail names the geoms).
 #pragma once
 
-#include "world/Builtins.h"
-#include "PreWipe.h"
+#include "runtime/world/Builtins.h"
+#include "runtime/world/PreWipe.h"
 
 #include <optional>
 #include <string>

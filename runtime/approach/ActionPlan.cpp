@@ -1,6 +1,6 @@
-#include "ActionPlan.h"
+#include "runtime/approach/ActionPlan.h"
 
-#include "ValueBridge.h"
+#include "runtime/approach/ValueBridge.h"
 
 #include <fmt/format.h>
 

@@ -5,8 +5,8 @@
 // The calls are computed once per solution: the policy is open loop, as in the paper.
 #pragma once
 
-#include "DomainSimulator.h"
-#include "Program.h"
+#include "runtime/sim/DomainSimulator.h"
+#include "runtime/core/Program.h"
 
 #include <optional>
 #include <vector>

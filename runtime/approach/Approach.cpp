@@ -1,4 +1,4 @@
-#include "Approach.h"
+#include "runtime/approach/Approach.h"
 
 namespace cbtl::approach {
 

@@ -1,4 +1,4 @@
-#include "Checkpoint.h"
+#include "runtime/approach/Checkpoint.h"
 
 #include <fmt/format.h>
 

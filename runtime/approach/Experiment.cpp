@@ -1,11 +1,11 @@
-#include "Experiment.h"
+#include "runtime/approach/Experiment.h"
 
-#include "Checkpoint.h"
-#include "InternalError.h"
-#include "Planner.h"
-#include "ValueBridge.h"
+#include "runtime/approach/Checkpoint.h"
+#include "runtime/core/InternalError.h"
+#include "runtime/approach/Planner.h"
+#include "runtime/approach/ValueBridge.h"
 
-#include "textpref/RunReport.h"
+#include "runtime/textpref/RunReport.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

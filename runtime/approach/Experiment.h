@@ -17,13 +17,13 @@
 // (RunDirectory.h lists the files and their guarantees, Checkpoint.h what a checkpoint holds).
 #pragma once
 
-#include "Approach.h"
-#include "DomainSimulator.h"
-#include "LoadedProgram.h"
-#include "RunDirectory.h"
-#include "Solver.h"
+#include "runtime/approach/Approach.h"
+#include "runtime/sim/DomainSimulator.h"
+#include "runtime/approach/LoadedProgram.h"
+#include "runtime/approach/RunDirectory.h"
+#include "runtime/solver/Solver.h"
 
-#include "textpref/FaultStats.h"
+#include "runtime/textpref/FaultStats.h"
 
 #include <cstdint>
 #include <functional>

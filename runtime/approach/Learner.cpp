@@ -1,6 +1,6 @@
-#include "Learner.h"
+#include "runtime/approach/Learner.h"
 
-#include "ValueBridge.h"
+#include "runtime/approach/ValueBridge.h"
 
 #include <fmt/format.h>
 

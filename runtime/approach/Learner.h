@@ -11,9 +11,9 @@
 // reported apart from malformed events because the feedback itself was fine.
 #pragma once
 
-#include "DomainSimulator.h"
-#include "Program.h"
-#include "UserModel.h"
+#include "runtime/sim/DomainSimulator.h"
+#include "runtime/core/Program.h"
+#include "runtime/model/UserModel.h"
 
 #include <string>
 #include <vector>

@@ -1,8 +1,8 @@
-#include "LoadedProgram.h"
+#include "runtime/approach/LoadedProgram.h"
 
-#include "WorldBuiltins.h"
-#include "diag/DiagnosticRenderer.h"
-#include "driver/Pipeline.h"
+#include "runtime/bind/WorldBuiltins.h"
+#include "compiler/diag/DiagnosticRenderer.h"
+#include "compiler/driver/Pipeline.h"
 
 #include <fmt/format.h>
 

@@ -6,14 +6,14 @@
 // the runtime's RuntimeError in `errors` and leaves `ok()` false.
 #pragma once
 
-#include "ActionPlan.h"
-#include "Builtins.h"
-#include "Learner.h"
-#include "Personalization.h"
-#include "Program.h"
+#include "runtime/approach/ActionPlan.h"
+#include "runtime/core/Builtins.h"
+#include "runtime/approach/Learner.h"
+#include "runtime/core/Personalization.h"
+#include "runtime/core/Program.h"
 
-#include "driver/Pipeline.h"
-#include "driver/TranslationUnit.h"
+#include "compiler/driver/Pipeline.h"
+#include "compiler/driver/TranslationUnit.h"
 
 #include <memory>
 #include <string>

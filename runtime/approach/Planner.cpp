@@ -1,4 +1,4 @@
-#include "Planner.h"
+#include "runtime/approach/Planner.h"
 
 namespace cbtl::approach {
 

@@ -2,10 +2,10 @@
 // solution from scratch, and unroll it into action calls. Nothing reaches `calls` without passing the re-check.
 #pragma once
 
-#include "Approach.h"
-#include "LoadedProgram.h"
-#include "Recheck.h"
-#include "Solver.h"
+#include "runtime/approach/Approach.h"
+#include "runtime/approach/LoadedProgram.h"
+#include "runtime/solver/Recheck.h"
+#include "runtime/solver/Solver.h"
 
 #include <optional>
 #include <vector>

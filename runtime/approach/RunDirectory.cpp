@@ -1,4 +1,4 @@
-#include "RunDirectory.h"
+#include "runtime/approach/RunDirectory.h"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "ValueBridge.h"
+#include "runtime/approach/ValueBridge.h"
 
 #include <fmt/format.h>
 

@@ -1,11 +1,11 @@
-#include "WorldBuiltins.h"
+#include "runtime/bind/WorldBuiltins.h"
 
-#include "WorldHost.h"
-#include "world/Collision.h"
-#include "world/InverseKinematics.h"
-#include "world/MotionPlanner.h"
-#include "world/Occlusion.h"
-#include "world/PreWipe.h"
+#include "runtime/bind/WorldHost.h"
+#include "runtime/world/Collision.h"
+#include "runtime/world/InverseKinematics.h"
+#include "runtime/world/MotionPlanner.h"
+#include "runtime/world/Occlusion.h"
+#include "runtime/world/PreWipe.h"
 
 #include <cmath>
 #include <limits>

@@ -13,7 +13,7 @@
 //   IkOptions. Iteration counts only.
 #pragma once
 
-#include "core/Builtins.h"
+#include "runtime/core/Builtins.h"
 
 #include <memory>
 #include <string>

@@ -1,6 +1,6 @@
-#include "WorldHost.h"
+#include "runtime/bind/WorldHost.h"
 
-#include "world/NamedConfigurations.h"
+#include "runtime/world/NamedConfigurations.h"
 
 #include <mujoco/mujoco.h>
 

@@ -12,9 +12,9 @@
 // metres, radians.
 #pragma once
 
-#include "core/Builtins.h"    // rt::BuiltinHost
-#include "world/Builtins.h"   // world::World
-#include "world/SurfaceFace.h"
+#include "runtime/core/Builtins.h"    // rt::BuiltinHost
+#include "runtime/world/Builtins.h"   // world::World
+#include "runtime/world/SurfaceFace.h"
 
 #include <map>
 #include <memory>

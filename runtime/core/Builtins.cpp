@@ -1,6 +1,6 @@
-#include "Builtins.h"
+#include "runtime/core/Builtins.h"
 
-#include "PoseBuiltins.h"
+#include "runtime/core/PoseBuiltins.h"
 
 #include <algorithm>
 #include <cmath>

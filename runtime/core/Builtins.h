@@ -14,8 +14,8 @@
 // geometry read neither.
 #pragma once
 
-#include "Rng.h"
-#include "Values.h"
+#include "runtime/core/Rng.h"
+#include "runtime/core/Values.h"
 
 #include <cstddef>
 #include <map>

@@ -1,4 +1,4 @@
-#include "Expression.h"
+#include "runtime/core/Expression.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 // loops). Scalars that are compile-time constant are folded into Const nodes.
 #pragma once
 
-#include "Builtins.h"
+#include "runtime/core/Builtins.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "ItemDescriptors.h"
+#include "runtime/core/ItemDescriptors.h"
 
 #include <fmt/format.h>
 

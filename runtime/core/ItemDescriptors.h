@@ -12,10 +12,10 @@
 // entries of its first item set (the set Program::render names values by), in declaration order.
 #pragma once
 
-#include "Values.h"
+#include "runtime/core/Values.h"
 
 #include "ir/ConstraintGraph.h"
-#include "textpref/Item.h"
+#include "runtime/textpref/Item.h"
 
 #include <functional>
 #include <map>

@@ -1,4 +1,4 @@
-#include "Personalization.h"
+#include "runtime/core/Personalization.h"
 
 #include "ir/Pattern.h"
 

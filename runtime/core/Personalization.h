@@ -7,7 +7,7 @@
 // value of a parameter at evaluation time). The same generator applies to every task where it matches.
 #pragma once
 
-#include "Program.h"
+#include "runtime/core/Program.h"
 
 #include <optional>
 #include <string>

@@ -3,7 +3,7 @@
 // Values arrive in the Values.h layout: SE2 = x, y, yaw; SE3 = x, y, z, qx, qy, qz, qw. Quaternions read
 // from a program are normalized before use (a user may write a non-unit one in poseQuat), and every SE3
 // result carries a unit quaternion with qw >= 0, so equal rotations compare equal component-wise.
-#include "PoseBuiltins.h"
+#include "runtime/core/PoseBuiltins.h"
 
 #include <Eigen/Geometry>
 

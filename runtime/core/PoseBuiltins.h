@@ -6,7 +6,7 @@
 // down" is the tool z axis along world -z: a half turn about x, then the yaw about world z.
 #pragma once
 
-#include "Builtins.h"
+#include "runtime/core/Builtins.h"
 
 namespace cbtl::rt {
 

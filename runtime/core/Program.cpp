@@ -1,4 +1,4 @@
-#include "Program.h"
+#include "runtime/core/Program.h"
 
 #include <fmt/format.h>
 

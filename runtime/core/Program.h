@@ -6,10 +6,10 @@
 // loop touches is an index or an offset.
 #pragma once
 
-#include "Builtins.h"
-#include "Expression.h"
-#include "ItemDescriptors.h"
-#include "Values.h"
+#include "runtime/core/Builtins.h"
+#include "runtime/core/Expression.h"
+#include "runtime/core/ItemDescriptors.h"
+#include "runtime/core/Values.h"
 
 #include "ir/ConstraintGraph.h"
 

@@ -1,6 +1,6 @@
 // Program's type facts and value layout: ValueType of an IR type, enum/item look-ups, rendering and parsing
 // of values, where variables and observations sit in their vectors, and the initial assignment.
-#include "Program.h"
+#include "runtime/core/Program.h"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "Factor.h"
+#include "runtime/model/Factor.h"
 
 #include <fmt/format.h>
 

@@ -6,10 +6,10 @@
 // a textpref::Item (ItemDescriptors.h).
 #pragma once
 
-#include "IntervalModel.h"
-#include "TableModel.h"
-#include "TextFactor.h"
-#include "ThresholdModel.h"
+#include "runtime/model/IntervalModel.h"
+#include "runtime/model/TableModel.h"
+#include "runtime/model/TextFactor.h"
+#include "runtime/model/ThresholdModel.h"
 
 #include "ir/ConstraintGraph.h"
 

@@ -1,4 +1,4 @@
-#include "IntervalModel.h"
+#include "runtime/model/IntervalModel.h"
 
 #include <algorithm>
 #include <limits>

@@ -1,6 +1,6 @@
-#include "TextFactor.h"
+#include "runtime/model/TextFactor.h"
 
-#include "textpref/TextBackend.h"
+#include "runtime/textpref/TextBackend.h"
 
 #include <algorithm>
 #include <stdexcept>

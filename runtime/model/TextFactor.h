@@ -23,8 +23,8 @@
 //    (assessing never changes what was learned) but fills the cache.
 #pragma once
 
-#include "textpref/Prompts.h"
-#include "textpref/TextPreferenceModel.h"
+#include "runtime/textpref/Prompts.h"
+#include "runtime/textpref/TextPreferenceModel.h"
 
 #include "ir/ConstraintGraph.h"
 

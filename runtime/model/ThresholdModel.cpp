@@ -1,4 +1,4 @@
-#include "ThresholdModel.h"
+#include "runtime/model/ThresholdModel.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "UserModel.h"
+#include "runtime/model/UserModel.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

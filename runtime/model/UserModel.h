@@ -16,7 +16,7 @@
 // Copying a UserModel deep-copies every factor, text models included (TextFactor.h): the copy learns alone.
 #pragma once
 
-#include "Factor.h"
+#include "runtime/model/Factor.h"
 
 #include "ir/ConstraintGraph.h"
 

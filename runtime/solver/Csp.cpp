@@ -1,4 +1,4 @@
-#include "Csp.h"
+#include "runtime/solver/Csp.h"
 
 #include <algorithm>
 

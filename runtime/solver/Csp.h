@@ -5,9 +5,9 @@
 // the same program: a hard constraint is its index in the graph, a personalized one its task and instance.
 #pragma once
 
-#include "Personalization.h"
-#include "Program.h"
-#include "UserModel.h"
+#include "runtime/core/Personalization.h"
+#include "runtime/core/Program.h"
+#include "runtime/model/UserModel.h"
 
 #include <cstdint>
 #include <string>

@@ -1,4 +1,4 @@
-#include "PersonalEvaluator.h"
+#include "runtime/solver/PersonalEvaluator.h"
 
 #include <cmath>
 

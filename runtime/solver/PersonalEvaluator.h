@@ -11,9 +11,9 @@
 // range) reads the generator's `fallback`. The text factor caches its own assessments (TextFactor.h).
 #pragma once
 
-#include "Personalization.h"
-#include "Program.h"
-#include "UserModel.h"
+#include "runtime/core/Personalization.h"
+#include "runtime/core/Program.h"
+#include "runtime/model/UserModel.h"
 
 #include <limits>
 #include <span>

@@ -1,6 +1,6 @@
-#include "Recheck.h"
+#include "runtime/solver/Recheck.h"
 
-#include "PersonalEvaluator.h"
+#include "runtime/solver/PersonalEvaluator.h"
 
 #include <fmt/format.h>
 

@@ -11,7 +11,7 @@
 // report it (Planner.h, `cbtl solve` exits 70).
 #pragma once
 
-#include "Csp.h"
+#include "runtime/solver/Csp.h"
 
 #include <cstdint>
 #include <string>

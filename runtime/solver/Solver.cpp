@@ -1,11 +1,11 @@
-#include "Solver.h"
+#include "runtime/solver/Solver.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
 
-#include "Entropy.h"
+#include "runtime/model/Entropy.h"
 
 namespace cbtl::solver {
 

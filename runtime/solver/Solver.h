@@ -20,9 +20,9 @@
 // Budgets are iteration counts; the same seed gives the same result.
 #pragma once
 
-#include "Csp.h"
-#include "PersonalEvaluator.h"
-#include "Rng.h"
+#include "runtime/solver/Csp.h"
+#include "runtime/solver/PersonalEvaluator.h"
+#include "runtime/core/Rng.h"
 
 #include <nlohmann/json_fwd.hpp>
 

@@ -4,7 +4,7 @@
 //                   "memory": [{"identity": "<uint64 as decimal text>", "width": W, "capacity": C, "count": K,
 //                               "head": H, "last": L, "ring": "<16 hex digits per double, the bits of each>"}]}
 // Identities are 64-bit and written as text (JSON numbers lose precision past 2^53 in other readers).
-#include "Solver.h"
+#include "runtime/solver/Solver.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>

@@ -1,6 +1,6 @@
-#include "textpref/ChatClient.h"
+#include "runtime/textpref/ChatClient.h"
 
-#include "textpref/Redaction.h"
+#include "runtime/textpref/Redaction.h"
 
 #include <fmt/core.h>
 

@@ -16,10 +16,10 @@
 // a CacheMiss error and the network is never reached. Only parsed, usable 2xx responses are stored.
 #pragma once
 
-#include "textpref/CircuitBreaker.h"
-#include "textpref/ResponseCache.h"
-#include "textpref/Result.h"
-#include "textpref/RetryPolicy.h"
+#include "runtime/textpref/CircuitBreaker.h"
+#include "runtime/textpref/ResponseCache.h"
+#include "runtime/textpref/Result.h"
+#include "runtime/textpref/RetryPolicy.h"
 
 #include <nlohmann/json.hpp>
 

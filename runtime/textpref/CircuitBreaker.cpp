@@ -1,4 +1,4 @@
-#include "textpref/CircuitBreaker.h"
+#include "runtime/textpref/CircuitBreaker.h"
 
 #include <fmt/core.h>
 

@@ -11,7 +11,7 @@
 // Worst-case time spent on a silent server: threshold x attempts x (request timeout + backoff).
 #pragma once
 
-#include "textpref/Result.h"
+#include "runtime/textpref/Result.h"
 
 #include <functional>
 #include <mutex>

@@ -1,4 +1,4 @@
-#include "textpref/FaultStats.h"
+#include "runtime/textpref/FaultStats.h"
 
 #include <fmt/core.h>
 

@@ -8,7 +8,7 @@
 // that a run stores in its result, prints in its summary and writes to llm.json.
 #pragma once
 
-#include "textpref/Result.h"
+#include "runtime/textpref/Result.h"
 
 #include <nlohmann/json.hpp>
 

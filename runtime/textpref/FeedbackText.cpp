@@ -1,4 +1,4 @@
-#include "textpref/FeedbackText.h"
+#include "runtime/textpref/FeedbackText.h"
 
 #include <array>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "textpref/HttpClient.h"
+#include "runtime/textpref/HttpClient.h"
 
 #include <curl/curl.h>
 #include <fmt/core.h>

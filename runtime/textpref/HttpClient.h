@@ -6,7 +6,7 @@
 // HttpResponse for the caller to judge.
 #pragma once
 
-#include "textpref/Result.h"
+#include "runtime/textpref/Result.h"
 
 #include <map>
 #include <string>

@@ -1,4 +1,4 @@
-#include "textpref/Item.h"
+#include "runtime/textpref/Item.h"
 
 #include <fmt/core.h>
 

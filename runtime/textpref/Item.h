@@ -6,7 +6,7 @@
 // is one reaction of the user to one item, as free text, as a boolean, or both.
 #pragma once
 
-#include "textpref/Result.h"
+#include "runtime/textpref/Result.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,4 +1,4 @@
-#include "textpref/LlmPreferenceModel.h"
+#include "runtime/textpref/LlmPreferenceModel.h"
 
 #include <fmt/core.h>
 

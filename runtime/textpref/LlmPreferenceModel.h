@@ -10,11 +10,11 @@
 // run reports its fallbacks (FaultStats.h).
 #pragma once
 
-#include "textpref/ChatClient.h"
-#include "textpref/FaultStats.h"
-#include "textpref/Prompts.h"
-#include "textpref/RatingReader.h"
-#include "textpref/TextPreferenceModel.h"
+#include "runtime/textpref/ChatClient.h"
+#include "runtime/textpref/FaultStats.h"
+#include "runtime/textpref/Prompts.h"
+#include "runtime/textpref/RatingReader.h"
+#include "runtime/textpref/TextPreferenceModel.h"
 
 #include <cstdint>
 #include <memory>

@@ -1,6 +1,6 @@
-#include "textpref/OfflineDescriptorModel.h"
+#include "runtime/textpref/OfflineDescriptorModel.h"
 
-#include "textpref/FeedbackText.h"
+#include "runtime/textpref/FeedbackText.h"
 
 #include <Eigen/Dense>
 #include <fmt/core.h>

@@ -16,7 +16,7 @@
 // records without either are kept in the history but carry no label.
 #pragma once
 
-#include "textpref/TextPreferenceModel.h"
+#include "runtime/textpref/TextPreferenceModel.h"
 
 #include <map>
 #include <string>

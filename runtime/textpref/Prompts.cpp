@@ -1,4 +1,4 @@
-#include "textpref/Prompts.h"
+#include "runtime/textpref/Prompts.h"
 
 #include <fmt/core.h>
 

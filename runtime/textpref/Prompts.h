@@ -9,8 +9,8 @@
 // instruction is appended by ratingInstruction() for the chosen rating scale, so one template serves both scales.
 #pragma once
 
-#include "textpref/Item.h"
-#include "textpref/RatingReader.h"
+#include "runtime/textpref/Item.h"
+#include "runtime/textpref/RatingReader.h"
 
 #include <optional>
 #include <span>

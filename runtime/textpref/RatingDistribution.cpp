@@ -1,4 +1,4 @@
-#include "textpref/RatingDistribution.h"
+#include "runtime/textpref/RatingDistribution.h"
 
 #include <algorithm>
 #include <cmath>

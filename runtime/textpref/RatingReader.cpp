@@ -1,4 +1,4 @@
-#include "textpref/RatingReader.h"
+#include "runtime/textpref/RatingReader.h"
 
 #include <fmt/core.h>
 

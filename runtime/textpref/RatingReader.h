@@ -16,9 +16,9 @@
 // at least `splitThreshold` probability: a single-token "10" is then most likely absent for a reason).
 #pragma once
 
-#include "textpref/ChatClient.h"
-#include "textpref/RatingDistribution.h"
-#include "textpref/Result.h"
+#include "runtime/textpref/ChatClient.h"
+#include "runtime/textpref/RatingDistribution.h"
+#include "runtime/textpref/Result.h"
 
 #include <array>
 #include <optional>

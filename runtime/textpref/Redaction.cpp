@@ -1,4 +1,4 @@
-#include "textpref/Redaction.h"
+#include "runtime/textpref/Redaction.h"
 
 #include <cctype>
 #include <cstdlib>

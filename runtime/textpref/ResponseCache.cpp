@@ -1,7 +1,7 @@
-#include "textpref/ResponseCache.h"
+#include "runtime/textpref/ResponseCache.h"
 
-#include "textpref/Sha256.h"
-#include "textpref/TextPreferenceModel.h"
+#include "runtime/textpref/Sha256.h"
+#include "runtime/textpref/TextPreferenceModel.h"
 
 #include <fmt/core.h>
 

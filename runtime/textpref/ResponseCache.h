@@ -13,7 +13,7 @@
 // server, then overwrite the entry). Thread-safe.
 #pragma once
 
-#include "textpref/Result.h"
+#include "runtime/textpref/Result.h"
 
 #include <nlohmann/json.hpp>
 

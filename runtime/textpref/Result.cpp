@@ -1,6 +1,6 @@
-#include "textpref/Result.h"
+#include "runtime/textpref/Result.h"
 
-#include "textpref/Redaction.h"
+#include "runtime/textpref/Redaction.h"
 
 #include <fmt/core.h>
 

@@ -1,4 +1,4 @@
-#include "textpref/RetryPolicy.h"
+#include "runtime/textpref/RetryPolicy.h"
 
 #include <nlohmann/json.hpp>
 

@@ -11,7 +11,7 @@
 // counts, never wall-clock time. Sleeping goes through an injectable SleepFunction so tests never wait.
 #pragma once
 
-#include "textpref/HttpClient.h"
+#include "runtime/textpref/HttpClient.h"
 
 #include <chrono>
 #include <functional>

@@ -1,6 +1,6 @@
-#include "textpref/RunReport.h"
+#include "runtime/textpref/RunReport.h"
 
-#include "textpref/TextBackend.h"
+#include "runtime/textpref/TextBackend.h"
 
 namespace cbtl::textpref {
 

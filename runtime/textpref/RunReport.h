@@ -8,8 +8,8 @@
 //   {"text_backend": textBackendJson(backend), "faults": FaultReport::toJson()}
 #pragma once
 
-#include "textpref/FaultStats.h"
-#include "textpref/Result.h"
+#include "runtime/textpref/FaultStats.h"
+#include "runtime/textpref/Result.h"
 
 #include <nlohmann/json.hpp>
 

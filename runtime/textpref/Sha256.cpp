@@ -1,4 +1,4 @@
-#include "textpref/Sha256.h"
+#include "runtime/textpref/Sha256.h"
 
 #include <openssl/evp.h>
 

@@ -1,4 +1,4 @@
-#include "textpref/SimulatedUsers.h"
+#include "runtime/textpref/SimulatedUsers.h"
 
 #include <algorithm>
 #include <cctype>

@@ -7,9 +7,9 @@
 // and the explicit liked flag.
 #pragma once
 
-#include "textpref/Item.h"
-#include "textpref/LlmPreferenceModel.h"
-#include "textpref/Result.h"
+#include "runtime/textpref/Item.h"
+#include "runtime/textpref/LlmPreferenceModel.h"
+#include "runtime/textpref/Result.h"
 
 #include <memory>
 #include <string>

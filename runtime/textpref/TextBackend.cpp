@@ -1,6 +1,6 @@
-#include "textpref/TextBackend.h"
+#include "runtime/textpref/TextBackend.h"
 
-#include "textpref/Redaction.h"
+#include "runtime/textpref/Redaction.h"
 
 #include <fmt/core.h>
 

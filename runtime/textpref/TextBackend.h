@@ -12,12 +12,12 @@
 // once through the WarningSink). Both are thread-safe and may be read or reset through a const backend.
 #pragma once
 
-#include "textpref/ChatClient.h"
-#include "textpref/CircuitBreaker.h"
-#include "textpref/FaultStats.h"
-#include "textpref/LlmPreferenceModel.h"
-#include "textpref/OfflineDescriptorModel.h"
-#include "textpref/ResponseCache.h"
+#include "runtime/textpref/ChatClient.h"
+#include "runtime/textpref/CircuitBreaker.h"
+#include "runtime/textpref/FaultStats.h"
+#include "runtime/textpref/LlmPreferenceModel.h"
+#include "runtime/textpref/OfflineDescriptorModel.h"
+#include "runtime/textpref/ResponseCache.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,4 +1,4 @@
-#include "textpref/TextPreferenceModel.h"
+#include "runtime/textpref/TextPreferenceModel.h"
 
 #include <fmt/core.h>
 

@@ -12,9 +12,9 @@
 //  - a model is used from one thread at a time (the runtime owns one model per generator instance).
 #pragma once
 
-#include "textpref/Item.h"
-#include "textpref/RatingDistribution.h"
-#include "textpref/Result.h"
+#include "runtime/textpref/Item.h"
+#include "runtime/textpref/RatingDistribution.h"
+#include "runtime/textpref/Result.h"
 
 #include <nlohmann/json.hpp>
 

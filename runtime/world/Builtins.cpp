@@ -1,6 +1,6 @@
-#include "Builtins.h"
+#include "runtime/world/Builtins.h"
 
-#include "SurfaceFace.h"
+#include "runtime/world/SurfaceFace.h"
 
 #include <fmt/core.h>
 

@@ -8,12 +8,12 @@
 // action fails). The signatures are listed for the language in docs/world.md.
 #pragma once
 
-#include "Clearance.h"
-#include "Collision.h"
-#include "InverseKinematics.h"
-#include "MotionPlanner.h"
-#include "Occlusion.h"
-#include "Workspace.h"
+#include "runtime/world/Clearance.h"
+#include "runtime/world/Collision.h"
+#include "runtime/world/InverseKinematics.h"
+#include "runtime/world/MotionPlanner.h"
+#include "runtime/world/Occlusion.h"
+#include "runtime/world/Workspace.h"
 
 #include <optional>
 #include <string>

@@ -1,5 +1,5 @@
 // The only translation unit that includes FCL (slow to compile).
-#include "Clearance.h"
+#include "runtime/world/Clearance.h"
 
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>

@@ -8,7 +8,7 @@
 // FCL distance uses the GST_INDEP solver (the default libccd solver is wrong in degenerate cases).
 #pragma once
 
-#include "Workspace.h"
+#include "runtime/world/Workspace.h"
 
 #include <memory>
 #include <string>

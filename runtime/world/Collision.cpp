@@ -1,4 +1,4 @@
-#include "Collision.h"
+#include "runtime/world/Collision.h"
 
 #include <algorithm>
 #include <vector>

@@ -6,7 +6,7 @@
 // robot body and no held object (an object resting on a table is not the robot's concern).
 #pragma once
 
-#include "Workspace.h"
+#include "runtime/world/Workspace.h"
 
 #include <string>
 

@@ -1,4 +1,4 @@
-#include "InverseKinematics.h"
+#include "runtime/world/InverseKinematics.h"
 
 #include <Eigen/SVD>
 

@@ -10,8 +10,8 @@
 // current base pose and objects. The Workspace is left at the returned configuration.
 #pragma once
 
-#include "Collision.h"
-#include "Workspace.h"
+#include "runtime/world/Collision.h"
+#include "runtime/world/Workspace.h"
 
 namespace cbtl::world {
 

@@ -1,4 +1,4 @@
-#include "JointPath.h"
+#include "runtime/world/JointPath.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 // checked states. Validity callbacks are called from the caller's thread only.
 #pragma once
 
-#include "Pose.h"
+#include "runtime/world/Pose.h"
 
 #include <functional>
 #include <vector>

@@ -1,5 +1,5 @@
 // The only translation unit that includes OMPL (slow to compile).
-#include "MotionPlanner.h"
+#include "runtime/world/MotionPlanner.h"
 
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/PlannerTerminationCondition.h>

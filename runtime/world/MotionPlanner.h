@@ -14,9 +14,9 @@
 // one Workspace per thread.
 #pragma once
 
-#include "Collision.h"
-#include "JointPath.h"
-#include "Workspace.h"
+#include "runtime/world/Collision.h"
+#include "runtime/world/JointPath.h"
+#include "runtime/world/Workspace.h"
 
 #include <vector>
 

@@ -1,4 +1,4 @@
-#include "MujocoErrors.h"
+#include "runtime/world/MujocoErrors.h"
 
 #include <mujoco/mujoco.h>
 

@@ -1,6 +1,6 @@
-#include "NamedConfigurations.h"
+#include "runtime/world/NamedConfigurations.h"
 
-#include "WorldState.h"
+#include "runtime/world/WorldState.h"
 
 namespace cbtl::world {
 

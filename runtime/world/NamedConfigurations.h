@@ -6,7 +6,7 @@
 // retract, abovePlate, utensilAboveMount, drinkGaze, homeSceneInitial.
 #pragma once
 
-#include "Scene.h"
+#include "runtime/world/Scene.h"
 
 #include <map>
 #include <optional>

@@ -1,4 +1,4 @@
-#include "Occlusion.h"
+#include "runtime/world/Occlusion.h"
 
 #include <cmath>
 #include <vector>

@@ -9,7 +9,7 @@
 // Units: metres. Frames: the eye site's frame (z = gaze) in world coordinates.
 #pragma once
 
-#include "Workspace.h"
+#include "runtime/world/Workspace.h"
 
 #include <string>
 

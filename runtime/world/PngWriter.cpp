@@ -1,4 +1,4 @@
-#include "PngWriter.h"
+#include "runtime/world/PngWriter.h"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "Pose.h"
+#include "runtime/world/Pose.h"
 
 #include <algorithm>
 #include <cmath>

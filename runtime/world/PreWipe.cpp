@@ -1,6 +1,6 @@
-#include "PreWipe.h"
+#include "runtime/world/PreWipe.h"
 
-#include "SurfaceFace.h"
+#include "runtime/world/SurfaceFace.h"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 // with the inverse of the grasp. Frames: world; units: metres and radians.
 #pragma once
 
-#include "Builtins.h"
+#include "runtime/world/Builtins.h"
 
 #include <optional>
 #include <string>

@@ -1,6 +1,6 @@
-#include "Renderer.h"
+#include "runtime/world/Renderer.h"
 
-#include "MujocoErrors.h"
+#include "runtime/world/MujocoErrors.h"
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>

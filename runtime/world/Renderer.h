@@ -8,7 +8,7 @@
 // <statistic center>) from `distance` (default 1.6 x <statistic extent>) at azimuth/elevation in degrees.
 #pragma once
 
-#include "Workspace.h"
+#include "runtime/world/Workspace.h"
 
 #include <cstdint>
 #include <memory>

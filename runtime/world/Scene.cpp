@@ -1,6 +1,6 @@
-#include "Scene.h"
+#include "runtime/world/Scene.h"
 
-#include "MujocoErrors.h"
+#include "runtime/world/MujocoErrors.h"
 
 #include <fmt/core.h>
 

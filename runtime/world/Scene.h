@@ -8,7 +8,7 @@
 // Units: metres, radians; joint velocity limits in rad/s (read from each arm joint's `user` value).
 #pragma once
 
-#include "Pose.h"
+#include "runtime/world/Pose.h"
 
 #include <mujoco/mujoco.h>
 

@@ -1,4 +1,4 @@
-#include "StateJson.h"
+#include "runtime/world/StateJson.h"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>

@@ -12,7 +12,7 @@
 // errors, so typos do not pass silently. Frames: world; units: metres and radians.
 #pragma once
 
-#include "Workspace.h"
+#include "runtime/world/Workspace.h"
 
 #include <string>
 

@@ -1,4 +1,4 @@
-#include "SurfaceFace.h"
+#include "runtime/world/SurfaceFace.h"
 
 #include <cmath>
 

@@ -4,7 +4,7 @@
 // box rotated about z the face is the AABB's, a conservative simplification). Frames: world; units: metres.
 #pragma once
 
-#include "Workspace.h"
+#include "runtime/world/Workspace.h"
 
 #include <Eigen/Core>
 

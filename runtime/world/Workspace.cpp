@@ -1,6 +1,6 @@
-#include "Workspace.h"
+#include "runtime/world/Workspace.h"
 
-#include "MujocoErrors.h"
+#include "runtime/world/MujocoErrors.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,8 +7,8 @@
 // Frames: world coordinates, metres, unit quaternions.
 #pragma once
 
-#include "Scene.h"
-#include "WorldState.h"
+#include "runtime/world/Scene.h"
+#include "runtime/world/WorldState.h"
 
 #include <memory>
 #include <optional>

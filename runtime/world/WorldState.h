@@ -6,7 +6,7 @@
 // A held object follows the tool: its pose is tool_frame ∘ toolToObject, whatever `objects` says for it.
 #pragma once
 
-#include "Pose.h"
+#include "runtime/world/Pose.h"
 
 #include <map>
 #include <optional>

@@ -7,11 +7,11 @@
 // unrolled into calls, and every declared feedback event learned from with typed arguments. Besides crashes,
 // leaks and sanitizer reports, the target aborts when a Solved result fails the re-check: the solver must
 // never accept what the re-check rejects. Built only with -DCBTL_FUZZ=ON and clang (scripts/fuzz.sh runtime).
-#include "LoadedProgram.h"
-#include "Planner.h"
-#include "Recheck.h"
-#include "Solver.h"
-#include "UserModel.h"
+#include "runtime/approach/LoadedProgram.h"
+#include "runtime/approach/Planner.h"
+#include "runtime/solver/Recheck.h"
+#include "runtime/solver/Solver.h"
+#include "runtime/model/UserModel.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -7,8 +7,8 @@
 //   - a diagnostic whose primary span (or a child's span) is not inside a file of the translation unit;
 //   - an internal error (E0901: lowering produced a graph that the IR validator rejects).
 // Built only with -DCBTL_FUZZ=ON and clang (see scripts/fuzz.sh).
-#include "diag/DiagnosticRenderer.h"
-#include "driver/Pipeline.h"
+#include "compiler/diag/DiagnosticRenderer.h"
+#include "compiler/driver/Pipeline.h"
 #include "ir/GraphPrinter.h"
 
 #include <cstddef>

@@ -1,4 +1,4 @@
-#include "CommandRegistry.h"
+#include "tools/cbtl/CommandRegistry.h"
 
 namespace cbtl::cli {
 

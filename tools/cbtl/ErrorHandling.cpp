@@ -1,8 +1,8 @@
-#include "ErrorHandling.h"
+#include "tools/cbtl/ErrorHandling.h"
 
-#include "InternalError.h"
-#include "UserModel.h"
-#include "Values.h"
+#include "runtime/core/InternalError.h"
+#include "runtime/model/UserModel.h"
+#include "runtime/core/Values.h"
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>

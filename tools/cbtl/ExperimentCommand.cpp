@@ -5,12 +5,12 @@
 // written last and atomically, so it is present only for a finished experiment. An OUT that holds a summary or
 // any trial's files is refused unless --force (replace them) or --resume (finished trials are read back from
 // their complete.json, interrupted ones continue from their last checkpoint, missing ones run).
-#include "CommandRegistry.h"
-#include "ErrorHandling.h"
-#include "RuntimeSupport.h"
+#include "tools/cbtl/CommandRegistry.h"
+#include "tools/cbtl/ErrorHandling.h"
+#include "tools/cbtl/RuntimeSupport.h"
 
-#include "RunDirectory.h"
-#include "UserModel.h"
+#include "runtime/approach/RunDirectory.h"
+#include "runtime/model/UserModel.h"
 
 #include <fmt/core.h>
 

@@ -10,15 +10,15 @@
 // (default, no server) or by a language-model server.
 // Exit codes: 0 ok/usable, 1 bad input or unusable server, 2 usage (CLI11), 70 internal error. The API key is read
 // from the environment variable named by --api-key-env and is never printed.
-#include "CommandRegistry.h"
-#include "ErrorHandling.h"
-#include "ProbeVerdict.h"
+#include "tools/cbtl/CommandRegistry.h"
+#include "tools/cbtl/ErrorHandling.h"
+#include "tools/cbtl/ProbeVerdict.h"
 
-#include "textpref/ChatClient.h"
-#include "textpref/RatingReader.h"
-#include "textpref/Redaction.h"
-#include "textpref/SimulatedUsers.h"
-#include "textpref/TextBackend.h"
+#include "runtime/textpref/ChatClient.h"
+#include "runtime/textpref/RatingReader.h"
+#include "runtime/textpref/Redaction.h"
+#include "runtime/textpref/SimulatedUsers.h"
+#include "runtime/textpref/TextBackend.h"
 
 #include <fmt/core.h>
 

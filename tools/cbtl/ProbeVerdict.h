@@ -7,7 +7,7 @@
 // "verdict: unusable: <failure>:" so that scripts and tests can match it.
 #pragma once
 
-#include "textpref/Result.h"
+#include "runtime/textpref/Result.h"
 
 #include <fmt/core.h>
 

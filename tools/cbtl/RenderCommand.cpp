@@ -1,14 +1,14 @@
 // `cbtl render SCENE [--state FILE.json] --out FILE.png`: a picture of any robot scene in any state,
 // rendered offscreen (EGL, no display needed). Exit codes: 0 ok, 1 bad input (scene, state or output file),
 // 2 usage, 70 internal error (including no usable EGL/OpenGL).
-#include "CommandRegistry.h"
-#include "ErrorHandling.h"
-#include "OptionChecks.h"
+#include "tools/cbtl/CommandRegistry.h"
+#include "tools/cbtl/ErrorHandling.h"
+#include "tools/cbtl/OptionChecks.h"
 
-#include "PngWriter.h"
-#include "Renderer.h"
-#include "StateJson.h"
-#include "Workspace.h"
+#include "runtime/world/PngWriter.h"
+#include "runtime/world/Renderer.h"
+#include "runtime/world/StateJson.h"
+#include "runtime/world/Workspace.h"
 
 #include <fmt/core.h>
 

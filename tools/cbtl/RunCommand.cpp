@@ -2,12 +2,12 @@
 // paper's experiment in the domain's simulator. Exit codes: 0 ok, 1 bad input, 2 usage, 70 internal error.
 // An --out folder that holds a run is refused unless --force (replace it) or --resume (continue it from its last
 // checkpoint); approach/RunDirectory.h lists the files and their guarantees.
-#include "CommandRegistry.h"
-#include "ErrorHandling.h"
-#include "RuntimeSupport.h"
+#include "tools/cbtl/CommandRegistry.h"
+#include "tools/cbtl/ErrorHandling.h"
+#include "tools/cbtl/RuntimeSupport.h"
 
-#include "RunDirectory.h"
-#include "UserModel.h"
+#include "runtime/approach/RunDirectory.h"
+#include "runtime/model/UserModel.h"
 
 #include <fmt/core.h>
 

@@ -2,13 +2,13 @@
 // errors printed, the domain simulators by name, and the text-preference backend of `model text(...)` factors.
 #pragma once
 
-#include "DomainRegistry.h"
-#include "OptionChecks.h"
-#include "Experiment.h"
-#include "LoadedProgram.h"
-#include "Solver.h"
+#include "domains/DomainRegistry.h"
+#include "tools/cbtl/OptionChecks.h"
+#include "runtime/approach/Experiment.h"
+#include "runtime/approach/LoadedProgram.h"
+#include "runtime/solver/Solver.h"
 
-#include "textpref/TextBackend.h"
+#include "runtime/textpref/TextBackend.h"
 
 #include <fmt/core.h>
 

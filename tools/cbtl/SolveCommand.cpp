@@ -1,13 +1,13 @@
 // `cbtl solve FILE [--task T] [--seed S] [--explain]`: one CSP of a task against the domain simulator's
 // world for that seed, its solution and action plan, or why there is none. Exit codes: 0 solved, 3 no
 // solution within the budget, 1 bad input, 2 usage, 70 internal error.
-#include "CommandRegistry.h"
-#include "ErrorHandling.h"
-#include "RuntimeSupport.h"
+#include "tools/cbtl/CommandRegistry.h"
+#include "tools/cbtl/ErrorHandling.h"
+#include "tools/cbtl/RuntimeSupport.h"
 
-#include "Planner.h"
-#include "UserModel.h"
-#include "ValueBridge.h"
+#include "runtime/approach/Planner.h"
+#include "runtime/model/UserModel.h"
+#include "runtime/approach/ValueBridge.h"
 
 #include <fmt/core.h>
 

@@ -1,6 +1,6 @@
 // cbtl — run, solve and inspect CBTL constraint graphs. Subcommands register themselves (CommandRegistry.h).
-#include "CommandRegistry.h"
-#include "ErrorHandling.h"
+#include "tools/cbtl/CommandRegistry.h"
+#include "tools/cbtl/ErrorHandling.h"
 
 #include <fmt/core.h>
 

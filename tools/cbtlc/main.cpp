@@ -1,8 +1,8 @@
 // cbtlc — the .cbtl compiler: check files, emit the constraint graph, dump any pass, explain codes.
 // Exit codes: 0 ok, 1 errors in the input, 2 usage, 70 internal error.
-#include "diag/DiagnosticCodes.h"
-#include "diag/DiagnosticRenderer.h"
-#include "driver/Pipeline.h"
+#include "compiler/diag/DiagnosticCodes.h"
+#include "compiler/diag/DiagnosticRenderer.h"
+#include "compiler/driver/Pipeline.h"
 #include "ir/GraphPrinter.h"
 
 #include <CLI/CLI.hpp>

@@ -1,5 +1,5 @@
 // DiagnosticEngine: deterministic order whatever the order of reporting, the error limit, warnings as errors.
-#include "diag/DiagnosticEngine.h"
+#include "compiler/diag/DiagnosticEngine.h"
 
 #include <gtest/gtest.h>
 

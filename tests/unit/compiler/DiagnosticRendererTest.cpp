@@ -1,6 +1,6 @@
 // Diagnostic rendering: the text layout (location, excerpt, caret, children) and the JSON object shape
 // that tools rely on (docs/diagnostics.md).
-#include "diag/DiagnosticRenderer.h"
+#include "compiler/diag/DiagnosticRenderer.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,6 +1,6 @@
 // SourceManager: byte offsets to 1-based lines and code-point columns, line text, range text, and the
 // one-byte insertion points that diagnostics use between characters.
-#include "source/SourceManager.h"
+#include "compiler/source/SourceManager.h"
 
 #include <gtest/gtest.h>
 

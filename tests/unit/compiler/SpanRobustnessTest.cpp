@@ -2,8 +2,8 @@
 // Nth byte, tokens deleted at random with a fixed seed), are compiled in-process and each diagnostic must
 // have a known code, a message, and a valid, non-empty primary span inside its file (children too, when
 // they have a location). No input may produce an internal error or an exception.
-#include "diag/DiagnosticCodes.h"
-#include "driver/Pipeline.h"
+#include "compiler/diag/DiagnosticCodes.h"
+#include "compiler/driver/Pipeline.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // "Did you mean" suggestions: edit distance (optimal string alignment) and the closeness threshold.
-#include "util/Suggest.h"
+#include "compiler/util/Suggest.h"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
 // The Books simulator: episode starts, observations, requested tasks, handovers the user reaches or not,
 // and the evaluation twin.
-#include "books/BooksSimulator.h"
+#include "domains/books/BooksSimulator.h"
 
-#include "HomeTestSupport.h"
-#include "books/BookCatalog.h"
-#include "robot/CallArguments.h"
+#include "tests/unit/domains/HomeTestSupport.h"
+#include "domains/books/BookCatalog.h"
+#include "domains/robot/CallArguments.h"
 
 #include <gtest/gtest.h>
 

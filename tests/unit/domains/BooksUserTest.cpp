@@ -1,5 +1,5 @@
 // The Books user's hidden taste, range of motion and words.
-#include "books/BooksUser.h"
+#include "domains/books/BooksUser.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // The Cleaning simulator: episode starts, observations, requested tasks, the user's reactions to wipes,
 // failures, and the evaluation twin.
-#include "cleaning/CleaningSimulator.h"
+#include "domains/cleaning/CleaningSimulator.h"
 
-#include "HomeTestSupport.h"
-#include "robot/CallArguments.h"
+#include "tests/unit/domains/HomeTestSupport.h"
+#include "domains/robot/CallArguments.h"
 
 #include <gtest/gtest.h>
 

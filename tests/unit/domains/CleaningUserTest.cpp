@@ -1,5 +1,5 @@
 // The Cleaning user's hidden preference.
-#include "cleaning/CleaningUser.h"
+#include "domains/cleaning/CleaningUser.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // CookingSimulator: the DomainSimulator contract for Cooking — action names and argument kinds of cooking.cbtl,
 // hand-written meal plans and their critiques, restocking, determinism, preference shifts shared with the
 // evaluation twin, and unsatisfiable stock.
-#include "cooking/CookingSimulator.h"
+#include "domains/cooking/CookingSimulator.h"
 
 #include <gtest/gtest.h>
 

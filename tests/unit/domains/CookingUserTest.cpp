@@ -1,6 +1,6 @@
 // CookingUser: critiques against the hidden ranges (bounds included), meal verdicts, and the shift rule.
-#include "cooking/CookingUser.h"
-#include "cooking/CookingWorld.h"
+#include "domains/cooking/CookingUser.h"
+#include "domains/cooking/CookingWorld.h"
 
 #include <gtest/gtest.h>
 

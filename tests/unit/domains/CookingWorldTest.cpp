@@ -1,6 +1,6 @@
 // CookingWorld: the stove's placement rules, the addition rules and the per-tick heating/cooling, in integer
 // temperature ticks.
-#include "cooking/CookingWorld.h"
+#include "domains/cooking/CookingWorld.h"
 
 #include <gtest/gtest.h>
 

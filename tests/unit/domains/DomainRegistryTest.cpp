@@ -1,5 +1,5 @@
 // The registry creates simulators by domain name and knows nothing else.
-#include "DomainRegistry.h"
+#include "domains/DomainRegistry.h"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
 // HomeTestSupport.h — arranging home-scene worlds for the Cleaning and Books tests.
 #pragma once
 
-#include "robot/HomeEpisode.h"
-#include "robot/HomeScene.h"
-#include "robot/StandardGrasps.h"
-#include "robot/WipeSweep.h"
+#include "domains/robot/HomeEpisode.h"
+#include "domains/robot/HomeScene.h"
+#include "domains/robot/StandardGrasps.h"
+#include "domains/robot/WipeSweep.h"
 
-#include "world/Builtins.h"
+#include "runtime/world/Builtins.h"
 
 #include <numbers>
 #include <optional>

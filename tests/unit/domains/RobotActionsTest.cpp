@@ -1,10 +1,10 @@
 // The standard-action executor on the home scene: each action's effect on the World, call-shape errors,
 // and failures that leave the World unchanged.
-#include "robot/CallArguments.h"
-#include "robot/HomeScene.h"
-#include "robot/RobotActions.h"
-#include "robot/StandardGrasps.h"
-#include "robot/SurfaceGeometry.h"
+#include "domains/robot/CallArguments.h"
+#include "domains/robot/HomeScene.h"
+#include "domains/robot/RobotActions.h"
+#include "domains/robot/StandardGrasps.h"
+#include "domains/robot/SurfaceGeometry.h"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
 // The wiping sweep: from a pre-wipe pose the duster covers a reachable surface and the base comes back;
 // without the duster on the surface, or without anything held, the sweep fails and nothing moves.
-#include "robot/CallArguments.h"
-#include "robot/HomeScene.h"
-#include "robot/RobotActions.h"
-#include "robot/StandardGrasps.h"
-#include "robot/WipeSweep.h"
+#include "domains/robot/CallArguments.h"
+#include "domains/robot/HomeScene.h"
+#include "domains/robot/RobotActions.h"
+#include "domains/robot/StandardGrasps.h"
+#include "domains/robot/WipeSweep.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // Each approach's CSPs: which include the personalized constraints, which maximize entropy, who learns and
 // who falls back.
-#include "TestPrograms.h"
+#include "tests/unit/runtime/TestPrograms.h"
 
-#include "Approach.h"
-#include "Csp.h"
+#include "runtime/approach/Approach.h"
+#include "runtime/solver/Csp.h"
 
 #include <gtest/gtest.h>
 

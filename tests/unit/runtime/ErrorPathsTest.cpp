@@ -1,12 +1,12 @@
 // Error paths: which exception each failure raises, and the exit code `cbtl` maps it to (ErrorHandling.h).
-#include "TestPrograms.h"
+#include "tests/unit/runtime/TestPrograms.h"
 
-#include "DomainRegistry.h"
-#include "ErrorHandling.h"
-#include "Experiment.h"
-#include "InternalError.h"
-#include "UserModel.h"
-#include "Values.h"
+#include "domains/DomainRegistry.h"
+#include "tools/cbtl/ErrorHandling.h"
+#include "runtime/approach/Experiment.h"
+#include "runtime/core/InternalError.h"
+#include "runtime/model/UserModel.h"
+#include "runtime/core/Values.h"
 
 #include <CLI/CLI.hpp>
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 // The experiment loop on Cooking: end to end, deterministic, learning, and the paper's switches.
-#include "TestPrograms.h"
+#include "tests/unit/runtime/TestPrograms.h"
 
-#include "DomainRegistry.h"
-#include "Experiment.h"
+#include "domains/DomainRegistry.h"
+#include "runtime/approach/Experiment.h"
 
 #include <gtest/gtest.h>
 

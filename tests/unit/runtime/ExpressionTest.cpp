@@ -1,8 +1,8 @@
 // Compiled expressions and personalization against small programs.
-#include "TestPrograms.h"
+#include "tests/unit/runtime/TestPrograms.h"
 
-#include "Personalization.h"
-#include "UserModel.h"
+#include "runtime/core/Personalization.h"
+#include "runtime/model/UserModel.h"
 
 #include <gtest/gtest.h>
 

@@ -2,11 +2,11 @@
 // each declared event, with typed arguments, is learned from without a crash or a problem, and each event a
 // learning rule names yields labels. (Books' handoverInROM reads the user's hand pose, an observation, from
 // its feature: the learner once had no observation and crashed on the first handover.)
-#include "TestPrograms.h"
+#include "tests/unit/runtime/TestPrograms.h"
 
-#include "DomainRegistry.h"
-#include "UserModel.h"
-#include "ValueBridge.h"
+#include "domains/DomainRegistry.h"
+#include "runtime/model/UserModel.h"
+#include "runtime/approach/ValueBridge.h"
 
 #include <gtest/gtest.h>
 

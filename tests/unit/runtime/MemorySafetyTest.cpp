@@ -1,13 +1,13 @@
 // Programs that `cbtlc check` accepts must never corrupt memory or crash the runtime: every buffer is sized
 // from the compiled program, or the program is rejected at load with a located error. Each case here once
 // overflowed a fixed-size array (run under ASan/UBSan by `make asan`).
-#include "TestPrograms.h"
+#include "tests/unit/runtime/TestPrograms.h"
 
-#include "Csp.h"
-#include "Planner.h"
-#include "Recheck.h"
-#include "Solver.h"
-#include "UserModel.h"
+#include "runtime/solver/Csp.h"
+#include "runtime/approach/Planner.h"
+#include "runtime/solver/Recheck.h"
+#include "runtime/solver/Solver.h"
+#include "runtime/model/UserModel.h"
 
 #include <gtest/gtest.h>
 

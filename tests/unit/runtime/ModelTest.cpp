@@ -1,9 +1,9 @@
 // The learned models: interval (exact trapezoid), threshold, table, entropy, products of factors.
-#include "Entropy.h"
-#include "Factor.h"
-#include "IntervalModel.h"
-#include "TableModel.h"
-#include "ThresholdModel.h"
+#include "runtime/model/Entropy.h"
+#include "runtime/model/Factor.h"
+#include "runtime/model/IntervalModel.h"
+#include "runtime/model/TableModel.h"
+#include "runtime/model/ThresholdModel.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // User profiles: round trip, atomic save, and clear errors for corrupt files (which leave the model intact).
-#include "TestPrograms.h"
+#include "tests/unit/runtime/TestPrograms.h"
 
-#include "UserModel.h"
+#include "runtime/model/UserModel.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // Across every domain and every approach, short trials re-check every plan they execute and the re-check
 // never refuses one: the solver's acceptance and the independent check agree.
-#include "TestPrograms.h"
+#include "tests/unit/runtime/TestPrograms.h"
 
-#include "DomainRegistry.h"
-#include "Experiment.h"
+#include "domains/DomainRegistry.h"
+#include "runtime/approach/Experiment.h"
 
 #include <gtest/gtest.h>
 

@@ -1,14 +1,14 @@
 // The independent re-check: every Solved result re-checks true on random programs and on every compiler
 // golden input the runtime can load; a solution that breaks a hard constraint (here: a read set made wrong
 // by hand, the bug class the re-check exists for) is refused by the planner and never unrolled into calls.
-#include "TestPrograms.h"
+#include "tests/unit/runtime/TestPrograms.h"
 
-#include "Csp.h"
-#include "Planner.h"
-#include "Recheck.h"
-#include "Rng.h"
-#include "Solver.h"
-#include "UserModel.h"
+#include "runtime/solver/Csp.h"
+#include "runtime/approach/Planner.h"
+#include "runtime/solver/Recheck.h"
+#include "runtime/core/Rng.h"
+#include "runtime/solver/Solver.h"
+#include "runtime/model/UserModel.h"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
 // Results are never lost or mixed: a run folder that holds a run is refused, replaced (--force) or resumed
 // (--resume); a resumed Cooking run writes the same bytes as an uninterrupted one without solving the steps
 // before its checkpoint again; a second process cannot share the folder; failed writes name their file.
-#include "TestPrograms.h"
+#include "tests/unit/runtime/TestPrograms.h"
 
-#include "Checkpoint.h"
-#include "DomainRegistry.h"
-#include "Experiment.h"
-#include "RunDirectory.h"
+#include "runtime/approach/Checkpoint.h"
+#include "domains/DomainRegistry.h"
+#include "runtime/approach/Experiment.h"
+#include "runtime/approach/RunDirectory.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

@@ -1,11 +1,11 @@
 // The robot domains end to end: each .cbtl file's tasks solved against its simulated scene (the world
 // built-ins read the simulator's state) and executed by its simulator, request after request, with the hidden
 // user's feedback learned.
-#include "TestPrograms.h"
+#include "tests/unit/runtime/TestPrograms.h"
 
-#include "DomainRegistry.h"
-#include "Planner.h"
-#include "ValueBridge.h"
+#include "domains/DomainRegistry.h"
+#include "runtime/approach/Planner.h"
+#include "runtime/approach/ValueBridge.h"
 
 #include <gtest/gtest.h>
 

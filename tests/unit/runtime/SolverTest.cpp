@@ -1,9 +1,9 @@
 // The sampling solver: the reference's small CSP, memory samplers, costs, outcomes, determinism.
-#include "TestPrograms.h"
+#include "tests/unit/runtime/TestPrograms.h"
 
-#include "Csp.h"
-#include "Solver.h"
-#include "UserModel.h"
+#include "runtime/solver/Csp.h"
+#include "runtime/solver/Solver.h"
+#include "runtime/model/UserModel.h"
 
 #include <gtest/gtest.h>
 

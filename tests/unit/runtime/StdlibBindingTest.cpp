@@ -1,9 +1,9 @@
 // Every `extern fn` and `extern sampler` the standard library declares has a runtime binding, and std.text's
 // built-ins compute what their declarations promise when called from a compiled program.
-#include "TestPrograms.h"
+#include "tests/unit/runtime/TestPrograms.h"
 
-#include "Builtins.h"
-#include "WorldBuiltins.h"
+#include "runtime/core/Builtins.h"
+#include "runtime/bind/WorldBuiltins.h"
 
 #include <gtest/gtest.h>
 

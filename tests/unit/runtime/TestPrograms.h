@@ -1,7 +1,7 @@
 // TestPrograms.h — small .cbtl programs the runtime tests compile in memory.
 #pragma once
 
-#include "LoadedProgram.h"
+#include "runtime/approach/LoadedProgram.h"
 
 #include <gtest/gtest.h>
 

@@ -1,17 +1,17 @@
 // Text factors (`model text(subject, ...)`) in the runtime: subjects as textpref::Items, the offline descriptor
 // model's prior and generalization through shared tags, relative scaling, the profile, deep copies, the solver,
 // the learner's error paths, the generator's fallback, and the Books and Feeding files.
-#include "TestPrograms.h"
+#include "tests/unit/runtime/TestPrograms.h"
 
-#include "Approach.h"
-#include "Csp.h"
-#include "Entropy.h"
-#include "PersonalEvaluator.h"
-#include "Solver.h"
-#include "UserModel.h"
+#include "runtime/approach/Approach.h"
+#include "runtime/solver/Csp.h"
+#include "runtime/model/Entropy.h"
+#include "runtime/solver/PersonalEvaluator.h"
+#include "runtime/solver/Solver.h"
+#include "runtime/model/UserModel.h"
 
-#include "textpref/Prompts.h"
-#include "textpref/TextBackend.h"
+#include "runtime/textpref/Prompts.h"
+#include "runtime/textpref/TextBackend.h"
 
 #include <gtest/gtest.h>
 

@@ -1,14 +1,14 @@
 // The language's built-ins end to end: std.geometry's poses, text concatenation, observed-set domains and
 // observation-initialized domains, and the robot world bound through runtime/bind (kinematics, IK samplers,
 // collision, occlusion, placement, motion-plan feasibility, scene queries) on the Feeding and home scenes.
-#include "TestPrograms.h"
+#include "tests/unit/runtime/TestPrograms.h"
 
-#include "Csp.h"
-#include "Solver.h"
-#include "UserModel.h"
-#include "WorldBuiltins.h"
-#include "robot/StandardGrasps.h"
-#include "world/WorldState.h"
+#include "runtime/solver/Csp.h"
+#include "runtime/solver/Solver.h"
+#include "runtime/model/UserModel.h"
+#include "runtime/bind/WorldBuiltins.h"
+#include "domains/robot/StandardGrasps.h"
+#include "runtime/world/WorldState.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // The response cache: keys, hits and misses through the real client, corrupt entries, read-only and record modes.
-#include "TestSupport.h"
+#include "tests/unit/textpref/TestSupport.h"
 
-#include "textpref/ResponseCache.h"
-#include "textpref/Sha256.h"
+#include "runtime/textpref/ResponseCache.h"
+#include "runtime/textpref/Sha256.h"
 
 #include <fstream>
 

@@ -1,8 +1,8 @@
 // The real libcurl client against the loopback chat-completions server: ratings, split numerals, broken
 // responses, retries, timeouts and quota errors.
-#include "TestSupport.h"
+#include "tests/unit/textpref/TestSupport.h"
 
-#include "textpref/TextPreferenceModel.h"
+#include "runtime/textpref/TextPreferenceModel.h"
 
 #include <cstdlib>
 #include <thread>

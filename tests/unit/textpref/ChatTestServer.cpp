@@ -1,4 +1,4 @@
-#include "ChatTestServer.h"
+#include "tests/unit/textpref/ChatTestServer.h"
 
 #include <chrono>
 #include <cmath>

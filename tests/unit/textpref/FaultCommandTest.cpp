@@ -3,8 +3,8 @@
 // breaker (said once) instead of stalling the run, llm.json and config.json name the backend, quoted server
 // messages never show the API key, and out-of-range fault options are usage errors naming the option.
 // Bounded time is checked by the ctest TIMEOUT, not by assertions.
-#include "ChatTestServer.h"
-#include "CommandRun.h"
+#include "tests/unit/textpref/ChatTestServer.h"
+#include "tests/unit/textpref/CommandRun.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -2,13 +2,13 @@
 // by kind (FaultStats), the circuit breaker stops calling a silent server, API keys are redacted from quoted
 // server messages, and a run's report (llm.json) names the backend. Servers are in-process on 127.0.0.1; no
 // test asserts a duration (the ctest TIMEOUT bounds the silent-server tests).
-#include "TestSupport.h"
+#include "tests/unit/textpref/TestSupport.h"
 
-#include "textpref/CircuitBreaker.h"
-#include "textpref/FaultStats.h"
-#include "textpref/Redaction.h"
-#include "textpref/RunReport.h"
-#include "textpref/TextBackend.h"
+#include "runtime/textpref/CircuitBreaker.h"
+#include "runtime/textpref/FaultStats.h"
+#include "runtime/textpref/Redaction.h"
+#include "runtime/textpref/RunReport.h"
+#include "runtime/textpref/TextBackend.h"
 
 #include <cstdlib>
 #include <fstream>

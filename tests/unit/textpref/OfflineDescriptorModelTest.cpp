@@ -1,9 +1,9 @@
 // The offline descriptor model: prior behaviour, learning, generalization through shared descriptors, the
 // Books user's ground truth, context pairs, and state files.
-#include "TestSupport.h"
+#include "tests/unit/textpref/TestSupport.h"
 
-#include "textpref/OfflineDescriptorModel.h"
-#include "textpref/SimulatedUsers.h"
+#include "runtime/textpref/OfflineDescriptorModel.h"
+#include "runtime/textpref/SimulatedUsers.h"
 
 #include <fstream>
 

@@ -1,6 +1,6 @@
 // `cbtl llm probe` end to end: the cbtl binary against the loopback server (path given by CBTL_BINARY).
-#include "ChatTestServer.h"
-#include "CommandRun.h"
+#include "tests/unit/textpref/ChatTestServer.h"
+#include "tests/unit/textpref/CommandRun.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Prompt rendering and the free-text feedback lexicon.
-#include "textpref/FeedbackText.h"
-#include "textpref/Prompts.h"
+#include "runtime/textpref/FeedbackText.h"
+#include "runtime/textpref/Prompts.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // The 11-bin rating object, token reading, split numerals, retry arithmetic and relative scaling.
-#include "textpref/RatingDistribution.h"
-#include "textpref/RatingReader.h"
-#include "textpref/RetryPolicy.h"
-#include "textpref/TextPreferenceModel.h"
+#include "runtime/textpref/RatingDistribution.h"
+#include "runtime/textpref/RatingReader.h"
+#include "runtime/textpref/RetryPolicy.h"
+#include "runtime/textpref/TextPreferenceModel.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The simulated users' ground truth, from descriptors and through a language-model judge on the loopback server.
-#include "TestSupport.h"
+#include "tests/unit/textpref/TestSupport.h"
 
-#include "textpref/SimulatedUsers.h"
+#include "runtime/textpref/SimulatedUsers.h"
 
 namespace cbtl::textpref::testing {
 namespace {

@@ -2,10 +2,10 @@
 // recording sleep function, and a scratch folder.
 #pragma once
 
-#include "ChatTestServer.h"
+#include "tests/unit/textpref/ChatTestServer.h"
 
-#include "textpref/ChatClient.h"
-#include "textpref/LlmPreferenceModel.h"
+#include "runtime/textpref/ChatClient.h"
+#include "runtime/textpref/LlmPreferenceModel.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // Backend selection and configuration: the offline default, the language-model backend with its shared cache,
 // and configuration errors.
-#include "TestSupport.h"
+#include "tests/unit/textpref/TestSupport.h"
 
-#include "textpref/TextBackend.h"
+#include "runtime/textpref/TextBackend.h"
 
 namespace cbtl::textpref::testing {
 namespace {

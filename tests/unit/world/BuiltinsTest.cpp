@@ -1,6 +1,6 @@
 // The built-ins the language binds: predicates, samplers and actions on the feeding and home scenes.
-#include "Builtins.h"
-#include "WorldTestSupport.h"
+#include "runtime/world/Builtins.h"
+#include "tests/unit/world/WorldTestSupport.h"
 
 namespace cbtl::world {
 namespace {

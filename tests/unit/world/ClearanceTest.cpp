@@ -1,6 +1,6 @@
 // Placement and clearance checks with FCL.
-#include "Clearance.h"
-#include "WorldTestSupport.h"
+#include "runtime/world/Clearance.h"
+#include "tests/unit/world/WorldTestSupport.h"
 
 namespace cbtl::world {
 namespace {

@@ -1,7 +1,7 @@
 // Known colliding and free states of the arm, its held object and the mobile base.
-#include "Collision.h"
-#include "InverseKinematics.h"
-#include "WorldTestSupport.h"
+#include "runtime/world/Collision.h"
+#include "runtime/world/InverseKinematics.h"
+#include "tests/unit/world/WorldTestSupport.h"
 
 namespace cbtl::world {
 namespace {

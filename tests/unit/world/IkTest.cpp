@@ -1,6 +1,6 @@
 // Inverse kinematics: round trips from forward kinematics, and honest failure for unreachable targets.
-#include "InverseKinematics.h"
-#include "WorldTestSupport.h"
+#include "runtime/world/InverseKinematics.h"
+#include "tests/unit/world/WorldTestSupport.h"
 
 namespace cbtl::world {
 namespace {

@@ -1,8 +1,8 @@
 // Occlusion of the user's view: high with the arm in front of the eyes, zero with the arm retracted.
-#include "Collision.h"
-#include "InverseKinematics.h"
-#include "Occlusion.h"
-#include "WorldTestSupport.h"
+#include "runtime/world/Collision.h"
+#include "runtime/world/InverseKinematics.h"
+#include "runtime/world/Occlusion.h"
+#include "tests/unit/world/WorldTestSupport.h"
 
 namespace cbtl::world {
 namespace {

@@ -1,8 +1,8 @@
 // Motion planning: solved paths are re-checked at a finer resolution than the planner used; statuses for
 // invalid endpoints; the SE(2) base planner; determinism.
-#include "InverseKinematics.h"
-#include "MotionPlanner.h"
-#include "WorldTestSupport.h"
+#include "runtime/world/InverseKinematics.h"
+#include "runtime/world/MotionPlanner.h"
+#include "tests/unit/world/WorldTestSupport.h"
 
 namespace cbtl::world {
 namespace {

@@ -1,5 +1,5 @@
 // The PNG encoder: checksums against known values and a well-formed file layout.
-#include "PngWriter.h"
+#include "runtime/world/PngWriter.h"
 
 #include <gtest/gtest.h>
 

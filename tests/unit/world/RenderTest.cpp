@@ -1,8 +1,8 @@
 // Offscreen rendering produces a non-empty image of the arm. Without EGL the whole executable exits with 77
 // (CTest's SKIP_RETURN_CODE) instead of failing.
-#include "PngWriter.h"
-#include "Renderer.h"
-#include "WorldTestSupport.h"
+#include "runtime/world/PngWriter.h"
+#include "runtime/world/Renderer.h"
+#include "tests/unit/world/WorldTestSupport.h"
 
 #include <gtest/gtest.h>
 

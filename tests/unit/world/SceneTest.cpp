@@ -1,8 +1,8 @@
 // Scene loading: good scenes load, bad or missing files give a clear error instead of a crash.
-#include "MujocoErrors.h"
-#include "NamedConfigurations.h"
-#include "WorldState.h"
-#include "WorldTestSupport.h"
+#include "runtime/world/MujocoErrors.h"
+#include "runtime/world/NamedConfigurations.h"
+#include "runtime/world/WorldState.h"
+#include "tests/unit/world/WorldTestSupport.h"
 
 #include <filesystem>
 #include <fstream>

@@ -1,6 +1,6 @@
 // JSON world states for `cbtl render --state`.
-#include "StateJson.h"
-#include "WorldTestSupport.h"
+#include "runtime/world/StateJson.h"
+#include "tests/unit/world/WorldTestSupport.h"
 
 namespace cbtl::world {
 namespace {

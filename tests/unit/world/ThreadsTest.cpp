@@ -1,8 +1,8 @@
 // One shared Scene, one Workspace per thread: concurrent planning and IK give the same answers as serial
 // runs with the same seeds.
-#include "InverseKinematics.h"
-#include "MotionPlanner.h"
-#include "WorldTestSupport.h"
+#include "runtime/world/InverseKinematics.h"
+#include "runtime/world/MotionPlanner.h"
+#include "tests/unit/world/WorldTestSupport.h"
 
 #include <thread>
 

@@ -1,7 +1,7 @@
 // Profile loading (docs/runtime.md): BM_LoadProfile/<points> parses and loads a Cooking profile whose one model
 // key holds <points> labelled examples in its temperature interval factor (and one in the quantity factor), the
 // shape of a user who has been served for a long time. The JSON text is built once, outside the timing.
-#include "runtime/approach/LoadedProgram.h"
+#include "app/LoadedProgram.h"
 #include "runtime/model/UserModel.h"
 
 #include <benchmark/benchmark.h>
@@ -15,8 +15,8 @@ namespace {
 
 using namespace cbtl;
 
-const approach::LoadedProgram& cookingProgram() {
-  static const auto lp = approach::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/cooking/cooking.cbtl");
+const app::LoadedProgram& cookingProgram() {
+  static const auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/cooking/cooking.cbtl");
   if (!lp->ok()) {
     std::fprintf(stderr, "%s", lp->errors().c_str());
     std::abort();

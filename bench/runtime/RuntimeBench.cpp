@@ -5,7 +5,7 @@
 //     personalized constraints, first feasible), explore (hard constraints, maximize entropy, learned models).
 #include "domains/DomainRegistry.h"
 #include "runtime/approach/Experiment.h"
-#include "runtime/approach/LoadedProgram.h"
+#include "app/LoadedProgram.h"
 #include "runtime/approach/Planner.h"
 #include "runtime/solver/Solver.h"
 #include "runtime/model/UserModel.h"
@@ -20,8 +20,8 @@ namespace {
 
 using namespace cbtl;
 
-const approach::LoadedProgram& cooking() {
-  static const auto lp = approach::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/cooking/cooking.cbtl");
+const app::LoadedProgram& cooking() {
+  static const auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/cooking/cooking.cbtl");
   if (!lp->ok()) {
     std::fprintf(stderr, "%s", lp->errors().c_str());
     std::abort();

@@ -1,10 +1,10 @@
 // Robot-world benchmarks. Targets (issue 4): collision check < 20 µs; occlusion score < 20 µs; IK median
 // < 1 ms with >= 99% success on random reachable targets; RRTConnect in the feeding scene median < 20 ms over
 // 100 random valid queries. Success rates and medians are reported as counters.
-#include "runtime/world/Collision.h"
-#include "runtime/world/InverseKinematics.h"
-#include "runtime/world/MotionPlanner.h"
-#include "runtime/world/Occlusion.h"
+#include "robot/world/Collision.h"
+#include "robot/world/InverseKinematics.h"
+#include "robot/world/MotionPlanner.h"
+#include "robot/world/Occlusion.h"
 
 #include <benchmark/benchmark.h>
 

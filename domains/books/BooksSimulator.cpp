@@ -1,11 +1,11 @@
 #include "domains/books/BooksSimulator.h"
 
 #include "domains/books/BookCatalog.h"
-#include "domains/robot/CallArguments.h"
-#include "domains/robot/HomeEpisode.h"
-#include "domains/robot/HomeScene.h"
-#include "domains/robot/HomeSurfaces.h"
-#include "domains/robot/SurfaceGeometry.h"
+#include "robot/actions/CallArguments.h"
+#include "domains/home/HomeEpisode.h"
+#include "domains/home/HomeScene.h"
+#include "domains/home/HomeSurfaces.h"
+#include "robot/actions/SurfaceGeometry.h"
 
 #include <stdexcept>
 
@@ -22,33 +22,33 @@ BooksSimulator::BooksSimulator(const sim::SimulatorOptions& options, std::uint64
 
 BooksSimulator::BooksSimulator(const sim::SimulatorOptions& options, std::shared_ptr<const BooksUser> user,
                                std::uint64_t seed)
-    : options_(options), user_(std::move(user)), world_(std::make_unique<world::World>(robot::homeScene())) {
+    : options_(options), user_(std::move(user)), world_(std::make_unique<world::World>(home::homeScene())) {
   scenePoses_ = world_->workspace().state().objects;
-  const auto hand = robot::userHandFrame(world_->workspace());
+  const auto hand = home::userHandFrame(world_->workspace());
   if (!hand) throw std::runtime_error("books: the home scene lacks the sites user_hand and handover_center");
   hand_ = *hand;
   reset(seed);
 }
 
 void BooksSimulator::stockShelves(world::WorldState& state, bool mayHold) {
-  const std::vector<std::size_t> books = robot::shuffledIndices(rng_, robot::kBookCount);
-  const std::vector<std::size_t> slots = robot::shuffledIndices(rng_, robot::kBookCount);
+  const std::vector<std::size_t> books = home::shuffledIndices(rng_, home::kBookCount);
+  const std::vector<std::size_t> slots = home::shuffledIndices(rng_, home::kBookCount);
   bool holds = false;
-  if (mayHold && robot::uniform01(rng_) < kHeldProbability) {
-    robot::holdAtHome(state, robot::bookBody(books[robot::kBookCount - 1]));
+  if (mayHold && home::uniform01(rng_) < kHeldProbability) {
+    home::holdAtHome(state, home::bookBody(books[home::kBookCount - 1]));
     holds = true;
   }
-  const std::size_t most = holds ? robot::kBookCount - 1 : robot::kBookCount;
-  const std::size_t count = 3 + robot::uniformIndex(rng_, most - 3 + 1);
+  const std::size_t most = holds ? home::kBookCount - 1 : home::kBookCount;
+  const std::size_t count = 3 + home::uniformIndex(rng_, most - 3 + 1);
   for (std::size_t i = 0; i < count; ++i) {
-    state.objects[robot::bookBody(books[i])] = scenePoses_.at(robot::bookBody(slots[i]));
+    state.objects[home::bookBody(books[i])] = scenePoses_.at(home::bookBody(slots[i]));
   }
 }
 
 void BooksSimulator::reset(std::uint64_t seed) {
   rng_.seed(seed);
   world_->utterances().clear();
-  world::WorldState s = robot::emptyRoom(scenePoses_);
+  world::WorldState s = home::emptyRoom(scenePoses_);
   stockShelves(s, true);
   if (world_->workspace().setState(s) != world::StateStatus::Ok) {
     throw std::logic_error("books: the episode's start state is invalid");  // a bug in this file
@@ -57,12 +57,12 @@ void BooksSimulator::reset(std::uint64_t seed) {
 
 std::vector<std::string> BooksSimulator::pickable() const {
   const world::Workspace& ws = world_->workspace();
-  const std::vector<std::string> geoms = robot::homeSurfaceGeoms();
+  const std::vector<std::string> geoms = home::homeSurfaceGeoms();
   const std::string held = ws.state().held ? ws.state().held->object : std::string();
   std::vector<std::string> out;
   for (const BookEntry& b : kBooks) {
     if (b.body == held) continue;
-    if (robot::supportOf(*world_, b.body, geoms)) out.emplace_back(b.entry);
+    if (actions::supportOf(*world_, b.body, geoms)) out.emplace_back(b.entry);
   }
   return out;
 }
@@ -71,7 +71,7 @@ sim::Observation BooksSimulator::observe() const {
   const world::WorldState& s = world_->workspace().state();
   sim::Observation o;
   o["pickable"] = Value::names(pickable());
-  o["handPose"] = Value::vec(robot::encodePose3(hand_));
+  o["handPose"] = Value::vec(actions::encodePose3(hand_));
   o["heldBody"] = Value::name(s.held ? s.held->object : std::string());
   return o;
 }
@@ -126,7 +126,7 @@ StepResult BooksSimulator::handOver(StepResult r) {
     ws.setHeld(std::nullopt);
     world::WorldState s = ws.state();
     s.gripper = 1.0;
-    s.objects[body] = robot::parkedPose(*book);
+    s.objects[body] = home::parkedPose(*book);
     ws.setState(s);
     if (pickable().empty()) {
       s = ws.state();

@@ -38,9 +38,9 @@
 
 #include "runtime/sim/DomainSimulator.h"
 #include "domains/books/BooksUser.h"
-#include "domains/robot/RobotActions.h"
+#include "robot/actions/RobotActions.h"
 
-#include "runtime/world/Builtins.h"
+#include "robot/world/WorldOperations.h"
 
 #include <cstdint>
 #include <map>
@@ -87,7 +87,7 @@ class BooksSimulator final : public sim::DomainSimulator {
   std::unique_ptr<world::World> world_;
   std::map<std::string, world::Pose3> scenePoses_;  // home.xml's object poses (the book slots among them)
   world::Pose3 hand_;
-  robot::RobotActions actions_;
+  actions::RobotActions actions_;
   world::Rng rng_;
 };
 

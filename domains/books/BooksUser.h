@@ -12,7 +12,7 @@
 // model can learn from the words, the hidden description itself is never said.
 #pragma once
 
-#include "runtime/world/Pose.h"
+#include "robot/world/Pose.h"
 
 #include <set>
 #include <string>

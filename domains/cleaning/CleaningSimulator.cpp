@@ -1,9 +1,9 @@
 #include "domains/cleaning/CleaningSimulator.h"
 
-#include "domains/robot/HomeEpisode.h"
-#include "domains/robot/HomeScene.h"
-#include "domains/robot/HomeSurfaces.h"
-#include "domains/robot/SurfaceGeometry.h"
+#include "domains/home/HomeEpisode.h"
+#include "domains/home/HomeScene.h"
+#include "domains/home/HomeSurfaces.h"
+#include "robot/actions/SurfaceGeometry.h"
 
 #include <stdexcept>
 
@@ -20,7 +20,7 @@ CleaningSimulator::CleaningSimulator(const sim::SimulatorOptions& options, std::
 
 CleaningSimulator::CleaningSimulator(const sim::SimulatorOptions& options, std::shared_ptr<const CleaningUser> user,
                                      std::uint64_t seed)
-    : options_(options), user_(std::move(user)), world_(std::make_unique<world::World>(robot::homeScene())) {
+    : options_(options), user_(std::move(user)), world_(std::make_unique<world::World>(home::homeScene())) {
   scenePoses_ = world_->workspace().state().objects;
   reset(seed);
 }
@@ -28,22 +28,22 @@ CleaningSimulator::CleaningSimulator(const sim::SimulatorOptions& options, std::
 void CleaningSimulator::reset(std::uint64_t seed) {
   rng_.seed(seed);
   world_->utterances().clear();
-  world::WorldState s = robot::emptyRoom(scenePoses_);
-  const std::vector<std::size_t> books = robot::shuffledIndices(rng_, robot::kBookCount);
-  const double held = robot::uniform01(rng_);
+  world::WorldState s = home::emptyRoom(scenePoses_);
+  const std::vector<std::size_t> books = home::shuffledIndices(rng_, home::kBookCount);
+  const double held = home::uniform01(rng_);
   if (held >= 2.0 / 3.0) {
-    robot::holdAtHome(s, robot::bookBody(books[1]));
+    home::holdAtHome(s, home::bookBody(books[1]));
   } else if (held >= 1.0 / 3.0) {
-    robot::holdAtHome(s, "duster");
+    home::holdAtHome(s, "duster");
   }
   if (world_->workspace().setState(s) != world::StateStatus::Ok) {
     throw std::logic_error("cleaning: the episode's start state is invalid");  // a bug in this file
   }
   // Surfaces in a uniform order: the first one with room for the book is covered (the main table may have
   // none while the duster lies on it).
-  const std::string obstacle = robot::bookBody(books[0]);
-  for (std::size_t i : robot::shuffledIndices(rng_, robot::kHomeSurfaces.size())) {
-    const std::string covered(robot::kHomeSurfaces[i].geom);
+  const std::string obstacle = home::bookBody(books[0]);
+  for (std::size_t i : home::shuffledIndices(rng_, home::kHomeSurfaces.size())) {
+    const std::string covered(home::kHomeSurfaces[i].geom);
     if (const auto pose = world::builtins::samplePlacement(*world_, obstacle, covered, kObstacleClearance, rng_)) {
       world_->workspace().setObjectPose(obstacle, *pose);
       break;
@@ -53,19 +53,19 @@ void CleaningSimulator::reset(std::uint64_t seed) {
 
 std::vector<std::string> CleaningSimulator::clearSurfaces() const {
   const world::Workspace& ws = world_->workspace();
-  const std::vector<std::string> geoms = robot::homeSurfaceGeoms();
+  const std::vector<std::string> geoms = home::homeSurfaceGeoms();
   std::vector<bool> clear(geoms.size(), true);
   const std::string held = ws.state().held ? ws.state().held->object : std::string();
   for (const world::ObjectInfo& o : ws.scene().objects()) {
     if (o.name == "duster" || o.name == held) continue;
-    if (const auto support = robot::supportOf(*world_, o.name, geoms)) {
+    if (const auto support = actions::supportOf(*world_, o.name, geoms)) {
       for (std::size_t i = 0; i < geoms.size(); ++i)
         if (geoms[i] == *support) clear[i] = false;
     }
   }
   std::vector<std::string> out;
   for (std::size_t i = 0; i < geoms.size(); ++i)
-    if (clear[i]) out.emplace_back(robot::kHomeSurfaces[i].member);
+    if (clear[i]) out.emplace_back(home::kHomeSurfaces[i].member);
   return out;
 }
 
@@ -100,7 +100,7 @@ StepResult CleaningSimulator::act(const sim::ActionCall& call) {
     return r;
   }
   if (call.name == "wipe") {
-    if (const auto surface = robot::surfaceMemberOfGeom(call.args[0].text)) {
+    if (const auto surface = home::surfaceMemberOfGeom(call.args[0].text)) {
       const bool welcome = user_->welcomes(*surface);
       r.feedback.push_back(sim::FeedbackEvent{"cleaningReaction", {Value::name(*surface), Value::num(welcome ? 1 : 0)}});
       r.hasSatisfaction = true;

@@ -37,9 +37,9 @@
 
 #include "runtime/sim/DomainSimulator.h"
 #include "domains/cleaning/CleaningUser.h"
-#include "domains/robot/RobotActions.h"
+#include "robot/actions/RobotActions.h"
 
-#include "runtime/world/Builtins.h"
+#include "robot/world/WorldOperations.h"
 
 #include <cstdint>
 #include <map>
@@ -80,7 +80,7 @@ class CleaningSimulator final : public sim::DomainSimulator {
   std::shared_ptr<const CleaningUser> user_;
   std::unique_ptr<world::World> world_;
   std::map<std::string, world::Pose3> scenePoses_;  // home.xml's object poses
-  robot::RobotActions actions_;
+  actions::RobotActions actions_;
   world::Rng rng_;
 };
 

@@ -1,6 +1,6 @@
 #include "domains/cleaning/CleaningUser.h"
 
-#include "domains/robot/HomeSurfaces.h"
+#include "domains/home/HomeSurfaces.h"
 
 #include <stdexcept>
 
@@ -8,7 +8,7 @@ namespace cbtl::domains::cleaning {
 
 CleaningUser::CleaningUser(std::set<std::string, std::less<>> welcomeSurfaces) : welcome_(std::move(welcomeSurfaces)) {
   for (const std::string& s : welcome_) {
-    if (!robot::surfaceGeomOfMember(s)) throw std::invalid_argument("cleaning: '" + s + "' is not a Surface");
+    if (!home::surfaceGeomOfMember(s)) throw std::invalid_argument("cleaning: '" + s + "' is not a Surface");
   }
 }
 

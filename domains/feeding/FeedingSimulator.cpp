@@ -1,7 +1,7 @@
 #include "domains/feeding/FeedingSimulator.h"
 
-#include "domains/robot/CallArguments.h"
-#include "domains/robot/HomeEpisode.h"
+#include "robot/actions/CallArguments.h"
+#include "domains/home/HomeEpisode.h"
 
 #include <fmt/format.h>
 
@@ -97,12 +97,12 @@ void FeedingSimulator::reset(std::uint64_t seed) {
   s.objects["plate"].position.y() = plate.y;
   world_->workspace().setState(s);
   world_->utterances().clear();
-  cycle_ = robot::uniformIndex(rng_, 4);
-  food_ = kFoods[robot::uniformIndex(rng_, kFoods.size())];
+  cycle_ = home::uniformIndex(rng_, 4);
+  food_ = kFoods[home::uniformIndex(rng_, kFoods.size())];
   std::vector<std::string> dips = kDips;
-  const std::size_t first = robot::uniformIndex(rng_, dips.size());
+  const std::size_t first = home::uniformIndex(rng_, dips.size());
   std::swap(dips[0], dips[first]);
-  const std::size_t second = 1 + robot::uniformIndex(rng_, dips.size() - 1);
+  const std::size_t second = 1 + home::uniformIndex(rng_, dips.size() - 1);
   std::swap(dips[1], dips[second]);
   dips_ = {dips[0], dips[1]};
   std::sort(dips_.begin(), dips_.end());
@@ -253,7 +253,7 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
   sim::StepResult step;
   step.consumedStep = true;
   if (call.name == "dipInto") {
-    if (const std::string e = robot::checkArguments(call, {robot::kNameArg}); !e.empty()) {
+    if (const std::string e = actions::checkArguments(call, {actions::kNameArg}); !e.empty()) {
       return unknownAction(e);
     }
     const std::string entry = dipEntryOfSauce(call.args[0].text);
@@ -265,7 +265,7 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
     return step;
   }
   if (call.name == "acquireFood") {
-    if (const std::string e = robot::checkArguments(call, {}); !e.empty()) {
+    if (const std::string e = actions::checkArguments(call, {}); !e.empty()) {
       return unknownAction(e);
     }
     const Eigen::Vector3d tool = ws.toolPose().position, plate = ws.objectPose("plate")->position;
@@ -276,7 +276,7 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
     return step;
   }
   if (call.name == "waitForReady") {
-    if (const std::string e = robot::checkArguments(call, {robot::kNameArg}); !e.empty()) {
+    if (const std::string e = actions::checkArguments(call, {actions::kNameArg}); !e.empty()) {
       return unknownAction(e);
     }
     progress_.signal = call.args[0].text;

@@ -17,7 +17,7 @@
 // viewBlocked(q) when the occlusion score from their eyes (Occlusion.h) reaches their threshold, else the
 // move passes as viewClear(q).
 //
-// Actions: the standard ones through robot::RobotActions (one step each), with three Feeding rules: grasp("drink")
+// Actions: the standard ones through actions::RobotActions (one step each), with three Feeding rules: grasp("drink")
 // moves the tool in front of the drink's handle (kDrinkGraspOffset from the drink's body frame, 10 cm short
 // of it along -y, tool z along +y; nearer, the open fingers touch it), attaches the drink, closes and lifts 1 cm;
 // release() of the utensil at its mount puts it back in the mount (the mount is not a surface), and the
@@ -32,9 +32,9 @@
 
 #include "runtime/sim/DomainSimulator.h"
 #include "domains/feeding/FeedingUser.h"
-#include "domains/robot/RobotActions.h"
+#include "robot/actions/RobotActions.h"
 
-#include "runtime/world/Builtins.h"
+#include "robot/world/WorldOperations.h"
 
 #include <cstdint>
 #include <memory>
@@ -90,7 +90,7 @@ class FeedingSimulator final : public sim::DomainSimulator {
 
   std::shared_ptr<const FeedingUser> user_;
   std::unique_ptr<world::World> world_;
-  robot::RobotActions actions_;
+  actions::RobotActions actions_;
   world::Rng rng_;
   std::map<std::string, world::Pose3> scenePoses_;
   std::size_t cycle_ = 0;

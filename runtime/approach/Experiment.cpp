@@ -115,7 +115,7 @@ class Progress {
 
 namespace {
 
-nlohmann::json configJson(const LoadedProgram& lp, const ExperimentConfig& config, const sim::SimulatorOptions& simOptions, int task) {
+nlohmann::json configJson(const PreparedProgram& lp, const ExperimentConfig& config, const sim::SimulatorOptions& simOptions, int task) {
   return {{"file", lp.path()}, {"domain", lp.graph().domain}, {"task", lp.graph().tasks[static_cast<std::size_t>(task)].name},
           {"approach", toString(config.approach.kind)}, {"epsilon", config.approach.epsilon},
           {"replan", config.approach.replan}, {"seed", config.seed}, {"steps", config.steps},
@@ -143,14 +143,14 @@ std::string evalHeader(int evalTasks) {
 
 // Everything one trial carries from step to step; a checkpoint saves exactly this (Checkpoint.h).
 struct Trial {
-  Trial(const LoadedProgram& lp_, const ExperimentConfig& config_, RunOutput& out_, std::unique_ptr<sim::DomainSimulator> world,
+  Trial(const PreparedProgram& lp_, const ExperimentConfig& config_, RunOutput& out_, std::unique_ptr<sim::DomainSimulator> world,
         std::size_t task)
       : lp(lp_), config(config_), out(out_), taskIdx(task), trainWorld(std::move(world)),
         user(lp_.graph(), config_.textBackend), trainSolver(config_.solverOptions, deriveSeed(config_.seed, 1)),
         evalSolver(config_.solverOptions, deriveSeed(config_.seed + 100000, 1)), approachRng(deriveSeed(config_.seed, 2)),
         learning(learns(config_.approach)), fallback(fallsBack(config_.approach)) {}
 
-  const LoadedProgram& lp;
+  const PreparedProgram& lp;
   const ExperimentConfig& config;
   RunOutput& out;
   std::size_t taskIdx;
@@ -176,7 +176,7 @@ void countRecheck(ExperimentResult& result, const Plan& plan) {
 
 void evaluate(Trial& tr, std::int64_t step) {
   const ExperimentConfig& config = tr.config;
-  const LoadedProgram& lp = tr.lp;
+  const PreparedProgram& lp = tr.lp;
   EvalPoint point;
   point.step = step;
   model::UserModel evalUser = tr.user;  // the evaluation agent loads the training agent's models
@@ -224,7 +224,7 @@ void evaluate(Trial& tr, std::int64_t step) {
 
 void trainStep(Trial& tr, std::int64_t t) {
   const ExperimentConfig& config = tr.config;
-  const LoadedProgram& lp = tr.lp;
+  const PreparedProgram& lp = tr.lp;
   ExperimentResult& result = tr.result;
   if (config.nonstationary && config.adaptation == Adaptation::PeriodicReset && t > 0 && t % config.periodicResetEvery == 0) {
     tr.user.reset();
@@ -315,7 +315,7 @@ void restoreCheckpoint(Trial& tr, const Checkpoint& cp) {
 
 }  // namespace
 
-ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& factory, const ExperimentConfig& config) {
+ExperimentResult runExperiment(const PreparedProgram& lp, const SimulatorFactory& factory, const ExperimentConfig& config) {
   const int task = lp.taskIndex(config.task);
   if (task < 0) throw std::runtime_error(config.task.empty() ? "the program has no task" : fmt::format("no task named '{}'", config.task));
   if (config.evalEvery <= 0) throw std::runtime_error("--eval-every must be positive");

@@ -19,7 +19,7 @@
 
 #include "runtime/approach/Approach.h"
 #include "runtime/sim/DomainSimulator.h"
-#include "runtime/approach/LoadedProgram.h"
+#include "runtime/approach/PreparedProgram.h"
 #include "runtime/approach/RunDirectory.h"
 #include "runtime/solver/Solver.h"
 
@@ -101,7 +101,7 @@ using SimulatorFactory = std::function<std::unique_ptr<sim::DomainSimulator>(con
 
 // Runs one trial. Throws rt::RuntimeError / model::ProfileError / std::runtime_error for bad input or a
 // simulator that breaks the contract; never hangs (every loop is bounded by the configured budgets).
-ExperimentResult runExperiment(const LoadedProgram& lp, const SimulatorFactory& factory, const ExperimentConfig& config);
+ExperimentResult runExperiment(const PreparedProgram& lp, const SimulatorFactory& factory, const ExperimentConfig& config);
 
 // The world seed of held-out evaluation task `task` of run `seed`.
 std::uint64_t evaluationTaskSeed(std::uint64_t seed, int task);

@@ -2,7 +2,7 @@
 
 namespace cbtl::approach {
 
-Plan makePlan(const LoadedProgram& lp, std::size_t task, const std::vector<double>& observation, CspChoice choice,
+Plan makePlan(const PreparedProgram& lp, std::size_t task, const std::vector<double>& observation, CspChoice choice,
               bool fallback, solver::Solver& solver, const model::UserModel& user) {
   Plan plan;
   plan.csp = solver::makeCsp(lp.program(), static_cast<std::uint32_t>(task), lp.instances(task), user, observation,

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "runtime/approach/Approach.h"
-#include "runtime/approach/LoadedProgram.h"
+#include "runtime/approach/PreparedProgram.h"
 #include "runtime/solver/Recheck.h"
 #include "runtime/solver/Solver.h"
 
@@ -26,7 +26,7 @@ struct Plan {
   bool refused() const { return rechecked && !recheck.holds(); }
 };
 
-Plan makePlan(const LoadedProgram& lp, std::size_t task, const std::vector<double>& observation, CspChoice choice,
+Plan makePlan(const PreparedProgram& lp, std::size_t task, const std::vector<double>& observation, CspChoice choice,
               bool fallback, solver::Solver& solver, const model::UserModel& user);
 
 }  // namespace cbtl::approach

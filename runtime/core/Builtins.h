@@ -9,7 +9,7 @@
 // the call's source location.
 //
 // Every call also receives a CallContext: the program's string table (text arguments are string ids) and
-// the host, the per-program state some built-ins need (the robot world of runtime/bind/WorldBuiltins.h).
+// the host, the per-program state some built-ins need (the robot world of robot/bind/WorldBuiltins.h).
 // A registry that binds such built-ins carries its host; the Program adopts it. Built-ins of the prelude and
 // geometry read neither.
 #pragma once

@@ -7,7 +7,7 @@
 // unrolled into calls, and every declared feedback event learned from with typed arguments. Besides crashes,
 // leaks and sanitizer reports, the target aborts when a Solved result fails the re-check: the solver must
 // never accept what the re-check rejects. Built only with -DCBTL_FUZZ=ON and clang (scripts/fuzz.sh runtime).
-#include "runtime/approach/LoadedProgram.h"
+#include "app/LoadedProgram.h"
 #include "runtime/approach/Planner.h"
 #include "runtime/solver/Recheck.h"
 #include "runtime/solver/Solver.h"
@@ -37,7 +37,7 @@ sim::Value typedValue(const rt::Program& program, const ir::TypeDesc& type, std:
   }
 }
 
-void execute(const approach::LoadedProgram& lp, std::uint8_t salt) {
+void execute(const app::LoadedProgram& lp, std::uint8_t salt) {
   const rt::Program& program = lp.program();
   const std::vector<double> observation(program.observationWidth(), 0.0);
   solver::SolverOptions options;
@@ -68,7 +68,7 @@ void execute(const approach::LoadedProgram& lp, std::uint8_t salt) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   // A path in a directory that does not exist: imports and scenes resolve next to it and cannot be read.
-  auto lp = approach::LoadedProgram::fromSource("/nonexistent-cbtl-fuzz/input.cbtl",
+  auto lp = app::LoadedProgram::fromSource("/nonexistent-cbtl-fuzz/input.cbtl",
                                                 std::string(reinterpret_cast<const char*>(data), size));
   if (!lp->ok()) return 0;
   execute(*lp, size > 0 ? data[size - 1] : 0);

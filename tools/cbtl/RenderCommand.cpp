@@ -5,10 +5,10 @@
 #include "tools/cbtl/ErrorHandling.h"
 #include "tools/cbtl/OptionChecks.h"
 
-#include "runtime/world/PngWriter.h"
-#include "runtime/world/Renderer.h"
-#include "runtime/world/StateJson.h"
-#include "runtime/world/Workspace.h"
+#include "robot/world/PngWriter.h"
+#include "robot/world/Renderer.h"
+#include "robot/world/StateJson.h"
+#include "robot/world/Workspace.h"
 
 #include <fmt/core.h>
 

@@ -5,7 +5,7 @@
 #include "domains/DomainRegistry.h"
 #include "tools/cbtl/OptionChecks.h"
 #include "runtime/approach/Experiment.h"
-#include "runtime/approach/LoadedProgram.h"
+#include "app/LoadedProgram.h"
 #include "runtime/solver/Solver.h"
 
 #include "runtime/textpref/TextBackend.h"
@@ -23,9 +23,9 @@
 namespace cbtl::cli {
 
 // Loads FILE; prints its diagnostics to stderr and returns nullptr when it cannot run.
-inline std::unique_ptr<approach::LoadedProgram> loadForRun(const std::string& command, const std::string& path,
+inline std::unique_ptr<app::LoadedProgram> loadForRun(const std::string& command, const std::string& path,
                                                            const std::string& stdlibDir) {
-  auto lp = approach::LoadedProgram::load(path, stdlibDir);
+  auto lp = app::LoadedProgram::load(path, stdlibDir);
   if (!lp->ok()) {
     fmt::print(stderr, "{}", lp->errors());
     fmt::print(stderr, "cbtl {}: '{}' cannot be run\n", command, path);
@@ -191,7 +191,7 @@ inline bool configureTrial(const std::string& command, const TrialArgs& a, appro
 }
 
 // A factory for the program's domain, or nullopt after printing which domains exist.
-inline std::optional<approach::SimulatorFactory> domainSimulator(const std::string& command, const approach::LoadedProgram& lp,
+inline std::optional<approach::SimulatorFactory> domainSimulator(const std::string& command, const app::LoadedProgram& lp,
                                                                  const sim::SimulatorOptions& options) {
   const std::string& domain = lp.graph().domain;
   if (domains::createSimulator(domain, options, 0) != nullptr) return simulatorFactory(domain);

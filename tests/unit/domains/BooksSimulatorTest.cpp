@@ -4,7 +4,7 @@
 
 #include "tests/unit/domains/HomeTestSupport.h"
 #include "domains/books/BookCatalog.h"
-#include "domains/robot/CallArguments.h"
+#include "robot/actions/CallArguments.h"
 
 #include <gtest/gtest.h>
 
@@ -20,7 +20,8 @@ using cbtl::sim::ActionCall;
 using cbtl::sim::ActionStatus;
 using cbtl::sim::StepResult;
 using cbtl::sim::Value;
-namespace robot = cbtl::domains::robot;
+namespace actions = cbtl::actions;
+namespace home = cbtl::domains::home;
 namespace world = cbtl::world;
 
 const world::Pose2 kBedBase{1.0, 0.2, 0.0};
@@ -51,7 +52,7 @@ TEST(BooksSimulator, ObservationsHaveTheDeclaredNamesAndKinds) {
   ASSERT_EQ(o.at("handPose").vector.size(), 7u);
   EXPECT_EQ(o.at("heldBody").kind, Value::Kind::Name);
   // books.cbtl's romCentre(): the hand moved 0.2 m along its z lands on the scene's handover_center.
-  const auto hand = robot::decodePose3(o.at("handPose").vector);
+  const auto hand = actions::decodePose3(o.at("handPose").vector);
   ASSERT_TRUE(hand.has_value());
   const Eigen::Vector3d centre = hand->transformPoint(Eigen::Vector3d(0, 0, 0.2));
   EXPECT_LT((centre - sim.world().workspace().sitePose("handover_center")->position).norm(), 0.005);
@@ -108,7 +109,7 @@ TEST(BooksSimulator, AReachableHandoverOfALikedBookPleasesTheUser) {
   // The user took it.
   EXPECT_FALSE(sim.worldState()->held.has_value());
   EXPECT_FALSE(contains(sim.pickable(), "cosmos"));
-  EXPECT_TRUE(robot::isParked(sim.worldState()->objects.at("book_0")));
+  EXPECT_TRUE(home::isParked(sim.worldState()->objects.at("book_0")));
   EXPECT_EQ(sim.world().utterances().back(), "Here you go!");
 }
 

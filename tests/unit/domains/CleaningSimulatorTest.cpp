@@ -3,7 +3,7 @@
 #include "domains/cleaning/CleaningSimulator.h"
 
 #include "tests/unit/domains/HomeTestSupport.h"
-#include "domains/robot/CallArguments.h"
+#include "robot/actions/CallArguments.h"
 
 #include <gtest/gtest.h>
 
@@ -18,11 +18,12 @@ using cbtl::sim::ActionCall;
 using cbtl::sim::ActionStatus;
 using cbtl::sim::StepResult;
 using cbtl::sim::Value;
-namespace robot = cbtl::domains::robot;
+namespace actions = cbtl::actions;
+namespace home = cbtl::domains::home;
 namespace world = cbtl::world;
 
 ActionCall wipe(const std::string& surface, const world::Pose2& base) {
-  return ActionCall{"wipe", {Value::name(surface), Value::vec(robot::encodePose2(base))}};
+  return ActionCall{"wipe", {Value::name(surface), Value::vec(actions::encodePose2(base))}};
 }
 
 TEST(CleaningSimulator, ResetIsDeterministic) {
@@ -113,8 +114,8 @@ TEST(CleaningSimulator, AWipeOfAnUnwelcomeSurfaceIsAdmonished) {
 TEST(CleaningSimulator, FetchingTheDusterThenWipingFollowsTheSkills) {
   // cleanSurface's plan shape: fetchDuster (base to the table, grasp, home) then wipeSurface.
   CleaningSimulator sim({}, 0);
-  const world::World fresh(robot::homeScene());  // home.xml's poses: the duster on the main table
-  const world::WorldState s = robot::emptyRoom(fresh.workspace().state().objects);
+  const world::World fresh(home::homeScene());  // home.xml's poses: the duster on the main table
+  const world::WorldState s = home::emptyRoom(fresh.workspace().state().objects);
   ASSERT_EQ(sim.world().workspace().setState(s), world::StateStatus::Ok);
   EXPECT_EQ(sim.requestedTask(), "cleanSurface");
   for (const ActionCall& call : {ActionCall{"moveBase", {Value::vec({0, -0.1, 0})}}, ActionCall{"grasp", {Value::name("duster")}},
@@ -126,7 +127,7 @@ TEST(CleaningSimulator, FetchingTheDusterThenWipingFollowsTheSkills) {
   EXPECT_EQ(sim.requestedTask(), "cleanWithDusterInHand");
   ASSERT_EQ(sim.act(ActionCall{"moveBase", {Value::vec({0, -0.55, 0})}}).status, ActionStatus::Applied);
   world::Rng rng(4);
-  const auto tool = robot::preWipeToolPose(sim.world(), "side_table_0_top", "duster", sim.worldState()->held->toolToObject, {0, -0.55, 0});
+  const auto tool = actions::preWipeToolPose(sim.world(), "side_table_0_top", "duster", sim.worldState()->held->toolToObject, {0, -0.55, 0});
   ASSERT_TRUE(tool.has_value());
   const auto q = world::builtins::sampleIk(sim.world(), *tool, rng);
   ASSERT_TRUE(q.has_value());

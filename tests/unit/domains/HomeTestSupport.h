@@ -1,12 +1,12 @@
 // HomeTestSupport.h — arranging home-scene worlds for the Cleaning and Books tests.
 #pragma once
 
-#include "domains/robot/HomeEpisode.h"
-#include "domains/robot/HomeScene.h"
-#include "domains/robot/StandardGrasps.h"
-#include "domains/robot/WipeSweep.h"
+#include "domains/home/HomeEpisode.h"
+#include "domains/home/HomeScene.h"
+#include "robot/actions/StandardGrasps.h"
+#include "robot/actions/WipeSweep.h"
 
-#include "runtime/world/Builtins.h"
+#include "robot/world/WorldOperations.h"
 
 #include <numbers>
 #include <optional>
@@ -19,10 +19,10 @@ namespace cbtl::test {
 // book except a held one parked; false if the state is rejected.
 inline bool holdAt(world::World& w, const std::string& object, const world::Pose2& base) {
   world::WorldState s = w.workspace().state();
-  for (std::size_t k = 0; k < domains::robot::kBookCount; ++k) s.objects[domains::robot::bookBody(k)] = domains::robot::parkedPose(k);
+  for (std::size_t k = 0; k < domains::home::kBookCount; ++k) s.objects[domains::home::bookBody(k)] = domains::home::parkedPose(k);
   s.base = base;
   s.held.reset();
-  domains::robot::holdAtHome(s, object);
+  domains::home::holdAtHome(s, object);
   return w.workspace().setState(s) == world::StateStatus::Ok;
 }
 
@@ -40,7 +40,7 @@ inline bool armTo(world::World& w, const world::Pose3& tool, world::Rng& rng) {
 // The robot at `base` holding the duster with the arm at the pre-wipe pose of `surface`.
 inline bool readyToWipe(world::World& w, const std::string& surface, const world::Pose2& base, world::Rng& rng) {
   if (!holdAt(w, "duster", base)) return false;
-  const auto tool = domains::robot::preWipeToolPose(w, surface, "duster", w.workspace().state().held->toolToObject, base);
+  const auto tool = actions::preWipeToolPose(w, surface, "duster", w.workspace().state().held->toolToObject, base);
   return tool && armTo(w, *tool, rng);
 }
 

@@ -1,10 +1,10 @@
 // The standard-action executor on the home scene: each action's effect on the World, call-shape errors,
 // and failures that leave the World unchanged.
-#include "domains/robot/CallArguments.h"
-#include "domains/robot/HomeScene.h"
-#include "domains/robot/RobotActions.h"
-#include "domains/robot/StandardGrasps.h"
-#include "domains/robot/SurfaceGeometry.h"
+#include "robot/actions/CallArguments.h"
+#include "domains/home/HomeScene.h"
+#include "robot/actions/RobotActions.h"
+#include "robot/actions/StandardGrasps.h"
+#include "robot/actions/SurfaceGeometry.h"
 
 #include <gtest/gtest.h>
 
@@ -12,17 +12,18 @@
 
 namespace {
 
-using cbtl::domains::robot::RobotActionResult;
-using cbtl::domains::robot::RobotActions;
+using cbtl::actions::RobotActionResult;
+using cbtl::actions::RobotActions;
 using cbtl::sim::ActionCall;
 using cbtl::sim::Value;
 using cbtl::world::builtins::ActionStatus;
-namespace robot = cbtl::domains::robot;
+namespace actions = cbtl::actions;
+namespace home = cbtl::domains::home;
 namespace world = cbtl::world;
 
 class RobotActionsTest : public ::testing::Test {
  protected:
-  RobotActionsTest() : w(robot::homeScene()), rng(11) {
+  RobotActionsTest() : w(home::homeScene()), rng(11) {
     world::WorldState s = w.workspace().state();
     s.arm = world::configs::kHomeSceneInitial;
     EXPECT_EQ(w.workspace().setState(s), world::StateStatus::Ok);
@@ -38,7 +39,7 @@ class RobotActionsTest : public ::testing::Test {
   void holdBook(const world::ArmConfig& q) {
     world::WorldState s = w.workspace().state();
     s.arm = q;
-    s.held = world::Grasp{"book_6", robot::bookToolInBody().inverse()};
+    s.held = world::Grasp{"book_6", actions::bookToolInBody().inverse()};
     ASSERT_EQ(w.workspace().setState(s), world::StateStatus::Ok);
   }
 
@@ -127,7 +128,7 @@ TEST_F(RobotActionsTest, GraspDusterApproachesAttachesAndLifts) {
   ASSERT_TRUE(w.workspace().state().held.has_value());
   EXPECT_EQ(w.workspace().state().held->object, "duster");
   EXPECT_EQ(w.workspace().state().gripper, 0.0);
-  EXPECT_NEAR(w.workspace().objectPose("duster")->position.z(), zBefore + robot::kLift, 2e-3);
+  EXPECT_NEAR(w.workspace().objectPose("duster")->position.z(), zBefore + actions::kLift, 2e-3);
 
   // A second grasp is refused; the duster stays in hand.
   EXPECT_EQ(run("grasp", {Value::name("book_0")}).status, ActionStatus::AlreadyHolding);
@@ -135,7 +136,7 @@ TEST_F(RobotActionsTest, GraspDusterApproachesAttachesAndLifts) {
   const RobotActionResult rel = run("release", {});
   ASSERT_TRUE(rel.done()) << rel.detail;
   EXPECT_FALSE(w.workspace().state().held.has_value());
-  EXPECT_EQ(robot::supportOf(w, "duster", robot::restingSurfaces(w.workspace().scene())), std::string("table_top"));
+  EXPECT_EQ(actions::supportOf(w, "duster", actions::restingSurfaces(w.workspace().scene())), std::string("table_top"));
 }
 
 TEST_F(RobotActionsTest, GraspFailsForUnknownOrDistantBodies) {
@@ -159,14 +160,14 @@ TEST_F(RobotActionsTest, PlacePutsTheBookOnTheSideTable) {
   const world::Pose3 target{Eigen::Vector3d(-0.75, -0.70, 0.08),
                             Eigen::Quaterniond(Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitZ()))};
   // Side table 1 is occupied by book_7 in the scene: move it away first so the target is free.
-  w.workspace().setObjectPose("book_7", robot::parkedPose(0));
+  w.workspace().setObjectPose("book_7", home::parkedPose(0));
   ASSERT_TRUE(run("moveBase", {Value::vec({0.0, -0.80, 0.0})}).done());
-  const RobotActionResult r = run("place", {Value::name("side_table_1_top"), Value::vec(robot::encodePose3(target))});
+  const RobotActionResult r = run("place", {Value::name("side_table_1_top"), Value::vec(actions::encodePose3(target))});
   ASSERT_TRUE(r.done()) << r.detail;
   EXPECT_FALSE(w.workspace().state().held.has_value());
   const world::Pose3 p = *w.workspace().objectPose("book_6");
   EXPECT_NEAR((p.position - target.position).norm(), 0.0, 1e-6);
-  EXPECT_TRUE(robot::restsOn(w, "book_6", p, "side_table_1_top"));
+  EXPECT_TRUE(actions::restsOn(w, "book_6", p, "side_table_1_top"));
   EXPECT_EQ(w.workspace().state().gripper, 1.0);
 }
 
@@ -174,13 +175,13 @@ TEST_F(RobotActionsTest, PlaceRefusesPosesOffTheSurfaceOrOccupied) {
   holdBook(world::configs::kHome);
   const world::WorldState before = w.workspace().state();
   const world::Pose3 floating{Eigen::Vector3d(-0.75, -0.70, 0.3), Eigen::Quaterniond::Identity()};
-  EXPECT_EQ(run("place", {Value::name("side_table_1_top"), Value::vec(robot::encodePose3(floating))}).status,
+  EXPECT_EQ(run("place", {Value::name("side_table_1_top"), Value::vec(actions::encodePose3(floating))}).status,
             ActionStatus::InvalidArgument);
-  EXPECT_EQ(run("place", {Value::name("no_surface"), Value::vec(robot::encodePose3(floating))}).status,
+  EXPECT_EQ(run("place", {Value::name("no_surface"), Value::vec(actions::encodePose3(floating))}).status,
             ActionStatus::InvalidArgument);
   // Where book_7 stands.
   const world::Pose3 occupied = *w.workspace().objectPose("book_7");
-  EXPECT_EQ(run("place", {Value::name("side_table_1_top"), Value::vec(robot::encodePose3(occupied))}).status,
+  EXPECT_EQ(run("place", {Value::name("side_table_1_top"), Value::vec(actions::encodePose3(occupied))}).status,
             ActionStatus::Blocked);
   EXPECT_EQ(w.workspace().state().arm, before.arm);
   EXPECT_TRUE(w.workspace().state().held.has_value());
@@ -222,11 +223,11 @@ TEST_F(RobotActionsTest, StepResultCarriesStatusAndMessage) {
 // The language's built-ins read the duster's standard grasp from home.xml's site duster_tool; it must be the
 // grasp the executor uses.
 TEST(StandardGrasps, TheSceneSiteIsTheDusterGrasp) {
-  cbtl::world::Workspace ws(cbtl::domains::robot::homeScene());
+  cbtl::world::Workspace ws(cbtl::domains::home::homeScene());
   const int site = ws.scene().siteId("duster_tool");
   ASSERT_GE(site, 0);
   const cbtl::world::Pose3 inBody = ws.objectPose("duster")->inverse() * ws.sitePose(site);
-  const cbtl::world::Pose3 expected = cbtl::domains::robot::dusterToolInBody();
+  const cbtl::world::Pose3 expected = cbtl::actions::dusterToolInBody();
   EXPECT_LT((inBody.position - expected.position).norm(), 1e-6);
   EXPECT_LT(inBody.orientation.angularDistance(expected.orientation), 1e-6);
 }

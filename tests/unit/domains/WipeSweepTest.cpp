@@ -1,16 +1,17 @@
 // The wiping sweep: from a pre-wipe pose the duster covers a reachable surface and the base comes back;
 // without the duster on the surface, or without anything held, the sweep fails and nothing moves.
-#include "domains/robot/CallArguments.h"
-#include "domains/robot/HomeScene.h"
-#include "domains/robot/RobotActions.h"
-#include "domains/robot/StandardGrasps.h"
-#include "domains/robot/WipeSweep.h"
+#include "robot/actions/CallArguments.h"
+#include "domains/home/HomeScene.h"
+#include "robot/actions/RobotActions.h"
+#include "robot/actions/StandardGrasps.h"
+#include "robot/actions/WipeSweep.h"
 
 #include <gtest/gtest.h>
 
 namespace {
 
-namespace robot = cbtl::domains::robot;
+namespace actions = cbtl::actions;
+namespace home = cbtl::domains::home;
 namespace world = cbtl::world;
 using cbtl::sim::ActionCall;
 using cbtl::sim::Value;
@@ -18,7 +19,7 @@ using cbtl::world::builtins::ActionStatus;
 
 class WipeSweepTest : public ::testing::Test {
  protected:
-  WipeSweepTest() : w(robot::homeScene()), rng(5) {}
+  WipeSweepTest() : w(home::homeScene()), rng(5) {}
 
   // The robot at `base` holding the duster (standard grasp) with the arm at a collision-free IK solution of
   // the pre-wipe pose of `surface`; false when none is found.
@@ -26,10 +27,10 @@ class WipeSweepTest : public ::testing::Test {
     world::WorldState s = w.workspace().state();
     s.base = base;
     s.arm = world::configs::kHome;
-    s.held = world::Grasp{"duster", robot::dusterToolInBody().inverse()};
-    for (int k = 0; k < 9; ++k) s.objects["book_" + std::to_string(k)] = robot::parkedPose(static_cast<std::size_t>(k));
+    s.held = world::Grasp{"duster", actions::dusterToolInBody().inverse()};
+    for (int k = 0; k < 9; ++k) s.objects["book_" + std::to_string(k)] = home::parkedPose(static_cast<std::size_t>(k));
     if (w.workspace().setState(s) != world::StateStatus::Ok) return false;
-    const auto tool = robot::preWipeToolPose(w, surface, "duster", s.held->toolToObject, base);
+    const auto tool = actions::preWipeToolPose(w, surface, "duster", s.held->toolToObject, base);
     if (!tool) return false;
     for (int attempt = 0; attempt < 5; ++attempt) {
       if (const auto q = world::builtins::sampleIk(w, *tool, rng)) {
@@ -42,7 +43,7 @@ class WipeSweepTest : public ::testing::Test {
 
   world::World w;
   world::Rng rng;
-  robot::RobotActions actions;
+  actions::RobotActions actions;
 };
 
 TEST_F(WipeSweepTest, WipesEveryHomeSurfaceFromItsApproachBase) {
@@ -53,7 +54,7 @@ TEST_F(WipeSweepTest, WipesEveryHomeSurfaceFromItsApproachBase) {
     SCOPED_TRACE(surface);
     ASSERT_TRUE(readyToWipe(surface, base));
     const world::ArmConfig arm = w.workspace().state().arm;
-    const auto r = actions.execute(w, ActionCall{"wipe", {Value::name(surface), Value::vec(robot::encodePose2(base))}}, rng);
+    const auto r = actions.execute(w, ActionCall{"wipe", {Value::name(surface), Value::vec(actions::encodePose2(base))}}, rng);
     ASSERT_TRUE(r.has_value());
     ASSERT_TRUE(r->done()) << r->detail;
     EXPECT_GE(r->basePath.size(), 3u);  // at least one stroke there and back, plus the return

@@ -63,7 +63,7 @@ TEST(Approach, NamesRoundTrip) {
 }
 
 TEST(Approach, CspContentsFollowTheChoice) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok()) << lp->errors();
   model::UserModel user(lp->graph());
   const std::vector<double> obs(lp->program().observationWidth(), 15.0);

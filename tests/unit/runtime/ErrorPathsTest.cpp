@@ -57,7 +57,7 @@ int exitCodeOf(const std::function<int()>& body) {
 }  // namespace
 
 TEST(ErrorPaths, UnknownActionIsAnInternalError) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok()) << lp->errors();
   const approach::SimulatorFactory factory = [](const sim::SimulatorOptions& o, std::uint64_t seed) {
     return std::make_unique<RejectingSimulator>(domains::createSimulator("cooking", o, seed));
@@ -66,7 +66,7 @@ TEST(ErrorPaths, UnknownActionIsAnInternalError) {
 }
 
 TEST(ErrorPaths, PeriodicResetEveryMustBePositive) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok()) << lp->errors();
   const approach::SimulatorFactory factory = [](const sim::SimulatorOptions& o, std::uint64_t seed) {
     return domains::createSimulator("cooking", o, seed);

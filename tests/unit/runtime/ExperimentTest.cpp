@@ -36,7 +36,7 @@ std::string tempDir(const std::string& name) {
 }  // namespace
 
 TEST(Experiment, ShortCookingRunLearnsAndWritesItsFiles) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok()) << lp->errors();
   const std::string out = tempDir("short");
   const auto r = approach::runExperiment(*lp, cooking(), shortRun(approach::ApproachKind::Cbtl, 0, out));
@@ -57,7 +57,7 @@ TEST(Experiment, ShortCookingRunLearnsAndWritesItsFiles) {
 }
 
 TEST(Experiment, SameSeedGivesIdenticalCsvs) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok());
   const std::string a = tempDir("det_a"), b = tempDir("det_b"), c = tempDir("det_c");
   approach::runExperiment(*lp, cooking(), shortRun(approach::ApproachKind::EpsilonGreedy, 4, a));
@@ -70,7 +70,7 @@ TEST(Experiment, SameSeedGivesIdenticalCsvs) {
 }
 
 TEST(Experiment, NoPersonalizationNeverLearns) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok());
   const std::string out = tempDir("nolearn");
   approach::runExperiment(*lp, cooking(), shortRun(approach::ApproachKind::NoPersonalization, 1, out));
@@ -80,7 +80,7 @@ TEST(Experiment, NoPersonalizationNeverLearns) {
 }
 
 TEST(Experiment, CbtlLearnsTheHiddenRangesWithinFifteenHundredSteps) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok());
   const std::string out = tempDir("learns");
   auto c = shortRun(approach::ApproachKind::Cbtl, 2, out);
@@ -106,7 +106,7 @@ TEST(Experiment, CbtlLearnsTheHiddenRangesWithinFifteenHundredSteps) {
 }
 
 TEST(Experiment, UnsatisfiableStockWithAndWithoutReplanning) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok());
   auto c = shortRun(approach::ApproachKind::Cbtl, 3);
   c.steps = 1500;
@@ -123,7 +123,7 @@ TEST(Experiment, UnsatisfiableStockWithAndWithoutReplanning) {
 }
 
 TEST(Experiment, NonstationaryUserResetForgetsOnAnnouncedShifts) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok());
   const std::string out = tempDir("reset");
   auto c = shortRun(approach::ApproachKind::Cbtl, 6, out);
@@ -139,7 +139,7 @@ TEST(Experiment, NonstationaryUserResetForgetsOnAnnouncedShifts) {
 }
 
 TEST(Experiment, BadConfigurationIsRejected) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok());
   auto c = shortRun(approach::ApproachKind::Cbtl, 0);
   c.task = "nope";

@@ -11,7 +11,7 @@ using namespace cbtl;
 namespace {
 
 // Evaluates a constraint on an assignment given as the flat layout of all variables (declaration order).
-bool holds(approach::LoadedProgram& lp, std::vector<double> x, std::size_t constraint = 0) {
+bool holds(app::LoadedProgram& lp, std::vector<double> x, std::size_t constraint = 0) {
   const auto& program = lp.program();
   EXPECT_EQ(x.size(), program.assignmentWidth());
   x.resize(program.assignmentWidth());
@@ -67,7 +67,7 @@ require distance(p, vec2(3, 4)) < 1 and p.x > 2.5;
 }
 
 TEST(Expression, UnknownBuiltinIsAnErrorWithALocation) {
-  auto lp = approach::LoadedProgram::fromSource("b.cbtl", R"(domain b;
+  auto lp = app::LoadedProgram::fromSource("b.cbtl", R"(domain b;
 extern fn mystery(x: real) -> real;
 var a : real in 0 .. 1;
 require mystery(a) > 0;
@@ -118,7 +118,7 @@ personal anyReal(v: real) {
 }
 
 TEST(Personalization, CookingHasOneInstancePerIngredient) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok()) << lp->errors();
   const auto& inst = lp->instances(0);
   ASSERT_EQ(inst.size(), 4u);

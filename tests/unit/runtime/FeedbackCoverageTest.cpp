@@ -39,7 +39,7 @@ class FeedbackCoverage : public ::testing::TestWithParam<const char*> {};
 }  // namespace
 
 TEST_P(FeedbackCoverage, EveryDeclaredEventIsLearnedFromWithTheWorldsObservation) {
-  auto lp = approach::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + GetParam());
+  auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + GetParam());
   ASSERT_TRUE(lp->ok()) << lp->errors();
   const rt::Program& program = lp->program();
   auto world = domains::createSimulator(lp->graph().domain, {}, 1);

@@ -17,7 +17,7 @@ using namespace cbtl;
 
 namespace {
 
-solver::SolveResult solveFirstTask(const approach::LoadedProgram& lp, const model::UserModel& user, std::uint64_t iters = 2000) {
+solver::SolveResult solveFirstTask(const app::LoadedProgram& lp, const model::UserModel& user, std::uint64_t iters = 2000) {
   solver::SolverOptions o;
   o.maxIters = iters;
   solver::Solver s(o, 3);

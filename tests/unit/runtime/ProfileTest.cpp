@@ -16,7 +16,7 @@
 using namespace cbtl;
 
 TEST(Profile, RoundTripKeepsEveryLabel) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok()) << lp->errors();
   model::UserModel user(lp->graph());
   auto& f = user.generator(0).mutableFactors("seasoning|salt");
@@ -34,7 +34,7 @@ TEST(Profile, RoundTripKeepsEveryLabel) {
 }
 
 TEST(Profile, CorruptFilesGiveErrorsWithTheirPath) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok());
   model::UserModel user(lp->graph());
   user.generator(0).mutableFactors("seasoning|salt")[0].observe(30, true);
@@ -120,7 +120,7 @@ TEST(Profile, BulkIntervalFitEqualsPointByPoint) {
 }
 
 TEST(Profile, LoadingEqualsObservingPointByPoint) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok()) << lp->errors();
   model::UserModel direct(lp->graph());
   auto& f = direct.generator(0).mutableFactors("seasoning|salt");
@@ -137,7 +137,7 @@ TEST(Profile, LoadingEqualsObservingPointByPoint) {
 }
 
 TEST(Profile, FactorKindsMustBeTheProgramsDeclaration) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok()) << lp->errors();
   model::UserModel user(lp->graph());
   user.generator(0).mutableFactors("seasoning|salt")[0].observe(30, true);
@@ -158,7 +158,7 @@ TEST(Profile, FactorKindsMustBeTheProgramsDeclaration) {
 }
 
 TEST(Profile, ModelKeysMustHaveTheGeneratorsShape) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok()) << lp->errors();
   model::UserModel user(lp->graph());
   const std::string ok = R"({"kind": "interval", "data": []})";

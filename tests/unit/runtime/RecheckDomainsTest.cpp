@@ -30,7 +30,7 @@ std::string caseName(const ::testing::TestParamInfo<Case>& param) {
 
 TEST_P(RecheckEverywhere, EveryExecutedPlanIsRecheckedAndNoneIsRefused) {
   const auto [file, kind] = GetParam();
-  auto lp = approach::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + file);
+  auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + file);
   ASSERT_TRUE(lp->ok()) << lp->errors();
   const std::string domain = lp->graph().domain;
   approach::ExperimentConfig c;

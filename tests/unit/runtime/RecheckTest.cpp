@@ -50,7 +50,7 @@ std::string randomProgram(rt::Rng& rng) {
 }
 
 // Solves every task of `lp` for `seeds` seeds; every Solved result must re-check. Returns the solved count.
-int solveAndRecheck(const approach::LoadedProgram& lp, int seeds, const std::string& label) {
+int solveAndRecheck(const app::LoadedProgram& lp, int seeds, const std::string& label) {
   model::UserModel user(lp.graph());
   std::vector<double> observation(lp.program().observationWidth(), 0.0);
   int solved = 0;
@@ -79,7 +79,7 @@ TEST(Recheck, EverySolvedRandomProgramRechecksTrue) {
   int solved = 0;
   for (int i = 0; i < 150; ++i) {
     const std::string text = randomProgram(rng);
-    auto lp = approach::LoadedProgram::fromSource("random.cbtl", text);
+    auto lp = app::LoadedProgram::fromSource("random.cbtl", text);
     ASSERT_TRUE(lp->ok()) << text << lp->errors();
     solved += solveAndRecheck(*lp, 3, text);
   }
@@ -90,7 +90,7 @@ TEST(Recheck, EverySolvedGoldenInputRechecksTrue) {
   int loaded = 0, solved = 0;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(CBTL_GOLDEN_DIR)) {
     if (entry.path().extension() != ".cbtl") continue;
-    auto lp = approach::LoadedProgram::load(entry.path().string());
+    auto lp = app::LoadedProgram::load(entry.path().string());
     if (!lp->ok()) continue;  // inputs with errors, or constructs this test does not execute
     ++loaded;
     solved += solveAndRecheck(*lp, 2, entry.path().string());

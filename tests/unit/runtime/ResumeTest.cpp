@@ -59,7 +59,7 @@ approach::ExperimentConfig config(const Variant& v, const std::string& out) {
 
 // A run in a fresh LoadedProgram, as a new process would load it (its interned texts start afresh).
 approach::ExperimentResult runFresh(approach::ExperimentConfig c) {
-  auto lp = approach::LoadedProgram::load(test::cookingPath());
+  auto lp = app::LoadedProgram::load(test::cookingPath());
   if (!lp->ok()) throw std::runtime_error(lp->errors());
   return approach::runExperiment(*lp, cooking(), c);
 }

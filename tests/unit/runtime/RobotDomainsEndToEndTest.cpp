@@ -25,7 +25,7 @@ struct RequestLog {
 };
 
 // Runs `requests` requests with exploration CSPs (hard constraints + entropy) and learning.
-std::vector<RequestLog> runRequests(approach::LoadedProgram& lp, sim::DomainSimulator& world, int requests,
+std::vector<RequestLog> runRequests(app::LoadedProgram& lp, sim::DomainSimulator& world, int requests,
                                     model::UserModel& user) {
   solver::SolverOptions options;
   options.maxIters = 3000;
@@ -74,7 +74,7 @@ std::map<std::string, int> served(const std::vector<RequestLog>& log) {
 }
 
 TEST(RobotDomainsEndToEnd, FeedingServesEveryKindOfRequest) {
-  auto lp = approach::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/feeding/feeding.cbtl");
+  auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/feeding/feeding.cbtl");
   ASSERT_TRUE(lp->ok()) << lp->errors();
   auto world = domains::createSimulator("feeding", {}, 3);
   ASSERT_NE(world, nullptr);
@@ -95,7 +95,7 @@ TEST(RobotDomainsEndToEnd, FeedingServesEveryKindOfRequest) {
 // 1-6, seed 3's stowThenClean finds no solution within 3,000 iterations, seed 4's duster grasp has only
 // colliding IK solutions, seed 5's sweep of the bottom shelf touches the shelf's side).
 TEST(RobotDomainsEndToEnd, CleaningWipesASurface) {
-  auto lp = approach::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/cleaning/cleaning.cbtl");
+  auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/cleaning/cleaning.cbtl");
   ASSERT_TRUE(lp->ok()) << lp->errors();
   for (std::uint64_t seed : {1, 2, 6}) {
     auto world = domains::createSimulator("cleaning", {}, seed);
@@ -113,7 +113,7 @@ TEST(RobotDomainsEndToEnd, CleaningWipesASurface) {
 // seeds 1-6: the arm finds no path from `home` to the grasp configuration at the shelf, or the base cannot
 // reach the bed with the book held at `home`): each failure must come back as an explicit failed task.
 TEST(RobotDomainsEndToEnd, BooksSolvesAndReportsExecutionFailures) {
-  auto lp = approach::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/books/books.cbtl");
+  auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/books/books.cbtl");
   ASSERT_TRUE(lp->ok()) << lp->errors();
   for (std::uint64_t seed : {1, 3}) {
     auto world = domains::createSimulator("books", {}, seed);

@@ -12,7 +12,7 @@ using namespace cbtl;
 namespace {
 
 struct Tiny {
-  std::unique_ptr<approach::LoadedProgram> lp = test::compileOrFail("tiny.cbtl", test::kTinySource);
+  std::unique_ptr<app::LoadedProgram> lp = test::compileOrFail("tiny.cbtl", test::kTinySource);
   model::UserModel user{lp->graph()};
   Tiny() {
     // Learned: y <= theta with theta in [1, 3]; accepted (P >= 0.5) for y up to about 2.

@@ -3,7 +3,7 @@
 #include "tests/unit/runtime/TestPrograms.h"
 
 #include "runtime/core/Builtins.h"
-#include "runtime/bind/WorldBuiltins.h"
+#include "robot/bind/WorldBuiltins.h"
 
 #include <gtest/gtest.h>
 
@@ -48,7 +48,7 @@ rt::Builtins everyRegistry() {
 }
 
 // Evaluates constraint `i` of a program without variables.
-bool holds(const approach::LoadedProgram& lp, std::size_t i) {
+bool holds(const app::LoadedProgram& lp, std::size_t i) {
   const auto& program = lp.program();
   std::vector<double> x(program.assignmentWidth() + 1), frame(64), obs(program.observationWidth() + 1);
   rt::EvalContext ctx{x.data(), obs.data(), frame.data(), program.callContext()};

@@ -1,7 +1,7 @@
 // TestPrograms.h — small .cbtl programs the runtime tests compile in memory.
 #pragma once
 
-#include "runtime/approach/LoadedProgram.h"
+#include "app/LoadedProgram.h"
 
 #include <gtest/gtest.h>
 
@@ -29,8 +29,8 @@ personal smallY(v: real) {
 }
 )";
 
-inline std::unique_ptr<approach::LoadedProgram> compileOrFail(const std::string& name, const std::string& text) {
-  auto lp = approach::LoadedProgram::fromSource(name, text);
+inline std::unique_ptr<app::LoadedProgram> compileOrFail(const std::string& name, const std::string& text) {
+  auto lp = app::LoadedProgram::fromSource(name, text);
   EXPECT_TRUE(lp->ok()) << lp->errors();
   return lp;
 }

@@ -63,7 +63,7 @@ personal greetingLiked(g: text) {
 constexpr std::size_t kEnjoys = 0, kDrink = 1, kGreeting = 2;
 
 struct Shelf {
-  std::unique_ptr<approach::LoadedProgram> lp = test::compileOrFail("shelf.cbtl", kShelfSource);
+  std::unique_ptr<app::LoadedProgram> lp = test::compileOrFail("shelf.cbtl", kShelfSource);
 
   const rt::Program& program() const { return lp->program(); }
   const std::vector<rt::PersonalInstance>& instances() const { return lp->instances(0); }
@@ -404,7 +404,7 @@ TEST(TextFactor, BooksAndFeedingLoadAndTheirTextModelsWork) {
   for (const Domain d : {Domain{"/books/books.cbtl", "userEnjoysBook", "prideAndPrejudice"},
                          Domain{"/feeding/feeding.cbtl", "dipPreferred", "bbqSauce"}}) {
     const std::string path = std::string(CBTL_DOMAINS_DIR) + d.file;
-    auto lp = approach::LoadedProgram::load(path);
+    auto lp = app::LoadedProgram::load(path);
     ASSERT_TRUE(lp->ok()) << lp->errors();
     EXPECT_FALSE(lp->worldPath().empty());
 

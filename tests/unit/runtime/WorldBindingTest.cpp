@@ -1,14 +1,14 @@
 // The language's built-ins end to end: std.geometry's poses, text concatenation, observed-set domains and
-// observation-initialized domains, and the robot world bound through runtime/bind (kinematics, IK samplers,
+// observation-initialized domains, and the robot world bound through robot/bind (kinematics, IK samplers,
 // collision, occlusion, placement, motion-plan feasibility, scene queries) on the Feeding and home scenes.
 #include "tests/unit/runtime/TestPrograms.h"
 
 #include "runtime/solver/Csp.h"
 #include "runtime/solver/Solver.h"
 #include "runtime/model/UserModel.h"
-#include "runtime/bind/WorldBuiltins.h"
-#include "domains/robot/StandardGrasps.h"
-#include "runtime/world/WorldState.h"
+#include "robot/bind/WorldBuiltins.h"
+#include "robot/actions/StandardGrasps.h"
+#include "robot/world/WorldState.h"
 
 #include <gtest/gtest.h>
 
@@ -21,7 +21,7 @@ namespace {
 const std::string kDomains = CBTL_DOMAINS_DIR;
 
 // Evaluates every hard constraint of the program's first task on its initial assignment.
-std::vector<std::pair<std::string, bool>> checkAll(approach::LoadedProgram& lp, const std::vector<double>& obs = {}) {
+std::vector<std::pair<std::string, bool>> checkAll(app::LoadedProgram& lp, const std::vector<double>& obs = {}) {
   const auto& program = lp.program();
   std::vector<double> o = obs;
   o.resize(program.observationWidth() + 1, 0.0);
@@ -35,11 +35,11 @@ std::vector<std::pair<std::string, bool>> checkAll(approach::LoadedProgram& lp, 
   return out;
 }
 
-void expectAllHold(approach::LoadedProgram& lp, const std::vector<double>& obs = {}) {
+void expectAllHold(app::LoadedProgram& lp, const std::vector<double>& obs = {}) {
   for (const auto& [name, ok] : checkAll(lp, obs)) EXPECT_TRUE(ok) << name;
 }
 
-solver::SolveResult solveHard(approach::LoadedProgram& lp, std::size_t task, const std::vector<double>& obs,
+solver::SolveResult solveHard(app::LoadedProgram& lp, std::size_t task, const std::vector<double>& obs,
                               std::uint64_t seed = 1) {
   model::UserModel user(lp.graph());
   std::vector<double> o = obs;
@@ -194,7 +194,7 @@ sample q ~ ikSample(front);
 }
 
 TEST(WorldBuiltins, FeedingTasksSolveAgainstTheScene) {
-  auto lp = approach::LoadedProgram::load(kDomains + "/feeding/feeding.cbtl");
+  auto lp = app::LoadedProgram::load(kDomains + "/feeding/feeding.cbtl");
   ASSERT_TRUE(lp->ok()) << lp->errors();
   const auto& program = lp->program();
   std::vector<double> obs(program.observationWidth(), 0.0);
@@ -238,13 +238,13 @@ sample place ~ placementOn("shelf_layer_0", "book_0", 0.0);
 }
 
 TEST(WorldBuiltins, AMissingSceneIsALoadErrorNamingTheFile) {
-  auto lp = approach::LoadedProgram::fromSource("m.cbtl", "domain m;\nworld \"no/such/scene.xml\";\n");
+  auto lp = app::LoadedProgram::fromSource("m.cbtl", "domain m;\nworld \"no/such/scene.xml\";\n");
   ASSERT_FALSE(lp->ok());
   EXPECT_NE(lp->errors().find("no/such/scene.xml"), std::string::npos) << lp->errors();
 }
 
 TEST(WorldBuiltins, AWorldBuiltinWithoutASceneSaysWhatIsMissing) {
-  auto lp = approach::LoadedProgram::fromSource("n.cbtl", R"(domain n;
+  auto lp = app::LoadedProgram::fromSource("n.cbtl", R"(domain n;
 import std.kinova;
 var q : Conf<gen3>;
 require inLimits: withinJointLimits(q);
@@ -273,7 +273,7 @@ require plateMoved: distance(bodyPose("plate").position, vec3(0.36, 0.5, 0.1625)
 
 // std.collision's side grasp at yaw -pi/2 is the books' carry grasp the executor uses.
 TEST(WorldBuiltins, SideGraspIsTheBooksCarryGrasp) {
-  const world::Pose3 g = domains::robot::bookToolInBody();
+  const world::Pose3 g = actions::bookToolInBody();
   char expected[256];
   std::snprintf(expected, sizeof expected, "poseQuat(vec3(%.9f, %.9f, %.9f), %.9f, %.9f, %.9f, %.9f)", g.position.x(),
                 g.position.y(), g.position.z(), g.orientation.x(), g.orientation.y(), g.orientation.z(),

@@ -1,5 +1,5 @@
 // The built-ins the language binds: predicates, samplers and actions on the feeding and home scenes.
-#include "runtime/world/Builtins.h"
+#include "robot/world/WorldOperations.h"
 #include "tests/unit/world/WorldTestSupport.h"
 
 namespace cbtl::world {

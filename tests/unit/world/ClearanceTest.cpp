@@ -1,5 +1,5 @@
 // Placement and clearance checks with FCL.
-#include "runtime/world/Clearance.h"
+#include "robot/world/Clearance.h"
 #include "tests/unit/world/WorldTestSupport.h"
 
 namespace cbtl::world {

@@ -1,6 +1,6 @@
 // Known colliding and free states of the arm, its held object and the mobile base.
-#include "runtime/world/Collision.h"
-#include "runtime/world/InverseKinematics.h"
+#include "robot/world/Collision.h"
+#include "robot/world/InverseKinematics.h"
 #include "tests/unit/world/WorldTestSupport.h"
 
 namespace cbtl::world {

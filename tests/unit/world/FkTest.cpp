@@ -1,5 +1,5 @@
 // Forward kinematics of the Gen3 model against the published test vectors (tool_frame, 1 mm).
-#include "runtime/world/Workspace.h"
+#include "robot/world/Workspace.h"
 
 #include <gtest/gtest.h>
 

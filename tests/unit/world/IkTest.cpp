@@ -1,5 +1,5 @@
 // Inverse kinematics: round trips from forward kinematics, and honest failure for unreachable targets.
-#include "runtime/world/InverseKinematics.h"
+#include "robot/world/InverseKinematics.h"
 #include "tests/unit/world/WorldTestSupport.h"
 
 namespace cbtl::world {

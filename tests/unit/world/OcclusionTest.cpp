@@ -1,7 +1,7 @@
 // Occlusion of the user's view: high with the arm in front of the eyes, zero with the arm retracted.
-#include "runtime/world/Collision.h"
-#include "runtime/world/InverseKinematics.h"
-#include "runtime/world/Occlusion.h"
+#include "robot/world/Collision.h"
+#include "robot/world/InverseKinematics.h"
+#include "robot/world/Occlusion.h"
 #include "tests/unit/world/WorldTestSupport.h"
 
 namespace cbtl::world {

@@ -1,7 +1,7 @@
 // Motion planning: solved paths are re-checked at a finer resolution than the planner used; statuses for
 // invalid endpoints; the SE(2) base planner; determinism.
-#include "runtime/world/InverseKinematics.h"
-#include "runtime/world/MotionPlanner.h"
+#include "robot/world/InverseKinematics.h"
+#include "robot/world/MotionPlanner.h"
 #include "tests/unit/world/WorldTestSupport.h"
 
 namespace cbtl::world {

@@ -1,5 +1,5 @@
 // The PNG encoder: checksums against known values and a well-formed file layout.
-#include "runtime/world/PngWriter.h"
+#include "robot/world/PngWriter.h"
 
 #include <gtest/gtest.h>
 

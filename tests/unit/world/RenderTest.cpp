@@ -1,7 +1,7 @@
 // Offscreen rendering produces a non-empty image of the arm. Without EGL the whole executable exits with 77
 // (CTest's SKIP_RETURN_CODE) instead of failing.
-#include "runtime/world/PngWriter.h"
-#include "runtime/world/Renderer.h"
+#include "robot/world/PngWriter.h"
+#include "robot/world/Renderer.h"
 #include "tests/unit/world/WorldTestSupport.h"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // Scene loading: good scenes load, bad or missing files give a clear error instead of a crash.
-#include "runtime/world/MujocoErrors.h"
-#include "runtime/world/NamedConfigurations.h"
-#include "runtime/world/WorldState.h"
+#include "robot/world/MujocoErrors.h"
+#include "robot/world/NamedConfigurations.h"
+#include "robot/world/WorldState.h"
 #include "tests/unit/world/WorldTestSupport.h"
 
 #include <filesystem>

@@ -1,5 +1,5 @@
 // JSON world states for `cbtl render --state`.
-#include "runtime/world/StateJson.h"
+#include "robot/world/StateJson.h"
 #include "tests/unit/world/WorldTestSupport.h"
 
 namespace cbtl::world {

@@ -1,7 +1,7 @@
 // One shared Scene, one Workspace per thread: concurrent planning and IK give the same answers as serial
 // runs with the same seeds.
-#include "runtime/world/InverseKinematics.h"
-#include "runtime/world/MotionPlanner.h"
+#include "robot/world/InverseKinematics.h"
+#include "robot/world/MotionPlanner.h"
 #include "tests/unit/world/WorldTestSupport.h"
 
 #include <thread>

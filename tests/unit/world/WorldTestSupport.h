@@ -1,7 +1,7 @@
 // Shared helpers for the robot-world tests: scenes are found through CBTL_DOMAINS_DIR (set by CMake).
 #pragma once
 
-#include "runtime/world/Scene.h"
+#include "robot/world/Scene.h"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,34 @@
+// HomeEpisode.h — building blocks of an episode's start in the home scene, shared by Cleaning and Books.
+//
+// Every episode starts from the same room: the base at the origin (yaw 0), the arm at the reference's
+// initial configuration (configs::kHomeSceneInitial), the gripper open, the duster on the main table where
+// home.xml puts it, and every book parked outside the room (HomeScene.h parkedPose(k) for book_k); the
+// domain then puts books on surfaces and may put an object in the robot's hand.
+// Random draws use std::uniform_*_distribution over world::Rng (one platform's results are reproducible).
+#pragma once
+
+#include "robot/world/WorldOperations.h"
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace cbtl::domains::home {
+
+inline constexpr std::size_t kBookCount = 9;  // book_0 .. book_8
+std::string bookBody(std::size_t k);          // "book_k"
+
+// The room above. `scenePoses` are the movable objects' poses as home.xml puts them (a fresh Workspace's
+// state().objects).
+world::WorldState emptyRoom(const std::map<std::string, world::Pose3>& scenePoses);
+
+// Puts `object` in the robot's hand in `state`: arm at configs::kHome, gripper closed, grasped with the
+// duster's standard grasp or, for any other object, the book carry grasp (StandardGrasps.h).
+void holdAtHome(world::WorldState& state, const std::string& object);
+
+std::size_t uniformIndex(world::Rng& rng, std::size_t n);  // uniform in [0, n); n > 0
+double uniform01(world::Rng& rng);                         // uniform in [0, 1)
+std::vector<std::size_t> shuffledIndices(world::Rng& rng, std::size_t n);  // a uniform permutation of 0..n-1
+
+}  // namespace cbtl::domains::home

@@ -1,0 +1,305 @@
+#include "robot/actions/RobotActions.h"
+
+#include "robot/world/NamedConfigurations.h"
+
+#include "robot/actions/CallArguments.h"
+#include "robot/actions/StandardGrasps.h"
+#include "robot/actions/SurfaceGeometry.h"
+#include "robot/actions/WipeSweep.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace cbtl::actions {
+
+using world::builtins::ActionResult;
+using world::builtins::ActionStatus;
+
+namespace {
+
+RobotActionResult illFormed(std::string message) {
+  RobotActionResult r;
+  r.wellFormed = false;
+  r.status = ActionStatus::InvalidArgument;
+  r.detail = std::move(message);
+  r.steps = 0;
+  return r;
+}
+
+RobotActionResult failed(ActionStatus s, std::string detail) {
+  RobotActionResult r;
+  r.status = s;
+  r.detail = std::move(detail);
+  return r;
+}
+
+RobotActionResult from(ActionResult a) {
+  RobotActionResult r;
+  r.status = a.status;
+  r.detail = std::move(a.detail);
+  r.armPath = std::move(a.armPath);
+  r.basePath = std::move(a.basePath);
+  return r;
+}
+
+// Puts the World back as it was unless the action commits (multi-stage actions: grasp, release, place).
+class Restore {
+ public:
+  explicit Restore(world::World& w) : w_(w), saved_(w.workspace().state()) {}
+  ~Restore() {
+    if (!committed_) w_.workspace().setState(saved_);
+  }
+  Restore(const Restore&) = delete;
+  Restore& operator=(const Restore&) = delete;
+  void commit() { committed_ = true; }
+
+ private:
+  world::World& w_;
+  world::WorldState saved_;
+  bool committed_ = false;
+};
+
+bool posesClose(const world::Pose3& a, const world::Pose3& b, double position, double angle) {
+  return (a.position - b.position).norm() <= position && world::rotationDistance(a.orientation, b.orientation) <= angle;
+}
+
+// Moves the tool to `target` from the current joints: IK seeded there (so the arm stays in its branch),
+// then the builtin joint move (straight segment first).
+ActionResult moveToolNear(world::World& w, const world::Pose3& target, world::Rng& rng) {
+  world::Workspace& ws = w.workspace();
+  const world::ArmConfig start = ws.state().arm;
+  const world::IkResult ik = world::solveIk(ws, target, start, rng, w.ik);
+  ws.setArm(start);
+  if (!ik.solved()) {
+    ActionResult r;
+    r.status = ActionStatus::NoIk;
+    r.detail = world::toString(ik.status);
+    return r;
+  }
+  return world::builtins::moveArm(w, ik.q, rng);
+}
+
+// The standard action names, sorted (names()).
+const std::vector<std::string> kNames = [] {
+  std::vector<std::string> n{"moveArm", "moveTool", "moveArmToNamed", "moveBase", "grasp", "closeGripper",
+                             "release", "place", "movePlate", "moveDrink", "handOver", "wipe", "say",
+                             "waitForUser", "wait"};
+  std::sort(n.begin(), n.end());
+  return n;
+}();
+
+}  // namespace
+
+sim::ActionStatus RobotActionResult::simStatus() const {
+  if (!wellFormed) return sim::ActionStatus::UnknownAction;
+  return done() ? sim::ActionStatus::Applied : sim::ActionStatus::Ignored;
+}
+
+sim::StepResult RobotActionResult::toStepResult(const std::string& action) const {
+  sim::StepResult s;
+  s.status = simStatus();
+  s.consumedStep = consumedStep();
+  if (!wellFormed) {
+    s.message = detail;
+  } else if (!done()) {
+    s.message = action + ": " + world::builtins::toString(status) + (detail.empty() ? "" : ": " + detail);
+  } else {
+    s.message = detail;
+  }
+  return s;
+}
+
+RobotActions::RobotActions(ActionConfigurations named) : named_(std::move(named)) {}
+
+const std::vector<std::string>& RobotActions::names() { return kNames; }
+
+bool RobotActions::isStandard(std::string_view name) {
+  return std::binary_search(kNames.begin(), kNames.end(), name);
+}
+
+std::optional<RobotActionResult> RobotActions::execute(world::World& w, const sim::ActionCall& call,
+                                                       world::Rng& rng) const {
+  const std::string& n = call.name;
+  if (!isStandard(n)) return std::nullopt;
+  const std::vector<sim::Value>& a = call.args;
+
+  if (n == "moveArm") {
+    if (auto e = checkArguments(call, {kConfArg}); !e.empty()) return illFormed(e);
+    const auto q = decodeConf(a[0].vector);
+    if (!q) return failed(ActionStatus::InvalidArgument, "moveArm: a joint angle is not finite");
+    return from(world::builtins::moveArm(w, *q, rng));
+  }
+  if (n == "moveTool") {
+    if (auto e = checkArguments(call, {kSe3Arg}); !e.empty()) return illFormed(e);
+    const auto tool = decodePose3(a[0].vector);
+    if (!tool) return failed(ActionStatus::InvalidArgument, "moveTool: the pose is not finite or its quaternion is zero");
+    return from(moveToolNear(w, *tool, rng));
+  }
+  if (n == "moveArmToNamed") {
+    if (auto e = checkArguments(call, {kNameArg}); !e.empty()) return illFormed(e);
+    // The scene's own names first, as std.kinova's namedConf reads them (world/ActionConfigurations.h).
+    auto q = world::namedConfiguration(w.workspace().scene(), a[0].text);
+    if (!q) q = named_.find(a[0].text);
+    if (!q) {
+      std::string known;
+      for (const std::string& name : named_.names()) known += (known.empty() ? "" : ", ") + name;
+      return failed(ActionStatus::InvalidArgument,
+                    fmt::format("no named configuration '{}' (known: {})", a[0].text, known));
+    }
+    return from(world::builtins::moveArm(w, *q, rng));
+  }
+  if (n == "moveBase") {
+    if (auto e = checkArguments(call, {kSe2Arg}); !e.empty()) return illFormed(e);
+    const auto pose = decodePose2(a[0].vector);
+    if (!pose) return failed(ActionStatus::InvalidArgument, "moveBase: the pose is not finite");
+    return from(world::builtins::moveBase(w, *pose, rng));
+  }
+  if (n == "grasp") {
+    if (auto e = checkArguments(call, {kNameArg}); !e.empty()) return illFormed(e);
+    return grasp(w, a[0].text, rng);
+  }
+  if (n == "closeGripper") {
+    if (auto e = checkArguments(call, {kNumberArg}); !e.empty()) return illFormed(e);
+    const double closure = a[0].number;
+    if (!(closure >= 0 && closure <= 1)) {
+      return failed(ActionStatus::InvalidArgument, fmt::format("closeGripper: closure {} is outside [0, 1]", closure));
+    }
+    world::WorldState st = w.workspace().state();
+    st.gripper = 1.0 - closure;
+    w.workspace().setState(st);
+    return RobotActionResult{};
+  }
+  if (n == "release") {
+    if (auto e = checkArguments(call, {}); !e.empty()) return illFormed(e);
+    return release(w);
+  }
+  if (n == "place") {
+    if (auto e = checkArguments(call, {kNameArg, kSe3Arg}); !e.empty()) return illFormed(e);
+    const auto pose = decodePose3(a[1].vector);
+    if (!pose) return failed(ActionStatus::InvalidArgument, "place: the pose is not finite or its quaternion is zero");
+    return place(w, a[0].text, *pose, rng);
+  }
+  if (n == "movePlate" || n == "moveDrink") {
+    if (auto e = checkArguments(call, {kVec2Arg}); !e.empty()) return illFormed(e);
+    const double x = a[0].vector[0], y = a[0].vector[1];
+    if (!std::isfinite(x) || !std::isfinite(y)) return failed(ActionStatus::InvalidArgument, n + ": the position is not finite");
+    return from(n == "movePlate" ? world::builtins::movePlate(w, x, y) : world::builtins::moveDrink(w, x, y));
+  }
+  if (n == "handOver") {
+    if (auto e = checkArguments(call, {}); !e.empty()) return illFormed(e);
+    if (w.workspace().heldObject() < 0) return failed(ActionStatus::NotHolding, "nothing to hand over");
+    return from(world::builtins::say(w, "Here you go!"));
+  }
+  if (n == "wipe") {
+    if (auto e = checkArguments(call, {kNameArg, kSe2Arg}); !e.empty()) return illFormed(e);
+    const auto base = decodePose2(a[1].vector);
+    if (!base) return failed(ActionStatus::InvalidArgument, "wipe: the base pose is not finite");
+    return from(sweepSurface(w, a[0].text, *base, rng));
+  }
+  if (n == "say") {
+    if (auto e = checkArguments(call, {kNameArg}); !e.empty()) return illFormed(e);
+    return from(world::builtins::say(w, a[0].text));
+  }
+  if (n == "waitForUser") {
+    if (auto e = checkArguments(call, {kNameArg}); !e.empty()) return illFormed(e);
+    return RobotActionResult{};
+  }
+  // wait(n)
+  if (auto e = checkArguments(call, {kNumberArg}); !e.empty()) return illFormed(e);
+  const double count = a[0].number;
+  if (!(count >= 0) || count != std::floor(count) || count > 1e6) {
+    return failed(ActionStatus::InvalidArgument, fmt::format("wait: {} is not a whole number of steps", count));
+  }
+  RobotActionResult r;
+  r.steps = static_cast<int>(count);
+  return r;
+}
+
+RobotActionResult RobotActions::grasp(world::World& w, const std::string& body, world::Rng& rng) const {
+  world::Workspace& ws = w.workspace();
+  if (ws.heldObject() >= 0) return failed(ActionStatus::AlreadyHolding, ws.state().held->object);
+  if (!ws.objectPose(body)) return failed(ActionStatus::InvalidArgument, fmt::format("no movable object '{}'", body));
+  Restore restore(w);
+  RobotActionResult r;
+  double reach = 0.15;  // builtins::grasp's default: the body's origin near the finger tip
+  if (const auto approach = standardGraspTool(w, body)) {
+    if (!posesClose(ws.toolPose(), *approach, 0.01, 0.1)) {
+      ActionResult moved = moveToolNear(w, *approach, rng);
+      if (!moved.done()) return failed(moved.status, "approaching the grasp of " + body + ": " + moved.detail);
+      r.armPath = std::move(moved.armPath);
+    }
+    reach = 1.0;  // the grasp point is the standard one, not the body's origin
+  }
+  ActionResult attach = world::builtins::grasp(w, body, reach);
+  if (!attach.done()) return failed(attach.status, attach.detail);
+  world::Pose3 lifted = ws.toolPose();
+  lifted.position.z() += kLift;
+  ActionResult lift = moveToolNear(w, lifted, rng);
+  if (!lift.done()) return failed(lift.status, "lifting " + body + ": " + lift.detail);
+  r.armPath.insert(r.armPath.end(), lift.armPath.begin(), lift.armPath.end());
+  restore.commit();
+  return r;
+}
+
+RobotActionResult RobotActions::release(world::World& w) const {
+  world::Workspace& ws = w.workspace();
+  if (ws.heldObject() < 0) return failed(ActionStatus::NotHolding, "");
+  const std::string body = ws.state().held->object;
+  const world::Pose3 pose = *ws.objectPose(body);
+  const auto extent = objectExtent(w, body, pose);
+  // The highest surface under the body within the drop height catches it.
+  std::optional<SurfaceFace> landing;
+  for (const std::string& s : restingSurfaces(ws.scene())) {
+    const auto face = surfaceFace(ws, s);
+    const double gap = extent->bottom() - face->top();
+    if (gap < -kRestBelow || gap > kDropHeight) continue;
+    if (!face->containsXY(extent->center.x(), extent->center.y())) continue;
+    if (!landing || face->top() > landing->top()) landing = face;
+  }
+  if (!landing) return failed(ActionStatus::Blocked, fmt::format("{} would not land on a surface", body));
+  Restore restore(w);
+  world::builtins::release(w);
+  ws.setObjectPose(body, settledOn(*extent, pose, *landing));
+  restore.commit();
+  return RobotActionResult{};
+}
+
+RobotActionResult RobotActions::place(world::World& w, const std::string& surface, const world::Pose3& pose,
+                                      world::Rng& rng) const {
+  world::Workspace& ws = w.workspace();
+  if (ws.heldObject() < 0 || !ws.state().held) return failed(ActionStatus::NotHolding, "nothing to place");
+  const world::Grasp held = *ws.state().held;
+  const auto face = surfaceFace(ws, surface);
+  if (!face) return failed(ActionStatus::InvalidArgument, fmt::format("no box surface '{}'", surface));
+  if (!restsOn(w, held.object, pose, surface)) {
+    return failed(ActionStatus::InvalidArgument, fmt::format("{} at the requested pose does not rest on {}", held.object, surface));
+  }
+  const world::Pose3 settled = settledOn(*objectExtent(w, held.object, pose), pose, *face);
+  world::PlacementOptions clear;
+  clear.clearance = 0.0;
+  const world::PlacementReport rep = w.clearance().checkPlacement(ws, held.object, settled, clear);
+  if (!rep.ok()) {
+    return failed(ActionStatus::Blocked, fmt::format("{} would touch {} ({})", held.object, rep.other, world::toString(rep.status)));
+  }
+  Restore restore(w);
+  RobotActionResult r;
+  const world::Pose3 tool = pose * held.toolToObject.inverse();
+  if (!posesClose(ws.toolPose(), tool, 1e-3, 0.01)) {
+    ActionResult moved = moveToolNear(w, tool, rng);
+    if (!moved.done()) return failed(moved.status, "carrying " + held.object + ": " + moved.detail);
+    r.armPath = std::move(moved.armPath);
+  }
+  world::builtins::release(w);
+  ws.setObjectPose(held.object, settled);
+  const world::Pose3 here = ws.toolPose();
+  const world::Pose3 back{here.position - kRetract * (here.orientation * Eigen::Vector3d::UnitZ()), here.orientation};
+  ActionResult retract = moveToolNear(w, back, rng);
+  if (!retract.done()) return failed(retract.status, "retracting from " + held.object + ": " + retract.detail);
+  r.armPath.insert(r.armPath.end(), retract.armPath.begin(), retract.armPath.end());
+  restore.commit();
+  return r;
+}
+
+}  // namespace cbtl::actions

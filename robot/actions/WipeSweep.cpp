@@ -1,0 +1,108 @@
+#include "robot/actions/WipeSweep.h"
+
+#include "robot/actions/SurfaceGeometry.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace cbtl::actions {
+
+using world::builtins::ActionResult;
+using world::builtins::ActionStatus;
+
+namespace {
+
+ActionResult fail(ActionStatus s, std::string detail) {
+  ActionResult r;
+  r.status = s;
+  r.detail = std::move(detail);
+  return r;
+}
+
+bool sameBase(const world::Pose2& a, const world::Pose2& b) {
+  return std::abs(a.x - b.x) <= 1e-3 && std::abs(a.y - b.y) <= 1e-3 && std::abs(world::angleDiff(a.yaw, b.yaw)) <= 1e-3;
+}
+
+// The object-origin waypoints (x, y) of the boustrophedon over `face`, starting near `start`.
+std::vector<Eigen::Vector2d> strokeWaypoints(const SurfaceFace& face, const Eigen::Vector2d& start) {
+  const bool alongX = face.halfX >= face.halfY;
+  const double halfLength = alongX ? face.halfX : face.halfY;
+  const double width = 2 * (alongX ? face.halfY : face.halfX);
+  const int strokes = std::max(1, static_cast<int>(std::ceil(width / kStrokeSpacing - 1e-9)));
+  const Eigen::Vector2d centre(face.center.x(), face.center.y());
+  const double startAlong = alongX ? start.x() - centre.x() : start.y() - centre.y();
+  const double startAcross = alongX ? start.y() - centre.y() : start.x() - centre.x();
+  const auto across = [&](int k) { return -width / 2 + width * (k + 0.5) / strokes; };
+  // Begin with the outer stroke nearer to the start, and at the stroke end nearer to it.
+  const bool reverse = std::abs(across(strokes - 1) - startAcross) < std::abs(across(0) - startAcross);
+  const double reach = halfLength * kStrokeCoverage;
+  double along = startAlong <= 0 ? -reach : reach;
+  std::vector<Eigen::Vector2d> out;
+  for (int i = 0; i < strokes; ++i) {
+    const double a = across(reverse ? strokes - 1 - i : i);
+    for (int end = 0; end < 2; ++end) {
+      out.push_back(alongX ? centre + Eigen::Vector2d(along, a) : centre + Eigen::Vector2d(a, along));
+      if (end == 0) along = -along;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+ActionResult sweepSurface(world::World& w, const std::string& surface, const world::Pose2& base, world::Rng& rng) {
+  world::Workspace& ws = w.workspace();
+  if (ws.heldObject() < 0 || !ws.state().held) return fail(ActionStatus::NotHolding, "wiping needs a held duster");
+  const auto face = surfaceFace(ws, surface);
+  if (!face) return fail(ActionStatus::InvalidArgument, fmt::format("no box surface '{}'", surface));
+  const world::WorldState saved = ws.state();
+  const std::string held = saved.held->object;
+
+  ActionResult r;
+  if (!sameBase(ws.state().base, base)) {
+    ActionResult toBase = world::builtins::moveBase(w, base, rng);
+    if (!toBase.done()) return fail(toBase.status, "reaching the wipe base: " + toBase.detail);
+    r.basePath = std::move(toBase.basePath);
+  }
+  // Where the held object is, relative to the face.
+  const world::Pose3 start = *ws.objectPose(held);
+  const auto extent = objectExtent(w, held, start);
+  const double gap = extent->bottom() - face->top();
+  if (gap < -kContactBelow || gap > kContactAbove || !face->containsXY(start.position.x(), start.position.y(), kContactReach)) {
+    ws.setState(saved);
+    return fail(ActionStatus::OutOfReach,
+                fmt::format("{} is not on {} (bottom {:+.3f} m from the face, at ({:.3f}, {:.3f}))", held, surface, gap,
+                            start.position.x(), start.position.y()));
+  }
+  const Eigen::Vector2d s(start.position.x(), start.position.y());
+  std::vector<Eigen::Vector2d> targets = strokeWaypoints(*face, s);
+  targets.push_back(s);  // back to where the sweep began, i.e. the base back at `base`
+
+  world::CollisionOptions contact = w.planning.collision;
+  contact.tolerance = std::max(contact.tolerance, kSweepPenetration);
+  Eigen::Vector2d from = s;
+  for (const Eigen::Vector2d& to : targets) {
+    const double length = (to - from).norm();
+    const int n = std::max(1, static_cast<int>(std::ceil(length / kSweepResolution)));
+    for (int i = 1; i <= n; ++i) {
+      const Eigen::Vector2d o = from + (to - from) * (static_cast<double>(i) / n) - s;
+      ws.setBase(world::Pose2{base.x + o.x(), base.y + o.y(), base.yaw});
+      const world::CollisionReport c = world::checkRobotCollisions(ws, contact);
+      if (!c.free()) {
+        ws.setState(saved);
+        return fail(ActionStatus::NoPath, fmt::format("the sweep over {} collides: {} ({}) with {}, {:.4f} m deep",
+                                                      surface, c.first, world::toString(c.status), c.second, c.depth));
+      }
+    }
+    r.basePath.push_back(ws.state().base);
+    from = to;
+  }
+  ws.setBase(base);
+  return r;
+}
+
+}  // namespace cbtl::actions

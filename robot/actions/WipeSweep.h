@@ -1,0 +1,44 @@
+// WipeSweep.h — std.actions' wipe(surface, base): sweeping the held duster over a surface by moving the
+// mobile base with the arm fixed (the reference's wiping motion), and the pre-wipe pose a sweep starts from.
+//
+// Pre-wipe pose: world/PreWipe.h preWipeToolPose.
+//
+// Sweep (sweepSurface), given the robot holds an object whose bottom lies within [-kContactBelow,
+// +kContactAbove] of the face top and whose origin lies over the face grown by kContactReach:
+//   1. if the base is not at `base` (1 mm / 1 mrad), plan the base there (arm fixed);
+//   2. strokes along the face's longer side, ceil(width / kStrokeSpacing) of them evenly spread across the
+//      shorter side, each covering kStrokeCoverage of the length; boustrophedon order starting with the
+//      stroke and end nearest to the object's start position; the object's height never changes;
+//   3. the base translates by the same offsets as the object (yaw kept) and finally returns to `base`;
+//      every straight base segment is checked at kSweepResolution for collisions of the robot and the held
+//      object, tolerating kSweepPenetration of contact (the duster is meant to touch the surface, and the
+//      pre-wipe pose is only accurate to the CSP's 1 mm / 0.01 rad).
+// Failures (the world is left as it was): NotHolding; InvalidArgument (no box surface of that name);
+// OutOfReach (the held object is not on the surface); NoPath (base planning to `base`, or a sweep segment
+// collides: the detail names the geoms).
+#pragma once
+
+#include "robot/world/WorldOperations.h"
+#include "robot/world/PreWipe.h"
+
+#include <optional>
+#include <string>
+
+namespace cbtl::actions {
+
+inline constexpr double kStrokeSpacing = 0.15;     // metres between strokes (the duster head's length)
+inline constexpr double kStrokeCoverage = 0.8;     // share of the face length a stroke covers
+inline constexpr double kSweepResolution = 0.01;   // metres between collision checks along the base path
+inline constexpr double kSweepPenetration = 0.005; // metres of contact tolerated during the sweep
+inline constexpr double kContactBelow = 0.01;      // the held object's bottom may be this far into the face...
+inline constexpr double kContactAbove = 0.03;      // ...or this far above it
+inline constexpr double kContactReach = 0.1;       // its origin may lie this far outside the face (x, y)
+
+// The pre-wipe pose lives in the world library (world/PreWipe.h), where std.collision's wipeStartPose reads it.
+using world::preWipeToolPose;
+
+// The sweep described above. `rng` is used only to plan the base to `base`.
+world::builtins::ActionResult sweepSurface(world::World& w, const std::string& surface, const world::Pose2& base,
+                                           world::Rng& rng);
+
+}  // namespace cbtl::actions

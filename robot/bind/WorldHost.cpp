@@ -1,0 +1,145 @@
+#include "robot/bind/WorldHost.h"
+
+#include "robot/world/NamedConfigurations.h"
+
+#include <mujoco/mujoco.h>
+
+#include <cmath>
+#include <cstring>
+
+namespace cbtl::bind {
+
+using world::ArmConfig;
+using world::Pose2;
+using world::Pose3;
+
+WorldHost::WorldHost(std::shared_ptr<const world::Scene> scene) : world_(std::move(scene)) {
+  reference_ = world_.workspace().state();
+  reference_.arm = world::configs::kRetract;
+  world_.workspace().setState(reference_);
+  dirty_ = false;
+}
+
+bool WorldHost::setReference(const world::WorldState& state) {
+  if (world_.workspace().setState(state) != world::StateStatus::Ok) {
+    dirty_ = true;
+    return false;
+  }
+  reference_ = world_.workspace().state();
+  dirty_ = false;
+  return true;
+}
+
+bool WorldHost::pose(const Pose2& base, const ArmConfig& q, const std::string* held) {
+  world::Workspace& ws = world_.workspace();
+  for (double v : q)
+    if (!std::isfinite(v)) return false;
+  if (!ws.scene().withinLimits(q)) return false;
+  const bool swapGrasp = held != nullptr && !held->empty() && (!reference_.held || reference_.held->object != *held);
+  if (swapGrasp) {
+    const auto grasp = nominalGrasp(*held);
+    if (!grasp) return false;
+    world::WorldState s = reference_;
+    s.arm = q;
+    s.base = base;
+    s.held = world::Grasp{*held, *grasp};
+    if (ws.setState(s) != world::StateStatus::Ok) return false;
+    dirty_ = true;
+    return true;
+  }
+  if (dirty_) {
+    world::WorldState s = reference_;
+    s.arm = q;
+    s.base = base;
+    if (ws.setState(s) != world::StateStatus::Ok) return false;
+    dirty_ = false;
+    return true;
+  }
+  ws.setBase(base);
+  ws.setArm(q);
+  return true;
+}
+
+bool WorldHost::moveObject(const std::string& object, const Pose3& pose) {
+  if (world_.workspace().scene().objectIndex(object) < 0) return false;
+  dirty_ = true;
+  return world_.workspace().setObjectPose(object, pose) == world::StateStatus::Ok;
+}
+
+std::optional<Pose3> WorldHost::nominalGrasp(const std::string& object) {
+  if (reference_.held && reference_.held->object == object) return reference_.held->toolToObject;
+  const world::Scene& s = scene();
+  if (s.objectIndex(object) < 0) return std::nullopt;
+  const auto objectPose = [&]() -> std::optional<Pose3> {
+    auto it = reference_.objects.find(object);
+    if (it != reference_.objects.end()) return it->second;
+    return world_.workspace().objectPose(object);
+  }();
+  if (!objectPose) return std::nullopt;
+  if (const int site = s.siteId(object + "_tool"); site >= 0) {
+    if (dirty_) pose(reference_.base, reference_.arm);
+    const Pose3 tool = world_.workspace().sitePose(site);
+    return tool.inverse() * *objectPose;
+  }
+  const auto tool = sideGrasp(object, *objectPose, -M_PI / 2);
+  if (!tool) return std::nullopt;
+  return tool->inverse() * *objectPose;
+}
+
+std::optional<Pose3> WorldHost::sideGrasp(const std::string& object, const Pose3& objectPose, double yaw) {
+  const auto box = world_.clearance().objectBox(object);
+  if (!box) return std::nullopt;
+  // In the object's frame: a quarter turn about x puts the tool z along the object's +y (tool x = object x,
+  // tool y = object -z); yaw + pi/2 about the object's z then turns the approach.
+  const Eigen::Quaterniond inBody = Eigen::AngleAxisd(yaw + M_PI / 2, Eigen::Vector3d::UnitZ()) *
+                                    Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX());
+  const Eigen::Vector3d approach = inBody * Eigen::Vector3d::UnitZ();
+  const Pose3 toolInBody{box->center - kSideGraspDepth * approach, inBody};
+  return objectPose * toolInBody;
+}
+
+std::optional<ArmConfig> WorldHost::namedConf(const std::string& name) const {
+  return world::namedConfiguration(scene(), name);
+}
+
+std::optional<world::SurfaceFace> WorldHost::surfaceTop(const std::string& geom) const {
+  // Scenery never moves, so the face is the same in every state.
+  return world::surfaceFace(world_.workspace(), geom);
+}
+
+std::optional<WorldHost::Footprint> WorldHost::footprint(const std::string& object, const Pose3& pose) const {
+  const auto box = world_.clearance().objectBox(object);
+  if (!box) return std::nullopt;
+  const Eigen::Matrix3d r = pose.orientation.toRotationMatrix();
+  const Eigen::Vector3d c = pose.transformPoint(box->center);
+  double h[3];
+  for (int row = 0; row < 3; ++row)
+    h[row] = std::abs(r(row, 0)) * box->halfExtents.x() + std::abs(r(row, 1)) * box->halfExtents.y() +
+             std::abs(r(row, 2)) * box->halfExtents.z();
+  return Footprint{c.z() - h[2], c.x(), c.y(), h[0], h[1]};
+}
+
+std::string WorldHost::supportSurface(const std::string& object) {
+  auto it = reference_.objects.find(object);
+  std::optional<Pose3> p;
+  if (it != reference_.objects.end()) p = it->second;
+  else p = world_.workspace().objectPose(object);
+  if (!p) return {};
+  const auto fp = footprint(object, *p);
+  if (!fp) return {};
+  const mjModel* m = world_.workspace().model();
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->geom_type[g] != mjGEOM_BOX) continue;
+    if (scene().bodyKind(m->geom_bodyid[g]) != world::BodyKind::Scenery) continue;
+    const std::string name = scene().geomName(g);
+    if (name.empty()) continue;
+    const auto top = surfaceTop(name);
+    if (!top) continue;
+    if (std::abs(fp->bottom - top->center.z()) > 0.01) continue;
+    if (std::abs(fp->centerX - top->center.x()) > top->halfX || std::abs(fp->centerY - top->center.y()) > top->halfY) continue;
+    return name;
+  }
+  return {};
+}
+
+}  // namespace cbtl::bind

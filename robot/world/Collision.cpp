@@ -1,0 +1,117 @@
+#include "robot/world/Collision.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace cbtl::world {
+
+const char* toString(CollisionStatus s) {
+  switch (s) {
+    case CollisionStatus::Free: return "free";
+    case CollisionStatus::RobotWorld: return "robot collides with the world";
+    case CollisionStatus::SelfCollision: return "self-collision";
+    case CollisionStatus::HeldObject: return "held object collides";
+  }
+  return "unknown";
+}
+
+namespace {
+
+bool isRobot(BodyKind k) { return k == BodyKind::Robot || k == BodyKind::Gripper; }
+
+// Which failure a contact between bodies b1 and b2 represents, or Free if it does not count.
+CollisionStatus classify(const Scene& s, int held, int b1, int b2) {
+  const bool h1 = held >= 0 && s.objectOfBody(b1) == held;
+  const bool h2 = held >= 0 && s.objectOfBody(b2) == held;
+  const BodyKind k1 = s.bodyKind(b1), k2 = s.bodyKind(b2);
+  if (h1 || h2) {
+    if (h1 && h2) return CollisionStatus::Free;
+    const BodyKind other = h1 ? k2 : k1;
+    return other == BodyKind::Gripper ? CollisionStatus::Free : CollisionStatus::HeldObject;
+  }
+  if (isRobot(k1) && isRobot(k2)) return CollisionStatus::SelfCollision;
+  if (isRobot(k1) || isRobot(k2)) return CollisionStatus::RobotWorld;
+  return CollisionStatus::Free;
+}
+
+}  // namespace
+
+namespace {
+
+// Runs MuJoCo's narrow phase on one candidate pair; returns the deepest penetration (positive), or 0.
+double pairPenetration(const mjModel* m, const mjData* d, const Scene::GeomPair& p, mjContact* buf) {
+  const int g1 = p.g1, g2 = p.g2;
+  const mjtNum r1 = m->geom_rbound[g1], r2 = m->geom_rbound[g2];
+  const mjtNum margin = std::max(m->geom_margin[g1], m->geom_margin[g2]);
+  // Planes have rbound 0 (unbounded): skip the sphere test for them, as MuJoCo does.
+  if (r1 > 0 && r2 > 0) {
+    const mjtNum* x1 = d->geom_xpos + 3 * g1;
+    const mjtNum* x2 = d->geom_xpos + 3 * g2;
+    const mjtNum dx = x1[0] - x2[0], dy = x1[1] - x2[1], dz = x1[2] - x2[2];
+    const mjtNum reach = r1 + r2 + margin;
+    if (dx * dx + dy * dy + dz * dz > reach * reach) return 0.0;
+  }
+  const mjfCollision fn = mjCOLLISIONFUNC[m->geom_type[g1]][m->geom_type[g2]];
+  if (!fn) return 0.0;
+  const int n = fn(m, d, buf, g1, g2, margin);
+  double deepest = 0.0;
+  for (int i = 0; i < n; ++i) deepest = std::max(deepest, -buf[i].dist);
+  return deepest;
+}
+
+CollisionReport checkPairs(Workspace& ws, const CollisionOptions& options) {
+  const mjModel* m = ws.model();
+  const mjData* d = ws.data();
+  const Scene& s = ws.scene();
+  thread_local std::vector<mjContact> buf(mjMAXCONPAIR);
+  const int held = ws.heldObject();
+  auto report = [&](CollisionStatus st, const Scene::GeomPair& p, double depth) {
+    return CollisionReport{st, s.geomName(p.g1), s.geomName(p.g2), depth};
+  };
+  for (const auto& p : s.robotPairs()) {
+    CollisionStatus st = CollisionStatus::RobotWorld;
+    if (held >= 0) {
+      const int b1 = m->geom_bodyid[p.g1], b2 = m->geom_bodyid[p.g2];
+      st = classify(s, held, b1, b2);
+      if (st == CollisionStatus::Free) continue;
+    }
+    const double depth = pairPenetration(m, d, p, buf.data());
+    if (depth > options.tolerance) return report(st, p, depth);
+  }
+  for (const auto& p : s.selfPairs()) {
+    const double depth = pairPenetration(m, d, p, buf.data());
+    if (depth > options.tolerance) return report(CollisionStatus::SelfCollision, p, depth);
+  }
+  if (held >= 0) {
+    for (const auto& p : s.objectPairs(held)) {
+      const double depth = pairPenetration(m, d, p, buf.data());
+      if (depth > options.tolerance) return report(CollisionStatus::HeldObject, p, depth);
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+CollisionReport checkRobotCollisions(Workspace& ws, const CollisionOptions& options) {
+  if (options.method == CollisionMethod::RobotPairs && !ws.scene().hasExplicitPairs()) return checkPairs(ws, options);
+  const mjModel* m = ws.model();
+  mjData* d = ws.data();
+  mj_collision(m, d);
+  const Scene& s = ws.scene();
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& c = d->contact[i];
+    if (c.dist >= -options.tolerance) continue;
+    const CollisionStatus st = classify(s, ws.heldObject(), m->geom_bodyid[c.geom1], m->geom_bodyid[c.geom2]);
+    if (st == CollisionStatus::Free) continue;
+    return {st, s.geomName(c.geom1), s.geomName(c.geom2), -c.dist};
+  }
+  return {};
+}
+
+CollisionReport checkArm(Workspace& ws, const ArmConfig& q, const CollisionOptions& options) {
+  ws.setArm(q);
+  return checkRobotCollisions(ws, options);
+}
+
+}  // namespace cbtl::world

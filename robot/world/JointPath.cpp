@@ -1,0 +1,118 @@
+#include "robot/world/JointPath.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cbtl::world {
+
+namespace {
+double coordDiff(bool circular, double to, double from) { return circular ? angleDiff(to, from) : to - from; }
+}  // namespace
+
+double linfDistance(const JointSpace& space, const Waypoint& a, const Waypoint& b) {
+  double d = 0.0;
+  for (std::size_t i = 0; i < space.size(); ++i) d = std::max(d, std::abs(coordDiff(space.circular[i], b[i], a[i])));
+  return d;
+}
+
+double l1Distance(const JointSpace& space, const Waypoint& a, const Waypoint& b) {
+  double d = 0.0;
+  for (std::size_t i = 0; i < space.size(); ++i) d += std::abs(coordDiff(space.circular[i], b[i], a[i]));
+  return d;
+}
+
+Waypoint interpolate(const JointSpace& space, const Waypoint& a, const Waypoint& b, double t) {
+  Waypoint r(a.size());
+  for (std::size_t i = 0; i < space.size(); ++i) {
+    const double v = a[i] + t * coordDiff(space.circular[i], b[i], a[i]);
+    r[i] = space.circular[i] ? wrapAngle(v) : v;
+  }
+  return r;
+}
+
+bool segmentValid(const JointSpace& space, const Waypoint& a, const Waypoint& b, double resolution,
+                  const ValidityFn& valid, long* checks) {
+  const double dist = linfDistance(space, a, b);
+  const long n = std::max(1L, static_cast<long>(std::ceil(dist / resolution)));
+  long count = 1;
+  bool ok = valid(b);
+  // Interior states k/n for k = 1..n-1, grouped by the lowest set bit of k, largest first: a coarse
+  // pass over the whole segment before finer ones.
+  long top = 1;
+  while (top * 2 < n) top *= 2;
+  for (long step = top; ok && step >= 1; step /= 2) {
+    for (long k = step; ok && k < n; k += 2 * step) {
+      ok = valid(interpolate(space, a, b, static_cast<double>(k) / static_cast<double>(n)));
+      ++count;
+    }
+  }
+  if (checks) *checks += count;
+  return ok;
+}
+
+std::vector<Waypoint> densify(const JointSpace& space, const std::vector<Waypoint>& path, double spacing) {
+  if (path.empty()) return {};
+  std::vector<Waypoint> out{path.front()};
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    const long n = std::max(1L, static_cast<long>(std::ceil(linfDistance(space, path[i - 1], path[i]) / spacing)));
+    for (long k = 1; k < n; ++k)
+      out.push_back(interpolate(space, path[i - 1], path[i], static_cast<double>(k) / static_cast<double>(n)));
+    out.push_back(path[i]);
+  }
+  return out;
+}
+
+namespace {
+
+void greedyPass(const JointSpace& space, std::vector<Waypoint>& path, double resolution, const ValidityFn& valid,
+                long* checks) {
+  if (path.size() < 3) return;
+  std::vector<Waypoint> out{path.front()};
+  std::size_t i = 0;
+  while (i + 1 < path.size()) {
+    // The farthest waypoint reachable directly from path[i]; path[i+1] always is.
+    std::size_t j = path.size() - 1;
+    while (j > i + 1 && !segmentValid(space, path[i], path[j], resolution, valid, checks)) --j;
+    out.push_back(path[j]);
+    i = j;
+  }
+  path = std::move(out);
+}
+
+// A point at parameter s along segment index `seg` (s in [0, 1]).
+Waypoint pointOn(const JointSpace& space, const std::vector<Waypoint>& path, std::size_t seg, double s) {
+  return interpolate(space, path[seg], path[seg + 1], s);
+}
+
+}  // namespace
+
+void shortcutPath(const JointSpace& space, std::vector<Waypoint>& path, double resolution, const ValidityFn& valid,
+                  int attempts, Rng& rng, long* checks) {
+  greedyPass(space, path, resolution, valid, checks);
+  for (int a = 0; a < attempts && path.size() >= 2; ++a) {
+    const std::size_t segments = path.size() - 1;
+    std::uniform_int_distribution<std::size_t> pick(0, segments - 1);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::size_t s1 = pick(rng), s2 = pick(rng);
+    double t1 = u(rng), t2 = u(rng);
+    if (s1 > s2 || (s1 == s2 && t1 > t2)) {
+      std::swap(s1, s2);
+      std::swap(t1, t2);
+    }
+    if (s1 == s2) continue;  // a shortcut within one straight segment gains nothing
+    const Waypoint p1 = pointOn(space, path, s1, t1), p2 = pointOn(space, path, s2, t2);
+    double before = l1Distance(space, p1, path[s1 + 1]) + l1Distance(space, path[s2], p2);
+    for (std::size_t k = s1 + 1; k < s2; ++k) before += l1Distance(space, path[k], path[k + 1]);
+    if (l1Distance(space, p1, p2) >= before - 1e-9) continue;
+    // p1 is valid because it lies on a checked segment; check p1 -> p2 at full resolution.
+    if (!segmentValid(space, p1, p2, resolution, valid, checks)) continue;
+    std::vector<Waypoint> out(path.begin(), path.begin() + static_cast<std::ptrdiff_t>(s1) + 1);
+    out.push_back(p1);
+    out.push_back(p2);
+    out.insert(out.end(), path.begin() + static_cast<std::ptrdiff_t>(s2) + 1, path.end());
+    path = std::move(out);
+  }
+  greedyPass(space, path, resolution, valid, checks);
+}
+
+}  // namespace cbtl::world

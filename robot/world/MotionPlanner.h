@@ -1,0 +1,84 @@
+// MotionPlanner.h — collision-free motion planning for the arm (joint space) and the mobile base (SE(2))
+// with OMPL's RRTConnect, followed by shortcutting.
+//
+// Spaces: the arm space is SO(2) for the continuous joints 1, 3, 5, 7 and bounded R for joints 2, 4, 6; the
+// base space is R x R x SO(2) (x, y in metres within `baseBounds`, yaw) with the arm held at its current
+// joints. Every edge, including shortcuts, is checked at `resolution` (L∞: rad for joints, m/rad for the
+// base). States are valid when the robot (and held object) is collision-free (Collision.h) and joints are
+// within limits.
+// Determinism: every random choice comes from the Rng passed in (OMPL's samplers are replaced by samplers
+// over that Rng; nearest-neighbour search is exhaustive). OMPL's global seed is set once per process
+// before any planner exists, and OMPL logging is reduced to warnings.
+// Budgets are RRTConnect iterations, never wall-clock time.
+// Thread safety: the planner functions use only the Workspace passed in; call them concurrently with
+// one Workspace per thread.
+#pragma once
+
+#include "robot/world/Collision.h"
+#include "robot/world/JointPath.h"
+#include "robot/world/Workspace.h"
+
+#include <vector>
+
+namespace cbtl::world {
+
+enum class PlanStatus {
+  Solved,
+  InvalidStart,     // the start state is in collision or out of limits
+  InvalidGoal,      // the goal state is in collision or out of limits
+  BudgetExhausted,  // no path found within maxIterations
+  NoMobileBase,     // base planning requested in a scene without a mobile base
+};
+
+const char* toString(PlanStatus s);
+
+struct PlanOptions {
+  int maxIterations = 20000;     // RRTConnect iterations
+  double resolution = 0.005;     // L∞ spacing of validity checks along every edge
+  int shortcutAttempts = 60;     // random shortcuts after planning (0: greedy vertex pruning only)
+  double range = 0.0;            // RRTConnect step (L1 over coordinates); 0: OMPL's default
+  bool tryDirectFirst = true;    // check the straight segment before running RRTConnect
+  // Base planning bounds (x_lo, x_hi, y_lo, y_hi); if lo >= hi, the box spanning start and goal grown by
+  // 0.5 m is used.
+  double baseBounds[4] = {0, 0, 0, 0};
+  CollisionOptions collision;
+};
+
+struct ArmPlan {
+  PlanStatus status = PlanStatus::BudgetExhausted;
+  std::vector<ArmConfig> path;   // start ... goal (vertices; consecutive ones connect by interpolation)
+  int iterations = 0;            // RRTConnect iterations (0 when the straight segment was free)
+  long validityChecks = 0;
+  double length = 0.0;           // sum of |Δq| over joints and segments, rad
+  bool solved() const { return status == PlanStatus::Solved; }
+};
+
+struct BasePlan {
+  PlanStatus status = PlanStatus::BudgetExhausted;
+  std::vector<Pose2> path;
+  int iterations = 0;
+  long validityChecks = 0;
+  bool solved() const { return status == PlanStatus::Solved; }
+};
+
+// Plans the arm from start to goal with the Workspace's base, objects and held object. The Workspace's arm
+// is left at `start`.
+ArmPlan planArm(Workspace& ws, const ArmConfig& start, const ArmConfig& goal, Rng& rng, const PlanOptions& options = {});
+
+// Plans the mobile base from its pose in the Workspace to `goal`, arm fixed at its current joints. The base
+// is left at the start pose.
+BasePlan planBase(Workspace& ws, const Pose2& goal, Rng& rng, const PlanOptions& options = {});
+
+// The joint space of the arm (continuous joints circular).
+JointSpace armSpace(const Scene& scene);
+// Whether the straight joint-space segment a→b is collision-free at `resolution` (rad, L∞), endpoints
+// included. Leaves the arm at an unspecified configuration of the segment.
+bool armSegmentFree(Workspace& ws, const ArmConfig& a, const ArmConfig& b, double resolution,
+                    const CollisionOptions& options = {});
+// Time in seconds to follow the path with each segment taking as long as its slowest joint needs at the
+// joint velocity limits of the scene (joints start and stop together on every segment).
+double armPathDuration(const Scene& scene, const std::vector<ArmConfig>& path);
+// The arm path with waypoints at most `spacing` rad apart (L∞).
+std::vector<ArmConfig> densifyArmPath(const Scene& scene, const std::vector<ArmConfig>& path, double spacing);
+
+}  // namespace cbtl::world

@@ -1,0 +1,227 @@
+#include "robot/world/Scene.h"
+
+#include "robot/world/MujocoErrors.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+namespace cbtl::world {
+
+const char* toString(LoadStatus s) {
+  switch (s) {
+    case LoadStatus::Ok: return "ok";
+    case LoadStatus::FileNotFound: return "file not found";
+    case LoadStatus::ParseError: return "parse error";
+    case LoadStatus::NotARobotScene: return "not a robot scene";
+  }
+  return "unknown";
+}
+
+namespace {
+
+SceneLoadResult fail(LoadStatus s, std::string msg) { return {s, std::move(msg), nullptr}; }
+
+// Calls mj_loadXML and converts both of MuJoCo's failure channels (a null model with a message, or a
+// thrown MujocoError from the installed handler) into a message.
+mjModel* loadXml(const char* name, const mjVFS* vfs, std::string& error) {
+  char err[1024] = {0};
+  mjModel* m = nullptr;
+  try {
+    m = mj_loadXML(name, vfs, err, sizeof err);
+  } catch (const MujocoError& e) {
+    error = e.what();
+    return nullptr;
+  }
+  if (!m) error = err[0] ? err : "MuJoCo could not load the model";
+  return m;
+}
+
+}  // namespace
+
+SceneLoadResult Scene::loadFile(const std::string& path) {
+  installMujocoHandlers();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec) || !std::ifstream(path).good())
+    return fail(LoadStatus::FileNotFound, fmt::format("{}: scene file not found or not readable", path));
+  std::string error;
+  mjModel* m = loadXml(path.c_str(), nullptr, error);
+  if (!m) return fail(LoadStatus::ParseError, fmt::format("{}: {}", path, error));
+  std::shared_ptr<Scene> scene(new Scene(m, path));
+  if (std::string msg = scene->initialise(); !msg.empty())
+    return fail(LoadStatus::NotARobotScene, fmt::format("{}: {}", path, msg));
+  return {LoadStatus::Ok, {}, std::move(scene)};
+}
+
+SceneLoadResult Scene::loadString(std::string_view xml, const std::string& name) {
+  installMujocoHandlers();
+  // mjVFS is about 2 MB in MuJoCo 2.2.2: always on the heap.
+  auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  std::string error;
+  mjModel* m = nullptr;
+  if (mj_makeEmptyFileVFS(vfs.get(), name.c_str(), static_cast<int>(xml.size())) != 0) {
+    error = "could not create the virtual file";
+  } else {
+    const int idx = mj_findFileVFS(vfs.get(), name.c_str());
+    std::memcpy(vfs->filedata[idx], xml.data(), xml.size());
+    m = loadXml(name.c_str(), vfs.get(), error);
+  }
+  mj_deleteVFS(vfs.get());
+  if (!m) return fail(LoadStatus::ParseError, fmt::format("{}: {}", name, error));
+  std::shared_ptr<Scene> scene(new Scene(m, name));
+  if (std::string msg = scene->initialise(); !msg.empty())
+    return fail(LoadStatus::NotARobotScene, fmt::format("{}: {}", name, msg));
+  return {LoadStatus::Ok, {}, std::move(scene)};
+}
+
+Scene::Scene(mjModel* m, std::string source) : model_(m), source_(std::move(source)) {}
+
+Scene::~Scene() { mj_deleteModel(model_); }
+
+std::string Scene::initialise() {
+  const mjModel* m = model_;
+  for (int i = 0; i < kArmDof; ++i) {
+    const std::string name = fmt::format("joint_{}", i + 1);
+    const int j = mj_name2id(m, mjOBJ_JOINT, name.c_str());
+    if (j < 0 || m->jnt_type[j] != mjJNT_HINGE) return fmt::format("no hinge joint named '{}' (the Gen3 arm)", name);
+    armQpos_[i] = m->jnt_qposadr[j];
+    armDof_[i] = m->jnt_dofadr[j];
+    continuous_[i] = m->jnt_limited[j] == 0;
+    lower_[i] = continuous_[i] ? -std::numbers::pi : m->jnt_range[2 * j];
+    upper_[i] = continuous_[i] ? std::numbers::pi : m->jnt_range[2 * j + 1];
+    velocity_[i] = m->nuser_jnt > 0 ? m->jnt_user[j * m->nuser_jnt] : 0.0;
+  }
+  toolSite_ = siteId("tool_frame");
+  if (toolSite_ < 0) return "no site named 'tool_frame'";
+  const int armRoot = bodyId("base_link");
+  const int ee = bodyId("end_effector_link");
+  if (armRoot < 0 || ee < 0) return "no bodies named 'base_link' and 'end_effector_link'";
+
+  static constexpr const char* kBaseJoints[3] = {"base_x", "base_y", "base_yaw"};
+  for (int i = 0; i < 3; ++i) {
+    const int j = mj_name2id(m, mjOBJ_JOINT, kBaseJoints[i]);
+    baseQpos_[i] = j >= 0 ? m->jnt_qposadr[j] : -1;
+  }
+  if ((baseQpos_[0] >= 0) != (baseQpos_[2] >= 0) || (baseQpos_[1] >= 0) != (baseQpos_[2] >= 0))
+    return "a mobile base needs all of base_x, base_y and base_yaw";
+  static constexpr const char* kFingers[2] = {"finger_left", "finger_right"};
+  for (int i = 0; i < 2; ++i) {
+    const int j = mj_name2id(m, mjOBJ_JOINT, kFingers[i]);
+    fingerQpos_[i] = j >= 0 ? m->jnt_qposadr[j] : -1;
+    if (j >= 0) fingerTravel_ = m->jnt_range[2 * j + 1];
+  }
+
+  // Classify bodies. Parents always precede children in MuJoCo's body order.
+  const int mobile = bodyId("mobile_base");
+  kinds_.assign(static_cast<size_t>(m->nbody), BodyKind::Scenery);
+  objectOfBody_.assign(static_cast<size_t>(m->nbody), -1);
+  for (int b = 1; b < m->nbody; ++b) {
+    const int parent = m->body_parentid[b];
+    const auto pk = kinds_[static_cast<size_t>(parent)];
+    if (b == ee) {
+      kinds_[b] = BodyKind::Gripper;
+    } else if (b == armRoot || b == mobile) {
+      kinds_[b] = BodyKind::Robot;
+    } else if (pk == BodyKind::Robot || pk == BodyKind::Gripper) {
+      kinds_[b] = pk;
+    } else if (m->body_jntnum[b] > 0 && m->jnt_type[m->body_jntadr[b]] == mjJNT_FREE) {
+      kinds_[b] = BodyKind::Object;
+      objectOfBody_[b] = static_cast<int>(objects_.size());
+      objects_.push_back({bodyName(b), b, m->jnt_qposadr[m->body_jntadr[b]]});
+    } else if (pk == BodyKind::Object) {
+      kinds_[b] = BodyKind::Object;
+      objectOfBody_[b] = objectOfBody_[static_cast<size_t>(parent)];
+    }
+  }
+  buildPairs();
+  return {};
+}
+
+// The filters of MuJoCo 2.2.2's collision driver for a geom pair (explicit <pair> elements aside).
+bool Scene::mujocoWouldCollide(int g1, int g2) const {
+  const mjModel* m = model_;
+  if (!((m->geom_contype[g1] & m->geom_conaffinity[g2]) || (m->geom_contype[g2] & m->geom_conaffinity[g1])))
+    return false;
+  const int b1 = m->geom_bodyid[g1], b2 = m->geom_bodyid[g2];
+  const int w1 = m->body_weldid[b1], w2 = m->body_weldid[b2];
+  if (w1 == w2) return false;
+  const int p1 = m->body_weldid[m->body_parentid[w1]], p2 = m->body_weldid[m->body_parentid[w2]];
+  const bool filterParent = !(m->opt.disableflags & mjDSBL_FILTERPARENT);
+  if (filterParent && w1 != 0 && w2 != 0 && (w1 == p2 || w2 == p1)) return false;
+  const int lo = std::min(b1, b2), hi = std::max(b1, b2);
+  const int signature = ((lo + 1) << 16) + hi + 1;
+  for (int e = 0; e < m->nexclude; ++e)
+    if (m->exclude_signature[e] == signature) return false;
+  return true;
+}
+
+void Scene::buildPairs() {
+  const mjModel* m = model_;
+  objectPairs_.assign(objects_.size(), {});
+  auto ordered = [m](int a, int b) {
+    return m->geom_type[a] <= m->geom_type[b] ? GeomPair{a, b} : GeomPair{b, a};
+  };
+  auto robotGeom = [&](int g) {
+    const BodyKind k = kinds_[static_cast<size_t>(m->geom_bodyid[g])];
+    return k == BodyKind::Robot || k == BodyKind::Gripper;
+  };
+  for (int a = 0; a < m->ngeom; ++a) {
+    for (int b = a + 1; b < m->ngeom; ++b) {
+      if (!mujocoWouldCollide(a, b)) continue;
+      const bool ra = robotGeom(a), rb = robotGeom(b);
+      if (ra && rb) {
+        selfPairs_.push_back(ordered(a, b));
+      } else if (ra || rb) {
+        robotPairs_.push_back(ordered(a, b));
+      } else {
+        const int oa = objectOfBody_[static_cast<size_t>(m->geom_bodyid[a])];
+        const int ob = objectOfBody_[static_cast<size_t>(m->geom_bodyid[b])];
+        if (oa >= 0 && oa != ob) objectPairs_[static_cast<size_t>(oa)].push_back(ordered(a, b));
+        if (ob >= 0 && ob != oa) objectPairs_[static_cast<size_t>(ob)].push_back(ordered(a, b));
+      }
+    }
+  }
+}
+
+bool Scene::withinLimits(const ArmConfig& q) const {
+  for (int i = 0; i < kArmDof; ++i) {
+    if (!std::isfinite(q[i])) return false;
+    if (!continuous_[i] && (q[i] < lower_[i] || q[i] > upper_[i])) return false;
+  }
+  return true;
+}
+
+ArmConfig Scene::normalize(const ArmConfig& q) const {
+  ArmConfig r = q;
+  for (int i = 0; i < kArmDof; ++i)
+    r[i] = continuous_[i] ? wrapAngle(q[i]) : std::clamp(q[i], lower_[i], upper_[i]);
+  return r;
+}
+
+int Scene::siteId(std::string_view name) const { return mj_name2id(model_, mjOBJ_SITE, std::string(name).c_str()); }
+int Scene::bodyId(std::string_view name) const { return mj_name2id(model_, mjOBJ_BODY, std::string(name).c_str()); }
+int Scene::geomId(std::string_view name) const { return mj_name2id(model_, mjOBJ_GEOM, std::string(name).c_str()); }
+
+std::string Scene::bodyName(int body) const {
+  const char* n = mj_id2name(model_, mjOBJ_BODY, body);
+  return n ? n : fmt::format("body#{}", body);
+}
+
+std::string Scene::geomName(int geom) const {
+  const char* n = mj_id2name(model_, mjOBJ_GEOM, geom);
+  return n ? n : fmt::format("geom#{}", geom);
+}
+
+int Scene::objectIndex(std::string_view name) const {
+  for (size_t i = 0; i < objects_.size(); ++i)
+    if (objects_[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+}  // namespace cbtl::world

@@ -1,0 +1,134 @@
+// Scene.h — a loaded MuJoCo robot scene: the compiled model plus the names the world API looks up.
+//
+// A Scene is immutable after loading and shared (std::shared_ptr<const Scene>) by every thread; each thread
+// owns its own Workspace (mjData) over it. A robot scene must contain the Gen3 arm of
+// domains/assets/gen3.xml (joints joint_1..joint_7, site tool_frame, bodies base_link and end_effector_link).
+// Optional parts: a mobile base (body mobile_base with joints base_x, base_y, base_yaw), finger slide
+// joints finger_left / finger_right, and movable objects (bodies whose first joint is a free joint).
+// Units: metres, radians; joint velocity limits in rad/s (read from each arm joint's `user` value).
+#pragma once
+
+#include "robot/world/Pose.h"
+
+#include <mujoco/mujoco.h>
+
+#include <array>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace cbtl::world {
+
+enum class LoadStatus {
+  Ok,
+  FileNotFound,     // the path does not name a readable file
+  ParseError,       // MuJoCo rejected the XML (message has MuJoCo's text with line numbers)
+  NotARobotScene,   // the model compiled but lacks the Gen3 arm names listed above
+};
+
+const char* toString(LoadStatus s);
+
+class Scene;
+
+struct SceneLoadResult {
+  LoadStatus status = LoadStatus::ParseError;
+  std::string message;                  // empty when status == Ok; always names the file otherwise
+  std::shared_ptr<const Scene> scene;   // non-null iff status == Ok
+};
+
+// What a body is, for collision classification.
+enum class BodyKind : unsigned char {
+  Scenery,  // the world body and everything welded to it or to non-robot, non-object bodies
+  Robot,    // arm links, the mobile base and its stand
+  Gripper,  // end_effector_link and the fingers (also robot; a held object may touch these)
+  Object,   // a movable object (a body with a free joint) or a child of one
+};
+
+struct ObjectInfo {
+  std::string name;   // the body name
+  int body = -1;      // MuJoCo body id
+  int qposAdr = -1;   // first of the free joint's 7 qpos entries (x y z qw qx qy qz)
+};
+
+class Scene {
+ public:
+  // Loads an MJCF file; includes resolve relative to the file's directory.
+  static SceneLoadResult loadFile(const std::string& path);
+  // Loads MJCF text through MuJoCo's virtual file system; `name` is used in messages. The text cannot
+  // <include> files.
+  static SceneLoadResult loadString(std::string_view xml, const std::string& name = "scene.xml");
+
+  ~Scene();
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+
+  const mjModel* model() const { return model_; }
+  const std::string& source() const { return source_; }
+
+  // Arm joints (index 0..6 for joint_1..joint_7).
+  int armQposAdr(int i) const { return armQpos_[i]; }
+  int armDofAdr(int i) const { return armDof_[i]; }
+  bool armContinuous(int i) const { return continuous_[i]; }
+  double armLower(int i) const { return lower_[i]; }   // -pi for continuous joints
+  double armUpper(int i) const { return upper_[i]; }   //  pi for continuous joints
+  double armVelocityLimit(int i) const { return velocity_[i]; }
+  // True when every limited joint of q lies within its range (continuous joints are always fine).
+  bool withinLimits(const ArmConfig& q) const;
+  // Wraps continuous joints to [-pi, pi) and clamps limited joints into range.
+  ArmConfig normalize(const ArmConfig& q) const;
+
+  bool hasMobileBase() const { return baseQpos_[0] >= 0; }
+  int baseQposAdr(int i) const { return baseQpos_[i]; }  // x, y, yaw; -1 without a mobile base
+  int fingerQposAdr(int i) const { return fingerQpos_[i]; }  // left, right; -1 if absent
+  double fingerTravel() const { return fingerTravel_; }       // metres from open to closed
+
+  int toolSite() const { return toolSite_; }
+  int siteId(std::string_view name) const;  // -1 if absent
+  int bodyId(std::string_view name) const;  // -1 if absent
+  int geomId(std::string_view name) const;  // -1 if absent
+  std::string bodyName(int body) const;
+  std::string geomName(int geom) const;
+
+  BodyKind bodyKind(int body) const { return kinds_[static_cast<size_t>(body)]; }
+  // Index into objects() of the movable object that owns `body`, or -1.
+  int objectOfBody(int body) const { return objectOfBody_[static_cast<size_t>(body)]; }
+  const std::vector<ObjectInfo>& objects() const { return objects_; }
+  int objectIndex(std::string_view name) const;  // -1 if absent
+
+  // Candidate geom pairs for the robot's collision checks, after MuJoCo's own filters (contype/conaffinity,
+  // same weld body, parent-child, <exclude>), ordered so that geom_type[g1] <= geom_type[g2].
+  struct GeomPair {
+    int g1, g2;
+  };
+  const std::vector<GeomPair>& selfPairs() const { return selfPairs_; }    // robot × robot
+  const std::vector<GeomPair>& robotPairs() const { return robotPairs_; }  // robot × scenery/object
+  // Geoms of object `index` × scenery and other objects' geoms (used when that object is held).
+  const std::vector<GeomPair>& objectPairs(int index) const { return objectPairs_[static_cast<size_t>(index)]; }
+  // True when the model defines explicit <pair> contacts, which the pair lists above do not model.
+  bool hasExplicitPairs() const { return model_->npair > 0; }
+
+ private:
+  void buildPairs();
+  bool mujocoWouldCollide(int g1, int g2) const;
+
+  Scene(mjModel* m, std::string source);
+  std::string initialise();  // returns an error message, empty on success
+
+  mjModel* model_ = nullptr;
+  std::string source_;
+  std::array<int, kArmDof> armQpos_{}, armDof_{};
+  std::array<bool, kArmDof> continuous_{};
+  std::array<double, kArmDof> lower_{}, upper_{}, velocity_{};
+  std::array<int, 3> baseQpos_{-1, -1, -1};
+  std::array<int, 2> fingerQpos_{-1, -1};
+  double fingerTravel_ = 0.0;
+  int toolSite_ = -1;
+  std::vector<BodyKind> kinds_;
+  std::vector<int> objectOfBody_;
+  std::vector<ObjectInfo> objects_;
+  std::vector<GeomPair> selfPairs_, robotPairs_;
+  std::vector<std::vector<GeomPair>> objectPairs_;
+};
+
+}  // namespace cbtl::world

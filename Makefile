@@ -6,7 +6,7 @@ BUILD_TYPE ?= RelWithDebInfo
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure build demo test asan fuzz fuzz-runtime bench golden-update clean
+.PHONY: all deps configure build demo test asan fuzz fuzz-runtime bench golden-update format clean
 
 all: build
 
@@ -46,6 +46,10 @@ bench: build
 # Rewrites the golden .out/.err files from the current compiler; review the diff before committing.
 golden-update: build
 	CBTL_UPDATE_GOLDEN=1 ctest --test-dir $(BUILD_DIR) -L golden -j $(JOBS)
+
+# Applies .clang-format to every C++ file (the test format.clang_format checks it).
+format:
+	scripts/check-format.sh --fix
 
 clean:
 	rm -rf $(BUILD_DIR)

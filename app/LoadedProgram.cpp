@@ -77,7 +77,8 @@ void LoadedProgram::prepareCompiled(bool compiled, const std::string& lastPass, 
   // A robot-world built-in in a file without a scene: say what is missing, not just what failed.
   for (const auto& name : bind::worldBuiltinNames()) {
     if (errors().find("'" + name + "' has no implementation") != std::string::npos) {
-      setErrors(errors() + fmt::format("note: '{}' reads the robot world: declare its scene with `world \"scene.xml\";`\n", name));
+      setErrors(errors() +
+                fmt::format("note: '{}' reads the robot world: declare its scene with `world \"scene.xml\";`\n", name));
       break;
     }
   }

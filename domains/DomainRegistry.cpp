@@ -32,24 +32,28 @@ const std::vector<Entry>& entries() {
   static const std::vector<Entry> all = [] {
     std::vector<Entry> e;
 #if defined(CBTL_HAVE_DOMAIN_BOOKS)
-    e.push_back({"books", [](const sim::SimulatorOptions& o, std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {
-                   return std::make_unique<books::BooksSimulator>(o, seed);
-                 }});
+    e.push_back(
+        {"books", [](const sim::SimulatorOptions& o, std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {
+           return std::make_unique<books::BooksSimulator>(o, seed);
+         }});
 #endif
 #if defined(CBTL_HAVE_DOMAIN_CLEANING)
-    e.push_back({"cleaning", [](const sim::SimulatorOptions& o, std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {
-                   return std::make_unique<cleaning::CleaningSimulator>(o, seed);
-                 }});
+    e.push_back(
+        {"cleaning", [](const sim::SimulatorOptions& o, std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {
+           return std::make_unique<cleaning::CleaningSimulator>(o, seed);
+         }});
 #endif
 #if defined(CBTL_HAVE_DOMAIN_COOKING)
-    e.push_back({"cooking", [](const sim::SimulatorOptions& o, std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {
-                   return std::make_unique<cooking::CookingSimulator>(o, seed);
-                 }});
+    e.push_back(
+        {"cooking", [](const sim::SimulatorOptions& o, std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {
+           return std::make_unique<cooking::CookingSimulator>(o, seed);
+         }});
 #endif
 #if defined(CBTL_HAVE_DOMAIN_FEEDING)
-    e.push_back({"feeding", [](const sim::SimulatorOptions& o, std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {
-                   return std::make_unique<feeding::FeedingSimulator>(o, seed);
-                 }});
+    e.push_back(
+        {"feeding", [](const sim::SimulatorOptions& o, std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {
+           return std::make_unique<feeding::FeedingSimulator>(o, seed);
+         }});
 #endif
     std::sort(e.begin(), e.end(), [](const Entry& a, const Entry& b) { return std::string(a.name) < b.name; });
     return e;

@@ -25,7 +25,7 @@ struct Span {
 
 // Types as canonical spellings ("real", "vec<2>", "Conf<gen3>", "set<Book>", "Dip"), plus the kind.
 struct TypeDesc {
-  std::string kind;      // real|int|bool|text|enum|item|vec|SE2|SE3|Conf|set|tuple|range|void
+  std::string kind;  // real|int|bool|text|enum|item|vec|SE2|SE3|Conf|set|tuple|range|void
   std::string spelling;
 };
 
@@ -60,20 +60,20 @@ struct Domain {
 
 struct Variable {
   VarId id = 0;
-  std::string name;      // unique within each task that includes it
+  std::string name;  // unique within each task that includes it
   TypeDesc type;
   Domain domain;
   std::optional<Expr> init;
-  std::string family;    // family name for family members, else empty
-  std::string indexText; // the member's index as text ("salt", "2")
-  std::string scope;     // "global", "task:<name>" or "skill:<task>/<instance>"
+  std::string family;     // family name for family members, else empty
+  std::string indexText;  // the member's index as text ("salt", "2")
+  std::string scope;      // "global", "task:<name>" or "skill:<task>/<instance>"
   Span span;
 };
 
 struct Constraint {
   std::uint32_t id = 0;
-  std::string name;          // declared name, or "<scope>#<n>"; unrolled copies get "[binding]"
-  std::vector<VarId> vars;   // the hyperedge, sorted, unique
+  std::string name;         // declared name, or "<scope>#<n>"; unrolled copies get "[binding]"
+  std::vector<VarId> vars;  // the hyperedge, sorted, unique
   Expr expr;
   std::string scope;
   Span span;
@@ -81,7 +81,7 @@ struct Constraint {
 
 struct Sampler {
   std::uint32_t id = 0;
-  std::string sampler;       // "uniform" or an extern sampler's name
+  std::string sampler;  // "uniform" or an extern sampler's name
   std::vector<VarId> writes;
   std::vector<VarId> reads;
   std::vector<Expr> args;
@@ -110,15 +110,15 @@ struct Pattern {
 };
 
 struct ModelFactor {
-  std::string label;               // factor name (defaults to the kind, numbered if repeated)
-  std::string kind;                // interval | threshold | table | text
-  std::optional<Expr> feature;     // interval/threshold feature; table key; text subject
-  double lo = 0, hi = 0;           // interval/threshold prior bounds
-  std::string direction;           // threshold: above | below
-  std::string prompt, learning;    // text
-  std::string scale = "absolute";  // text: relative | absolute
-  std::string rating = "digits";   // text: digits | options
-  std::vector<std::string> params; // generator parameters the factor reads
+  std::string label;                // factor name (defaults to the kind, numbered if repeated)
+  std::string kind;                 // interval | threshold | table | text
+  std::optional<Expr> feature;      // interval/threshold feature; table key; text subject
+  double lo = 0, hi = 0;            // interval/threshold prior bounds
+  std::string direction;            // threshold: above | below
+  std::string prompt, learning;     // text
+  std::string scale = "absolute";   // text: relative | absolute
+  std::string rating = "digits";    // text: digits | options
+  std::vector<std::string> params;  // generator parameters the factor reads
   Span span;
 };
 
@@ -129,8 +129,8 @@ struct LearnLabel {
 
 struct LearnRule {
   std::string event;
-  std::vector<std::string> binders;           // "_" for ignored positions
-  std::vector<std::string> binds;             // per binder: parameter/key it binds, or "" (local)
+  std::vector<std::string> binders;  // "_" for ignored positions
+  std::vector<std::string> binds;    // per binder: parameter/key it binds, or "" (local)
   std::vector<LearnLabel> labels;
   std::optional<Expr> condition;
   Span span;
@@ -164,11 +164,11 @@ struct Action {
 struct SkillInstance {
   std::string skill;
   std::string name;
-  std::vector<VarId> vars;                 // the instance's own variables
-  std::vector<VarId> params;               // task variables bound to the skill's parameters
+  std::vector<VarId> vars;    // the instance's own variables
+  std::vector<VarId> params;  // task variables bound to the skill's parameters
   std::vector<std::uint32_t> constraints;
   std::vector<std::uint32_t> samplers;
-  std::vector<Action> actions;             // Var references use the task's ids
+  std::vector<Action> actions;  // Var references use the task's ids
   Span span;
 };
 

@@ -18,7 +18,8 @@ std::string num(double v) {
 std::string spanText(const Span& s) { return fmt::format("{}:{}:{}", s.file, s.line, s.column); }
 
 json spanJson(const Span& s) {
-  return json{{"file", s.file}, {"line", s.line}, {"column", s.column}, {"end_line", s.endLine}, {"end_column", s.endColumn}};
+  return json{
+      {"file", s.file}, {"line", s.line}, {"column", s.column}, {"end_line", s.endLine}, {"end_column", s.endColumn}};
 }
 
 json exprJson(const Expr& e) {
@@ -64,7 +65,8 @@ json actionJson(const Action& a) {
 }
 
 const char* infix(const std::string& op) {
-  static const char* ops[] = {"+", "-", "*", "/", "%", "^", "==", "!=", "<", "<=", ">", ">=", "and", "or", "=>", "<=>", "in", ".."};
+  static const char* ops[] = {"+",  "-", "*",  "/",   "%",  "^",  "==",  "!=", "<",
+                              "<=", ">", ">=", "and", "or", "=>", "<=>", "in", ".."};
   for (const char* o : ops) {
     if (op == o) return o;
   }
@@ -106,8 +108,10 @@ std::string exprText(const Expr& e, const ConstraintGraph& g) {
   if (e.op == "forall" || e.op == "exists") {
     std::string names;
     for (std::size_t i = 0; i < e.names.size(); ++i) names += (i ? ", " : "") + e.names[i];
-    std::string where = e.children[1].op == "bool" && e.children[1].number != 0 ? "" : " where " + exprText(e.children[1], g);
-    return fmt::format("({} {} in {}{}: {})", e.op, names, exprText(e.children[0], g), where, exprText(e.children[2], g));
+    std::string where =
+        e.children[1].op == "bool" && e.children[1].number != 0 ? "" : " where " + exprText(e.children[1], g);
+    return fmt::format("({} {} in {}{}: {})", e.op, names, exprText(e.children[0], g), where,
+                       exprText(e.children[2], g));
   }
   if (e.op == "if") {
     return fmt::format("(if {} then {} else {})", exprText(e.children[0], g), exprText(e.children[1], g),
@@ -160,13 +164,16 @@ std::string toText(const ConstraintGraph& g) {
     o << "}\n";
   }
   for (std::size_t i = 0; i < g.costs.size(); ++i) {
-    o << fmt::format("cost #{} {} {}\n", i, g.costs[i].maximize ? "maximize" : "minimize", exprText(g.costs[i].expr, g));
+    o << fmt::format("cost #{} {} {}\n", i, g.costs[i].maximize ? "maximize" : "minimize",
+                     exprText(g.costs[i].expr, g));
   }
   for (const auto& gen : g.generators) {
     o << "generator " << gen.name << " arity " << gen.params.size() << " (";
-    for (std::size_t i = 0; i < gen.params.size(); ++i) o << (i ? ", " : "") << gen.params[i].name << ": " << gen.params[i].type.spelling;
+    for (std::size_t i = 0; i < gen.params.size(); ++i)
+      o << (i ? ", " : "") << gen.params[i].name << ": " << gen.params[i].type.spelling;
     o << ")\n";
-    for (const auto& p : gen.patterns) o << fmt::format("  when {} ~ {} {}\n", p.param, p.kind, nlohmann::json(p.text).dump());
+    for (const auto& p : gen.patterns)
+      o << fmt::format("  when {} ~ {} {}\n", p.param, p.kind, nlohmann::json(p.text).dump());
     for (const auto& f : gen.factors) {
       o << "  model " << f.label << " = " << f.kind;
       if (f.feature) o << "(" << exprText(*f.feature, g);
@@ -191,7 +198,8 @@ std::string toText(const ConstraintGraph& g) {
       for (std::size_t i = 0; i < r.binders.size(); ++i) o << (i ? ", " : "") << r.binders[i];
       o << ") =>";
       for (std::size_t i = 0; i < r.labels.size(); ++i) {
-        o << (i ? "," : "") << " " << (r.labels[i].factor.empty() ? "" : r.labels[i].factor + ": ") << exprText(r.labels[i].value, g);
+        o << (i ? "," : "") << " " << (r.labels[i].factor.empty() ? "" : r.labels[i].factor + ": ")
+          << exprText(r.labels[i].value, g);
       }
       if (r.condition) o << " if " << exprText(*r.condition, g);
       o << "\n";
@@ -217,7 +225,8 @@ std::string toJson(const ConstraintGraph& g) {
   j["robots"] = json::array();
   for (const auto& r : g.robots) j["robots"].push_back({{"name", r.name}, {"dof", r.dof}});
   j["enums"] = json::array();
-  for (const auto& e : g.enums) j["enums"].push_back({{"name", e.name}, {"members", e.members}, {"span", spanJson(e.span)}});
+  for (const auto& e : g.enums)
+    j["enums"].push_back({{"name", e.name}, {"members", e.members}, {"span", spanJson(e.span)}});
   j["item_types"] = json::array();
   for (const auto& t : g.itemTypes) {
     json fields = json::array();
@@ -232,22 +241,29 @@ std::string toJson(const ConstraintGraph& g) {
       for (const auto& [name, value] : e.fields) fields[name] = exprJson(value);
       entries.push_back({{"name", e.name}, {"fields", fields}});
     }
-    j["item_sets"].push_back({{"name", s.name}, {"item_type", s.itemType}, {"entries", entries}, {"span", spanJson(s.span)}});
+    j["item_sets"].push_back(
+        {{"name", s.name}, {"item_type", s.itemType}, {"entries", entries}, {"span", spanJson(s.span)}});
   }
   j["constants"] = json::array();
   for (const auto& c : g.constants) {
-    j["constants"].push_back({{"name", c.name}, {"type", c.type.spelling}, {"index_set", c.indexSet}, {"value", exprJson(c.value)},
+    j["constants"].push_back({{"name", c.name},
+                              {"type", c.type.spelling},
+                              {"index_set", c.indexSet},
+                              {"value", exprJson(c.value)},
                               {"span", spanJson(c.span)}});
   }
   j["observations"] = json::array();
   for (const auto& o : g.observations) {
-    j["observations"].push_back({{"name", o.name}, {"type", o.type.spelling}, {"index_set", optExpr(o.indexSet)}, {"span", spanJson(o.span)}});
+    j["observations"].push_back(
+        {{"name", o.name}, {"type", o.type.spelling}, {"index_set", optExpr(o.indexSet)}, {"span", spanJson(o.span)}});
   }
   auto functionJson = [](const Function& f) {
     json params = json::array();
     for (const auto& p : f.params) params.push_back({{"name", p.name}, {"type", p.type.spelling}});
-    json fn{{"name", f.name}, {"kind", f.kind}, {"extern", f.isExtern}, {"type_params", f.typeParams}, {"params", params},
-            {"result", f.result.spelling}, {"span", spanJson(f.span)}};
+    json fn{{"name", f.name},          {"kind", f.kind},
+            {"extern", f.isExtern},    {"type_params", f.typeParams},
+            {"params", params},        {"result", f.result.spelling},
+            {"span", spanJson(f.span)}};
     if (f.body) fn["body"] = exprJson(*f.body);
     return fn;
   };
@@ -259,47 +275,91 @@ std::string toJson(const ConstraintGraph& g) {
   for (const auto& v : g.variables) {
     json bounds = json::array();
     for (const auto& b : v.domain.bounds) bounds.push_back({{"lo", optExpr(b.lo)}, {"hi", optExpr(b.hi)}});
-    j["variables"].push_back({{"id", v.id}, {"name", v.name}, {"type", v.type.spelling}, {"kind", v.type.kind},
-                              {"bounds", bounds}, {"set", optExpr(v.domain.set)}, {"init", optExpr(v.init)},
-                              {"family", v.family}, {"index", v.indexText}, {"scope", v.scope}, {"span", spanJson(v.span)}});
+    j["variables"].push_back({{"id", v.id},
+                              {"name", v.name},
+                              {"type", v.type.spelling},
+                              {"kind", v.type.kind},
+                              {"bounds", bounds},
+                              {"set", optExpr(v.domain.set)},
+                              {"init", optExpr(v.init)},
+                              {"family", v.family},
+                              {"index", v.indexText},
+                              {"scope", v.scope},
+                              {"span", spanJson(v.span)}});
   }
   j["constraints"] = json::array();
   for (const auto& c : g.constraints) {
-    j["constraints"].push_back({{"id", c.id}, {"name", c.name}, {"vars", c.vars}, {"expr", exprJson(c.expr)}, {"scope", c.scope},
+    j["constraints"].push_back({{"id", c.id},
+                                {"name", c.name},
+                                {"vars", c.vars},
+                                {"expr", exprJson(c.expr)},
+                                {"scope", c.scope},
                                 {"span", spanJson(c.span)}});
   }
   j["samplers"] = json::array();
   for (const auto& s : g.samplers) {
     json args = json::array();
     for (const auto& a : s.args) args.push_back(exprJson(a));
-    j["samplers"].push_back({{"id", s.id}, {"sampler", s.sampler}, {"writes", s.writes}, {"reads", s.reads}, {"args", args},
-                             {"scope", s.scope}, {"span", spanJson(s.span)}});
+    j["samplers"].push_back({{"id", s.id},
+                             {"sampler", s.sampler},
+                             {"writes", s.writes},
+                             {"reads", s.reads},
+                             {"args", args},
+                             {"scope", s.scope},
+                             {"span", spanJson(s.span)}});
   }
   j["costs"] = json::array();
   for (const auto& c : g.costs) {
-    j["costs"].push_back({{"maximize", c.maximize}, {"expr", exprJson(c.expr)}, {"vars", c.vars}, {"span", spanJson(c.span)}});
+    j["costs"].push_back(
+        {{"maximize", c.maximize}, {"expr", exprJson(c.expr)}, {"vars", c.vars}, {"span", spanJson(c.span)}});
   }
   j["generators"] = json::array();
   for (const auto& gen : g.generators) {
     json params = json::array(), patterns = json::array(), factors = json::array(), rules = json::array();
     for (const auto& p : gen.params) params.push_back({{"name", p.name}, {"type", p.type.spelling}});
     for (const auto& p : gen.patterns) {
-      patterns.push_back({{"param", p.param}, {"param_index", p.paramIndex}, {"kind", p.kind}, {"text", p.text}, {"span", spanJson(p.span)}});
+      patterns.push_back({{"param", p.param},
+                          {"param_index", p.paramIndex},
+                          {"kind", p.kind},
+                          {"text", p.text},
+                          {"span", spanJson(p.span)}});
     }
     for (const auto& f : gen.factors) {
-      factors.push_back({{"label", f.label}, {"kind", f.kind}, {"feature", optExpr(f.feature)}, {"lo", f.lo}, {"hi", f.hi},
-                         {"direction", f.direction}, {"prompt", f.prompt}, {"learning", f.learning}, {"scale", f.scale},
-                         {"rating", f.rating}, {"params", f.params}, {"span", spanJson(f.span)}});
+      factors.push_back({{"label", f.label},
+                         {"kind", f.kind},
+                         {"feature", optExpr(f.feature)},
+                         {"lo", f.lo},
+                         {"hi", f.hi},
+                         {"direction", f.direction},
+                         {"prompt", f.prompt},
+                         {"learning", f.learning},
+                         {"scale", f.scale},
+                         {"rating", f.rating},
+                         {"params", f.params},
+                         {"span", spanJson(f.span)}});
     }
     for (const auto& r : gen.learnRules) {
       json labels = json::array();
       for (const auto& l : r.labels) labels.push_back({{"factor", l.factor}, {"value", exprJson(l.value)}});
-      rules.push_back({{"event", r.event}, {"binders", r.binders}, {"binds", r.binds}, {"labels", labels},
-                       {"condition", optExpr(r.condition)}, {"span", spanJson(r.span)}});
+      rules.push_back({{"event", r.event},
+                       {"binders", r.binders},
+                       {"binds", r.binds},
+                       {"labels", labels},
+                       {"condition", optExpr(r.condition)},
+                       {"span", spanJson(r.span)}});
     }
-    j["generators"].push_back({{"name", gen.name}, {"arity", gen.params.size()}, {"params", params}, {"patterns", patterns},
-                               {"captures", gen.captures}, {"per", gen.perKeys}, {"factors", factors}, {"guard", optExpr(gen.guard)}, {"accept", gen.accept},
-                               {"fallback", gen.fallback}, {"learn", rules}, {"span", spanJson(gen.span)}});
+    j["generators"].push_back({{"name", gen.name},
+                               {"arity", gen.params.size()},
+                               {"params", params},
+                               {"patterns", patterns},
+                               {"captures", gen.captures},
+                               {"per", gen.perKeys},
+                               {"factors", factors},
+                               {"guard", optExpr(gen.guard)},
+                               {"accept", gen.accept},
+                               {"fallback", gen.fallback},
+                               {"learn", rules},
+                               {"span", spanJson(gen.span)}});
   }
   j["skills"] = g.skills;
   j["tasks"] = json::array();
@@ -308,12 +368,23 @@ std::string toJson(const ConstraintGraph& g) {
     for (const auto& si : t.instances) {
       json actions = json::array();
       for (const auto& a : si.actions) actions.push_back(actionJson(a));
-      instances.push_back({{"skill", si.skill}, {"name", si.name}, {"vars", si.vars}, {"params", si.params},
-                           {"constraints", si.constraints}, {"samplers", si.samplers}, {"actions", actions},
+      instances.push_back({{"skill", si.skill},
+                           {"name", si.name},
+                           {"vars", si.vars},
+                           {"params", si.params},
+                           {"constraints", si.constraints},
+                           {"samplers", si.samplers},
+                           {"actions", actions},
                            {"span", spanJson(si.span)}});
     }
-    j["tasks"].push_back({{"name", t.name}, {"implicit", t.implicit}, {"vars", t.vars}, {"constraints", t.constraints},
-                          {"samplers", t.samplers}, {"costs", t.costs}, {"instances", instances}, {"span", spanJson(t.span)}});
+    j["tasks"].push_back({{"name", t.name},
+                          {"implicit", t.implicit},
+                          {"vars", t.vars},
+                          {"constraints", t.constraints},
+                          {"samplers", t.samplers},
+                          {"costs", t.costs},
+                          {"instances", instances},
+                          {"span", spanJson(t.span)}});
   }
   return j.dump(1) + "\n";
 }
@@ -322,7 +393,8 @@ std::string toDot(const ConstraintGraph& g) {
   std::ostringstream o;
   o << "graph cbtl {\n  graph [rankdir=LR];\n";
   for (const auto& v : g.variables) {
-    o << fmt::format("  v{} [shape=ellipse, label={}];\n", v.id, nlohmann::json(v.name + " : " + v.type.spelling).dump());
+    o << fmt::format("  v{} [shape=ellipse, label={}];\n", v.id,
+                     nlohmann::json(v.name + " : " + v.type.spelling).dump());
   }
   for (const auto& c : g.constraints) {
     o << fmt::format("  c{} [shape=box, label={}];\n", c.id, nlohmann::json(c.name).dump());

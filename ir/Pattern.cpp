@@ -12,7 +12,8 @@ std::optional<GlobPattern> parseGlob(const std::string& text, std::string& error
     const char c = text[i];
     if (c == '*') {
       // "**" means the same as "*"; one piece keeps the matcher's recursion bounded by the name's length.
-      if (g.pieces.empty() || g.pieces.back().kind != GlobPattern::Kind::Star) g.pieces.push_back({GlobPattern::Kind::Star, ""});
+      if (g.pieces.empty() || g.pieces.back().kind != GlobPattern::Kind::Star)
+        g.pieces.push_back({GlobPattern::Kind::Star, ""});
     } else if (c == '?') {
       g.pieces.push_back({GlobPattern::Kind::One, ""});
     } else if (c == '{') {
@@ -26,7 +27,8 @@ std::optional<GlobPattern> parseGlob(const std::string& text, std::string& error
       bool ok = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_');
       for (char ch : name) ok = ok && (std::isalnum(static_cast<unsigned char>(ch)) || ch == '_');
       if (!ok) {
-        error = name.empty() ? "a capture needs a name, as in {ing}" : "capture name '" + name + "' is not an identifier";
+        error =
+            name.empty() ? "a capture needs a name, as in {ing}" : "capture name '" + name + "' is not an identifier";
         errorAt = i;
         return std::nullopt;
       }

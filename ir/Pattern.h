@@ -4,8 +4,8 @@
 // run bound to the capture `name`; every other character, including `[` and `]`, matches itself (variable
 // names such as temp[salt] contain brackets). Matching is against the whole name; a step budget and a
 // depth limit make pathological patterns fail to match instead of running long. Regexes use the
-// ECMAScript grammar without back-references and must also match the whole name. Shared by the compiler (validation) and the
-// runtime (matching), so both agree on what a pattern means.
+// ECMAScript grammar without back-references and must also match the whole name. Shared by the compiler (validation)
+// and the runtime (matching), so both agree on what a pattern means.
 #pragma once
 
 #include <map>

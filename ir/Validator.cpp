@@ -25,7 +25,8 @@ std::vector<std::string> validate(const ConstraintGraph& g) {
       if (v >= n) problems.push_back(fmt::format("constraint {} reads unknown variable {}", c.name, v));
     }
     if (std::set<VarId>(c.vars.begin(), c.vars.end()) != read) {
-      problems.push_back(fmt::format("constraint {}: hyperedge differs from the variables its expression reads", c.name));
+      problems.push_back(
+          fmt::format("constraint {}: hyperedge differs from the variables its expression reads", c.name));
     }
     if (c.span.line == 0) problems.push_back(fmt::format("constraint {} has no span", c.name));
     if (c.expr.type.kind != "bool" && c.expr.type.kind != "error") {
@@ -56,7 +57,9 @@ std::vector<std::string> validate(const ConstraintGraph& g) {
         continue;
       }
       for (VarId v : g.constraints[c].vars) {
-        if (!vars.count(v)) problems.push_back(fmt::format("task {}: constraint {} reads a variable outside the task", t.name, g.constraints[c].name));
+        if (!vars.count(v))
+          problems.push_back(
+              fmt::format("task {}: constraint {} reads a variable outside the task", t.name, g.constraints[c].name));
       }
     }
     for (auto s : t.samplers) {
@@ -65,7 +68,8 @@ std::vector<std::string> validate(const ConstraintGraph& g) {
         continue;
       }
       for (VarId v : g.samplers[s].writes) {
-        if (!vars.count(v)) problems.push_back(fmt::format("task {}: sampler #{} writes a variable outside the task", t.name, s));
+        if (!vars.count(v))
+          problems.push_back(fmt::format("task {}: sampler #{} writes a variable outside the task", t.name, s));
       }
     }
     for (auto c : t.costs) {
@@ -76,9 +80,12 @@ std::vector<std::string> validate(const ConstraintGraph& g) {
     for (const auto& p : gen.patterns) {
       std::string error;
       std::size_t at = 0;
-      const bool ok = p.kind == "glob" ? parseGlob(p.text, error, at).has_value() : compileRegex(p.text, error).has_value();
-      if (!ok) problems.push_back(fmt::format("generator {}: pattern {} does not compile: {}", gen.name, p.text, error));
-      if (p.paramIndex >= gen.params.size()) problems.push_back(fmt::format("generator {}: pattern for unknown parameter", gen.name));
+      const bool ok =
+          p.kind == "glob" ? parseGlob(p.text, error, at).has_value() : compileRegex(p.text, error).has_value();
+      if (!ok)
+        problems.push_back(fmt::format("generator {}: pattern {} does not compile: {}", gen.name, p.text, error));
+      if (p.paramIndex >= gen.params.size())
+        problems.push_back(fmt::format("generator {}: pattern for unknown parameter", gen.name));
     }
     if (gen.params.empty()) problems.push_back(fmt::format("generator {} has arity 0", gen.name));
   }

@@ -11,7 +11,7 @@ packages=(
   libompl-dev libfcl-dev libccd-dev
   libcurl4-openssl-dev libssl-dev libsqlite3-dev libedit-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev clang-format
 )
 
 missing=()

@@ -35,7 +35,9 @@ std::string profileText(std::int64_t points) {
   }
   nlohmann::json key = {{"temp", {{"kind", "interval"}, {"lo", 25}, {"hi", 35}, {"data", data}}},
                         {"qty", {{"kind", "interval"}, {"lo", 0.9}, {"hi", 1.1}, {"data", {{1.0, true}}}}}};
-  nlohmann::json root = {{"format", "cbtl-profile"}, {"version", 1}, {"domain", "cooking"},
+  nlohmann::json root = {{"format", "cbtl-profile"},
+                         {"version", 1},
+                         {"domain", "cooking"},
                          {"generators", {{"userEnjoysMeal", {{"seasoning|salt", key}}}}}};
   return root.dump();
 }

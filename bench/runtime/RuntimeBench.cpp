@@ -3,13 +3,13 @@
 //     evaluations of 10 held-out tasks — target under 1 s on one core (the reference: 75-121 s).
 //   BM_SolverThroughput/<csp>: candidates per second of the sampling solver on Cooking CSPs: exploit (hard and
 //     personalized constraints, first feasible), explore (hard constraints, maximize entropy, learned models).
+#include "app/LoadedProgram.h"
 #include "domains/DomainRegistry.h"
 #include "runtime/approach/Experiment.h"
-#include "app/LoadedProgram.h"
 #include "runtime/approach/Planner.h"
-#include "runtime/solver/Solver.h"
-#include "runtime/model/UserModel.h"
 #include "runtime/approach/ValueBridge.h"
+#include "runtime/model/UserModel.h"
+#include "runtime/solver/Solver.h"
 
 #include <benchmark/benchmark.h>
 
@@ -30,7 +30,8 @@ const app::LoadedProgram& cooking() {
 }
 
 approach::SimulatorFactory factory() {
-  return [](const sim::SimulatorOptions& o, std::uint64_t seed) { return domains::createSimulator("cooking", o, seed); };
+  return
+      [](const sim::SimulatorOptions& o, std::uint64_t seed) { return domains::createSimulator("cooking", o, seed); };
 }
 
 void BM_CookingTrial(benchmark::State& state) {
@@ -46,7 +47,8 @@ void BM_CookingTrial(benchmark::State& state) {
     benchmark::DoNotOptimize(r.meanEval());
   }
   state.SetLabel(approach::toString(c.approach.kind));
-  state.counters["train_solver_iters"] = benchmark::Counter(static_cast<double>(iterations) / static_cast<double>(state.iterations()));
+  state.counters["train_solver_iters"] =
+      benchmark::Counter(static_cast<double>(iterations) / static_cast<double>(state.iterations()));
 }
 BENCHMARK(BM_CookingTrial)
     ->Arg(static_cast<int>(approach::ApproachKind::Cbtl))

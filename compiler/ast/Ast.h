@@ -47,7 +47,21 @@ struct TypeRef {
 // ---------------------------------------------------------------------------------------------
 
 enum class ExprKind {
-  Number, String, Bool, Name, Member, Call, Index, Unary, Binary, Range, In, Quantifier, If, Tuple, List,
+  Number,
+  String,
+  Bool,
+  Name,
+  Member,
+  Call,
+  Index,
+  Unary,
+  Binary,
+  Range,
+  In,
+  Quantifier,
+  If,
+  Tuple,
+  List,
 };
 
 enum class UnaryOp { Neg, Not };
@@ -60,20 +74,20 @@ const char* toString(UnaryOp op);
 // What a name refers to after name resolution.
 enum class RefKind {
   Unresolved,
-  Const,         // decl: ConstDecl
-  EnumType,      // decl: EnumDecl (as an expression: the set of its members)
-  EnumMember,    // decl: EnumDecl, index: member
-  ItemSet,       // decl: ItemsDecl
-  ItemEntry,     // decl: ItemsDecl, index: entry
-  Observation,   // decl: ObserveDecl
-  Variable,      // decl: VarDecl
-  Param,         // decl: the owning Function/Personal/Skill decl, index: parameter position
-  Binder,        // a quantifier / learn / for binder; binder points at the BinderDecl
-  Function,      // decl: FuncDecl
-  Sampler,       // decl: SamplerDecl
-  Action,        // decl: ActionDecl
-  Feedback,      // decl: FeedbackDecl
-  Builtin,       // a compiler built-in constant (pi) or function (box, uniform); index: BuiltinId
+  Const,        // decl: ConstDecl
+  EnumType,     // decl: EnumDecl (as an expression: the set of its members)
+  EnumMember,   // decl: EnumDecl, index: member
+  ItemSet,      // decl: ItemsDecl
+  ItemEntry,    // decl: ItemsDecl, index: entry
+  Observation,  // decl: ObserveDecl
+  Variable,     // decl: VarDecl
+  Param,        // decl: the owning Function/Personal/Skill decl, index: parameter position
+  Binder,       // a quantifier / learn / for binder; binder points at the BinderDecl
+  Function,     // decl: FuncDecl
+  Sampler,      // decl: SamplerDecl
+  Action,       // decl: ActionDecl
+  Feedback,     // decl: FeedbackDecl
+  Builtin,      // a compiler built-in constant (pi) or function (box, uniform); index: BuiltinId
 };
 
 struct BinderDecl;
@@ -106,9 +120,9 @@ struct Expr {
   ExprKind kind;
   SourceRange range;
 
-  double number = 0;   // Number
-  bool boolean = false;  // Bool
-  std::string text;    // String value; Name / Member identifier
+  double number = 0;      // Number
+  bool boolean = false;   // Bool
+  std::string text;       // String value; Name / Member identifier
   SourceRange nameRange;  // Member: the member name
   UnaryOp unaryOp = UnaryOp::Neg;
   BinaryOp binaryOp = BinaryOp::Add;
@@ -117,7 +131,7 @@ struct Expr {
   // Operands: Unary {x}; Binary/Range/In {lhs, rhs}; Member {object}; Call {callee}; Index {object,
   // indices...}; If {cond, then, else}; Tuple/List elements; Quantifier {where?, body} (where may be null).
   std::vector<ExprPtr> operands;
-  std::vector<Arg> args;          // Call arguments
+  std::vector<Arg> args;           // Call arguments
   std::unique_ptr<Binder> binder;  // Quantifier
 
   NameRef ref;                 // Name (and Call's callee name) after resolution
@@ -131,8 +145,26 @@ struct Expr {
 // ---------------------------------------------------------------------------------------------
 
 enum class DeclKind {
-  Domain, Import, World, Robot, Const, Enum, ItemType, ItemSet, Observe, Feedback, Function, Sampler, Action,
-  Var, Require, Sample, Cost, Personal, Skill, Task,
+  Domain,
+  Import,
+  World,
+  Robot,
+  Const,
+  Enum,
+  ItemType,
+  ItemSet,
+  Observe,
+  Feedback,
+  Function,
+  Sampler,
+  Action,
+  Var,
+  Require,
+  Sample,
+  Cost,
+  Personal,
+  Skill,
+  Task,
 };
 
 const char* toString(DeclKind kind);
@@ -163,7 +195,9 @@ struct FieldInit {
   ExprPtr value;
 };
 
-struct DomainDecl : Decl { DomainDecl() : Decl(DeclKind::Domain) {} };
+struct DomainDecl : Decl {
+  DomainDecl() : Decl(DeclKind::Domain) {}
+};
 
 struct ImportDecl : Decl {
   ImportDecl() : Decl(DeclKind::Import) {}
@@ -233,9 +267,15 @@ struct CallableDecl : Decl {
   std::unique_ptr<TypeRef> result;  // null for actions
   ExprPtr body;                     // user functions only
 };
-struct FuncDecl : CallableDecl { FuncDecl() : CallableDecl(DeclKind::Function) {} };
-struct SamplerDecl : CallableDecl { SamplerDecl() : CallableDecl(DeclKind::Sampler) {} };
-struct ActionDecl : CallableDecl { ActionDecl() : CallableDecl(DeclKind::Action) {} };
+struct FuncDecl : CallableDecl {
+  FuncDecl() : CallableDecl(DeclKind::Function) {}
+};
+struct SamplerDecl : CallableDecl {
+  SamplerDecl() : CallableDecl(DeclKind::Sampler) {}
+};
+struct ActionDecl : CallableDecl {
+  ActionDecl() : CallableDecl(DeclKind::Action) {}
+};
 
 struct VarDecl : Decl {
   VarDecl() : Decl(DeclKind::Var) {}
@@ -338,7 +378,7 @@ struct ActionStmt {
 struct SkillDecl : Decl {
   SkillDecl() : Decl(DeclKind::Skill) {}
   std::vector<Param> params;
-  std::vector<std::unique_ptr<Decl>> body;  // Var, Require, Sample, Cost
+  std::vector<std::unique_ptr<Decl>> body;           // Var, Require, Sample, Cost
   std::vector<std::unique_ptr<ActionStmt>> actions;  // the `do` statements, in order
 };
 

@@ -46,7 +46,8 @@ class Builder {
     SourceRange a = tokenRange_(ctx->getStart());
     antlr4::Token* stop = ctx->getStop();
     // An empty rule (error recovery) has stop before start.
-    if (stop == nullptr || stop->getTokenIndex() < ctx->getStart()->getTokenIndex()) return SourceRange{file_, a.begin, a.begin};
+    if (stop == nullptr || stop->getTokenIndex() < ctx->getStart()->getTokenIndex())
+      return SourceRange{file_, a.begin, a.begin};
     return a.to(tokenRange_(stop));
   }
   SourceRange range(antlr4::tree::TerminalNode* node) const {
@@ -81,9 +82,15 @@ class Builder {
       if (raw[i] == '\\' && i + 2 < raw.size()) {
         const char c = raw[++i];
         switch (c) {
-          case 'n': out += '\n'; break;
-          case 't': out += '\t'; break;
-          default: out += c; break;
+          case 'n':
+            out += '\n';
+            break;
+          case 't':
+            out += '\t';
+            break;
+          default:
+            out += c;
+            break;
         }
       } else {
         out += raw[i];
@@ -339,8 +346,10 @@ class Builder {
         rule.event = ident(l->ident());
         for (auto* b : l->learnBinder()) {
           auto bd = std::make_unique<BinderDecl>();
-          if (b->ident() != nullptr) bd->name = ident(b->ident());
-          else bd->name.range = range(b);
+          if (b->ident() != nullptr)
+            bd->name = ident(b->ident());
+          else
+            bd->name.range = range(b);
           rule.binderRanges.push_back(range(b));
           rule.binders.push_back(std::move(bd));
         }
@@ -376,8 +385,10 @@ class Builder {
       s->hasElse = i->ELSE() != nullptr;
       for (auto* b : i->actionStmt()) {
         auto stmt = actionStmt(b);
-        if (b->getStart()->getTokenIndex() > elseAt) s->elseBody.push_back(std::move(stmt));
-        else s->body.push_back(std::move(stmt));
+        if (b->getStart()->getTokenIndex() > elseAt)
+          s->elseBody.push_back(std::move(stmt));
+        else
+          s->body.push_back(std::move(stmt));
       }
     } else if (auto* bl = dynamic_cast<P::ActionBlockContext*>(ctx)) {
       s->kind = ActionStmtKind::Block;
@@ -524,7 +535,10 @@ class Builder {
     }
     if (auto* c = dynamic_cast<P::MulExprContext*>(ctx)) {
       const auto t = c->op->getType();
-      return binary(t == P::STAR ? BinaryOp::Mul : t == P::SLASH ? BinaryOp::Div : BinaryOp::Mod, ctx, c->expr(0), c->expr(1));
+      return binary(t == P::STAR    ? BinaryOp::Mul
+                    : t == P::SLASH ? BinaryOp::Div
+                                    : BinaryOp::Mod,
+                    ctx, c->expr(0), c->expr(1));
     }
     if (auto* c = dynamic_cast<P::AddExprContext*>(ctx)) {
       return binary(c->op->getType() == P::PLUS ? BinaryOp::Add : BinaryOp::Sub, ctx, c->expr(0), c->expr(1));
@@ -538,12 +552,24 @@ class Builder {
     if (auto* c = dynamic_cast<P::CmpExprContext*>(ctx)) {
       BinaryOp op = BinaryOp::Eq;
       switch (c->op->getType()) {
-        case P::EQ: op = BinaryOp::Eq; break;
-        case P::NEQ: op = BinaryOp::Ne; break;
-        case P::LT: op = BinaryOp::Lt; break;
-        case P::LE: op = BinaryOp::Le; break;
-        case P::GT: op = BinaryOp::Gt; break;
-        default: op = BinaryOp::Ge; break;
+        case P::EQ:
+          op = BinaryOp::Eq;
+          break;
+        case P::NEQ:
+          op = BinaryOp::Ne;
+          break;
+        case P::LT:
+          op = BinaryOp::Lt;
+          break;
+        case P::LE:
+          op = BinaryOp::Le;
+          break;
+        case P::GT:
+          op = BinaryOp::Gt;
+          break;
+        default:
+          op = BinaryOp::Ge;
+          break;
       }
       return binary(op, ctx, c->expr(0), c->expr(1));
     }
@@ -555,7 +581,8 @@ class Builder {
     }
     if (auto* c = dynamic_cast<P::AndExprContext*>(ctx)) return binary(BinaryOp::And, ctx, c->expr(0), c->expr(1));
     if (auto* c = dynamic_cast<P::OrExprContext*>(ctx)) return binary(BinaryOp::Or, ctx, c->expr(0), c->expr(1));
-    if (auto* c = dynamic_cast<P::ImpliesExprContext*>(ctx)) return binary(BinaryOp::Implies, ctx, c->expr(0), c->expr(1));
+    if (auto* c = dynamic_cast<P::ImpliesExprContext*>(ctx))
+      return binary(BinaryOp::Implies, ctx, c->expr(0), c->expr(1));
     if (auto* c = dynamic_cast<P::IffExprContext*>(ctx)) return binary(BinaryOp::Iff, ctx, c->expr(0), c->expr(1));
     if (auto* c = dynamic_cast<P::QuantExprContext*>(ctx)) {
       auto e = make(ExprKind::Quantifier, ctx);

@@ -10,8 +10,12 @@
 #include <functional>
 #include <memory>
 
-namespace cbtlgrammar { class CbtlParser; }
-namespace antlr4 { class Token; }
+namespace cbtlgrammar {
+class CbtlParser;
+}
+namespace antlr4 {
+class Token;
+}
 
 namespace cbtl {
 

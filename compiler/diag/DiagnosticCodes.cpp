@@ -67,7 +67,8 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
        "A task runs a skill that is not declared.\nFix: correct the name or declare the skill."},
       {"E0210", "unknown feedback event",
        "A learning rule names an event that no 'feedback' declaration defines.\n"
-       "Example:  learn viewBlockd(c) => false;\nFix: correct the name or declare: feedback viewBlocked(c: Conf<gen3>);"},
+       "Example:  learn viewBlockd(c) => false;\nFix: correct the name or declare: feedback viewBlocked(c: "
+       "Conf<gen3>);"},
       {"E0211", "misplaced or repeated domain header",
        "A file has more than one 'domain NAME;' header, or it is not the first declaration.\n"
        "Fix: keep one header at the top of the file."},
@@ -91,7 +92,8 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
        "observation, an index set) depends on a variable.\nFix: use constants or observations only."},
       {"E0306", "cannot index",
        "An index expression is applied to something that is not a family, a vector or a list, or the index\n"
-       "has the wrong type.\nExample:  temp[3] when temp is indexed by an enum.\nFix: index with a member of the family's index set."},
+       "has the wrong type.\nExample:  temp[3] when temp is indexed by an enum.\nFix: index with a member of the "
+       "family's index set."},
       {"E0307", "bad named argument",
        "A named argument does not match any parameter, is given twice, or comes before a positional one.\n"
        "Fix: use the parameter names of the declaration."},
@@ -122,13 +124,15 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
        "Fix: match the declared type."},
       {"E0316", "recursive constant",
        "A constant's value uses the constant itself, directly or through other constants, so it has no value.\n"
-       "Example:  const a = b + 1;  const b = a * 2;\nFix: give one of the constants a value that does not depend on the others."},
+       "Example:  const a = b + 1;  const b = a * 2;\nFix: give one of the constants a value that does not depend on "
+       "the others."},
       {"E0317", "too large",
        "A declaration expands into more than the compiler accepts: an integer range used as a family index or a\n"
        "sample statement's 'for' set may have at most 100000 members, and the whole constraint graph at most\n"
        "2000000 variables, constraints, samplers, costs, actions and expression nodes. (A top-level 'forall'\n"
        "with more than 10000 instances is not an error: it is kept as one quantified constraint.)\n"
-       "Example:  var slot[0 .. 1000000] : bool;\nFix: use smaller sets, or a quantified constraint over an observation."},
+       "Example:  var slot[0 .. 1000000] : bool;\nFix: use smaller sets, or a quantified constraint over an "
+       "observation."},
       // --- E04xx: personalized constraint generators -------------------------------------------------
       {"E0401", "malformed initiation pattern",
        "A glob or regular expression in a 'when' clause is not well formed: an unclosed '{' capture, an empty\n"
@@ -205,12 +209,12 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
       {"W0402", "generator never learns",
        "A personalized constraint generator has no learning rule, so its parameter stays at the prior.\n"
        "Fix: add 'learn EVENT(...) => label;'."},
-      {"W0501", "skill never used",
-       "A skill is declared but no task runs it.\nFix: run it in a task or remove it."},
+      {"W0501", "skill never used", "A skill is declared but no task runs it.\nFix: run it in a task or remove it."},
       {"W0502", "variable has no sampler",
        "A variable that is used but has an unbounded domain (a real, int, vec, SE2, SE3 or text without 'in')\n"
        "has neither a sampler nor an initial value, so the solver cannot produce values for it.\n"
-       "Example:  var free : real;  require free > 1;\nFix: add 'sample x ~ ...;', an initial value, or bound its domain."},
+       "Example:  var free : real;  require free > 1;\nFix: add 'sample x ~ ...;', an initial value, or bound its "
+       "domain."},
   };
   return codes;
 }
@@ -220,7 +224,10 @@ const DiagnosticCodeInfo* findDiagnosticCode(std::string_view code) {
     if (info.code.size() != code.size()) continue;
     bool same = true;
     for (std::size_t i = 0; i < code.size(); ++i) {
-      if (std::toupper(static_cast<unsigned char>(code[i])) != info.code[i]) { same = false; break; }
+      if (std::toupper(static_cast<unsigned char>(code[i])) != info.code[i]) {
+        same = false;
+        break;
+      }
     }
     if (same) return &info;
   }

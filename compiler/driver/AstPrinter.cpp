@@ -12,7 +12,8 @@ class Printer {
   explicit Printer(const SourceManager& s) : sources_(s) {}
 
   std::string run(const Module& m) {
-    line(0, fmt::format("module {}{}", sources_.file(m.file).path, m.domainName.empty() ? "" : " domain " + m.domainName));
+    line(0,
+         fmt::format("module {}{}", sources_.file(m.file).path, m.domainName.empty() ? "" : " domain " + m.domainName));
     for (const auto& d : m.decls) decl(*d, 1);
     return out_;
   }
@@ -23,29 +24,64 @@ class Printer {
     LineCol p = sources_.position(r.file, r.begin);
     return fmt::format(" @{}:{}", p.line, p.column);
   }
-  void line(int depth, const std::string& text) { out_ += std::string(static_cast<std::size_t>(depth) * 2, ' ') + text + "\n"; }
+  void line(int depth, const std::string& text) {
+    out_ += std::string(static_cast<std::size_t>(depth) * 2, ' ') + text + "\n";
+  }
 
   static std::string typeOf(const Expr& e) { return e.type ? " : " + e.type->spelling : ""; }
 
   void expr(const Expr* e, int depth) {
-    if (e == nullptr) { line(depth, "<none>"); return; }
+    if (e == nullptr) {
+      line(depth, "<none>");
+      return;
+    }
     std::string head;
     switch (e->kind) {
-      case ExprKind::Number: head = "number " + e->text; break;
-      case ExprKind::String: head = "string \"" + e->text + "\""; break;
-      case ExprKind::Bool: head = e->boolean ? "bool true" : "bool false"; break;
-      case ExprKind::Name: head = "name " + e->text + ref(e->ref); break;
-      case ExprKind::Member: head = "member ." + e->text + ref(e->ref); break;
-      case ExprKind::Call: head = "call"; break;
-      case ExprKind::Index: head = "index"; break;
-      case ExprKind::Unary: head = std::string("unary ") + toString(e->unaryOp); break;
-      case ExprKind::Binary: head = std::string("binary ") + toString(e->binaryOp); break;
-      case ExprKind::Range: head = "range"; break;
-      case ExprKind::In: head = "in"; break;
-      case ExprKind::Quantifier: head = e->quant == QuantKind::Forall ? "forall" : "exists"; break;
-      case ExprKind::If: head = "if"; break;
-      case ExprKind::Tuple: head = "tuple"; break;
-      case ExprKind::List: head = "list"; break;
+      case ExprKind::Number:
+        head = "number " + e->text;
+        break;
+      case ExprKind::String:
+        head = "string \"" + e->text + "\"";
+        break;
+      case ExprKind::Bool:
+        head = e->boolean ? "bool true" : "bool false";
+        break;
+      case ExprKind::Name:
+        head = "name " + e->text + ref(e->ref);
+        break;
+      case ExprKind::Member:
+        head = "member ." + e->text + ref(e->ref);
+        break;
+      case ExprKind::Call:
+        head = "call";
+        break;
+      case ExprKind::Index:
+        head = "index";
+        break;
+      case ExprKind::Unary:
+        head = std::string("unary ") + toString(e->unaryOp);
+        break;
+      case ExprKind::Binary:
+        head = std::string("binary ") + toString(e->binaryOp);
+        break;
+      case ExprKind::Range:
+        head = "range";
+        break;
+      case ExprKind::In:
+        head = "in";
+        break;
+      case ExprKind::Quantifier:
+        head = e->quant == QuantKind::Forall ? "forall" : "exists";
+        break;
+      case ExprKind::If:
+        head = "if";
+        break;
+      case ExprKind::Tuple:
+        head = "tuple";
+        break;
+      case ExprKind::List:
+        head = "list";
+        break;
     }
     line(depth, head + typeOf(*e) + at(e->range));
     if (e->binder) {
@@ -65,35 +101,60 @@ class Printer {
 
   static std::string ref(const NameRef& r) {
     switch (r.kind) {
-      case RefKind::Unresolved: return "";
-      case RefKind::Binder: return " -> binder";
-      case RefKind::Builtin: return " -> builtin";
-      case RefKind::Param: return fmt::format(" -> param {}", r.index);
-      case RefKind::EnumMember: case RefKind::ItemEntry:
+      case RefKind::Unresolved:
+        return "";
+      case RefKind::Binder:
+        return " -> binder";
+      case RefKind::Builtin:
+        return " -> builtin";
+      case RefKind::Param:
+        return fmt::format(" -> param {}", r.index);
+      case RefKind::EnumMember:
+      case RefKind::ItemEntry:
         return fmt::format(" -> {} {}[{}]", toString(r.decl->kind), r.decl->name.name, r.index);
-      default: return fmt::format(" -> {} {}", r.decl ? toString(r.decl->kind) : "?", r.decl ? r.decl->name.name : "?");
+      default:
+        return fmt::format(" -> {} {}", r.decl ? toString(r.decl->kind) : "?", r.decl ? r.decl->name.name : "?");
     }
   }
 
   void decl(const Decl& d, int depth) {
     line(depth, fmt::format("{} {}{}", toString(d.kind), d.name.name, at(d.range)));
     switch (d.kind) {
-      case DeclKind::Import: line(depth + 1, "target " + static_cast<const ImportDecl&>(d).target); break;
-      case DeclKind::World: line(depth + 1, "path " + static_cast<const WorldDecl&>(d).path); break;
-      case DeclKind::Const: expr(static_cast<const ConstDecl&>(d).value.get(), depth + 1); break;
+      case DeclKind::Import:
+        line(depth + 1, "target " + static_cast<const ImportDecl&>(d).target);
+        break;
+      case DeclKind::World:
+        line(depth + 1, "path " + static_cast<const WorldDecl&>(d).path);
+        break;
+      case DeclKind::Const:
+        expr(static_cast<const ConstDecl&>(d).value.get(), depth + 1);
+        break;
       case DeclKind::Enum:
         for (const auto& m : static_cast<const EnumDecl&>(d).members) line(depth + 1, "member " + m.name);
         break;
       case DeclKind::Var: {
         const auto& v = static_cast<const VarDecl&>(d);
         line(depth + 1, "type " + v.type.name.name + (v.type.resolved ? " = " + v.type.resolved->spelling : ""));
-        if (v.index) { line(depth + 1, "index"); expr(v.index->set.get(), depth + 2); }
-        if (v.domain) { line(depth + 1, "domain"); expr(v.domain.get(), depth + 2); }
-        if (v.init) { line(depth + 1, "init"); expr(v.init.get(), depth + 2); }
+        if (v.index) {
+          line(depth + 1, "index");
+          expr(v.index->set.get(), depth + 2);
+        }
+        if (v.domain) {
+          line(depth + 1, "domain");
+          expr(v.domain.get(), depth + 2);
+        }
+        if (v.init) {
+          line(depth + 1, "init");
+          expr(v.init.get(), depth + 2);
+        }
         break;
       }
-      case DeclKind::Require: expr(static_cast<const RequireDecl&>(d).condition.get(), depth + 1); break;
-      case DeclKind::Cost: expr(static_cast<const CostDecl&>(d).value.get(), depth + 1); break;
+      case DeclKind::Require:
+        expr(static_cast<const RequireDecl&>(d).condition.get(), depth + 1);
+        break;
+      case DeclKind::Cost:
+        expr(static_cast<const CostDecl&>(d).value.get(), depth + 1);
+        break;
       case DeclKind::Sample: {
         const auto& s = static_cast<const SampleDecl&>(d);
         for (const auto& t : s.targets) expr(t.get(), depth + 1);
@@ -101,9 +162,13 @@ class Printer {
         for (const auto& a : s.args) expr(a.value.get(), depth + 2);
         break;
       }
-      case DeclKind::Function: case DeclKind::Sampler: case DeclKind::Action: {
+      case DeclKind::Function:
+      case DeclKind::Sampler:
+      case DeclKind::Action: {
         const auto& c = static_cast<const CallableDecl&>(d);
-        for (const auto& p : c.params) line(depth + 1, "param " + p.name.name + " : " + (p.type.resolved ? p.type.resolved->spelling : p.type.name.name));
+        for (const auto& p : c.params)
+          line(depth + 1,
+               "param " + p.name.name + " : " + (p.type.resolved ? p.type.resolved->spelling : p.type.name.name));
         if (c.body) expr(c.body.get(), depth + 1);
         break;
       }
@@ -134,7 +199,8 @@ class Printer {
         for (const auto& i : t.instances) line(depth + 1, "run " + i.skill.name + " as " + i.instanceName());
         break;
       }
-      default: break;
+      default:
+        break;
     }
   }
 

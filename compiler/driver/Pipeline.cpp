@@ -2,14 +2,14 @@
 
 #include "compiler/driver/AstPrinter.h"
 #include "compiler/driver/EmbeddedStdlib.h"
-#include "ir/GraphPrinter.h"
-#include "ir/Validator.h"
 #include "compiler/lower/Lowering.h"
 #include "compiler/parse/Parser.h"
 #include "compiler/sema/GeneratorChecker.h"
 #include "compiler/sema/NameResolver.h"
 #include "compiler/sema/TypeChecker.h"
 #include "compiler/util/Suggest.h"
+#include "ir/GraphPrinter.h"
+#include "ir/Validator.h"
 
 #include <fmt/format.h>
 
@@ -91,7 +91,8 @@ class Loader {
       std::vector<std::string> names;
       for (const auto& [n, t] : embeddedStdlib()) names.push_back(n);
       const std::string guess = closestMatch(name, names);
-      if (!guess.empty()) d.help(fmt::format("did you mean '{}'?", guess));
+      if (!guess.empty())
+        d.help(fmt::format("did you mean '{}'?", guess));
       else {
         std::string list;
         for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
@@ -177,13 +178,13 @@ std::string dumpModules(const TranslationUnit& tu) {
 }  // namespace
 
 const std::vector<std::string>& passNames() {
-  static const std::vector<std::string> names = {"parse", "build-ast", "resolve-names", "check-types",
-                                                 "check-generators", "lower", "validate-ir"};
+  static const std::vector<std::string> names = {
+      "parse", "build-ast", "resolve-names", "check-types", "check-generators", "lower", "validate-ir"};
   return names;
 }
 
-PipelineResult compileSource(TranslationUnit& tu, const std::string& path, std::string text, const std::string& dumpAfter,
-                             const std::string& stopAfter) {
+PipelineResult compileSource(TranslationUnit& tu, const std::string& path, std::string text,
+                             const std::string& dumpAfter, const std::string& stopAfter) {
   PipelineResult result;
   bool syntaxErrors = false;
   std::vector<Pass> passes = {
@@ -211,8 +212,10 @@ PipelineResult compileSource(TranslationUnit& tu, const std::string& path, std::
       // The AST is built while parsing (one visitor pass over each parse tree); this pass names the
       // result so it can be dumped before any semantic annotation.
       {"build-ast", [](TranslationUnit&) { return true; }, dumpModules},
-      {"resolve-names", [](TranslationUnit& t) { return resolveNames(t.modules, t.types, t.symbols, t.diags); }, dumpModules},
-      {"check-types", [](TranslationUnit& t) { return checkTypes(t.modules, t.types, t.symbols, t.diags); }, dumpModules},
+      {"resolve-names", [](TranslationUnit& t) { return resolveNames(t.modules, t.types, t.symbols, t.diags); },
+       dumpModules},
+      {"check-types", [](TranslationUnit& t) { return checkTypes(t.modules, t.types, t.symbols, t.diags); },
+       dumpModules},
       {"check-generators", [](TranslationUnit& t) { return checkGenerators(t.modules, t.diags); }, dumpModules},
       {"lower", [](TranslationUnit& t) { return lowerToGraph(t.modules, t.symbols, t.sources, t.diags, t.graph); },
        [](const TranslationUnit& t) { return ir::toText(t.graph); }},
@@ -220,7 +223,8 @@ PipelineResult compileSource(TranslationUnit& tu, const std::string& path, std::
        [&](TranslationUnit& t) {
          const auto problems = ir::validate(t.graph);
          if (problems.empty()) return true;
-         Diagnostic& d = t.diags.error("E0901", t.sources.insertionPoint(t.root, 0), "the compiler produced an invalid constraint graph");
+         Diagnostic& d = t.diags.error("E0901", t.sources.insertionPoint(t.root, 0),
+                                       "the compiler produced an invalid constraint graph");
          for (const auto& p : problems) d.note(p);
          result.outcome = PipelineOutcome::InternalError;
          return false;

@@ -5,10 +5,10 @@
 
 #include "compiler/ast/Ast.h"
 #include "compiler/diag/DiagnosticEngine.h"
-#include "ir/ConstraintGraph.h"
 #include "compiler/sema/Symbols.h"
 #include "compiler/sema/Type.h"
 #include "compiler/source/SourceManager.h"
+#include "ir/ConstraintGraph.h"
 
 #include <map>
 #include <memory>
@@ -18,7 +18,7 @@
 namespace cbtl {
 
 struct CompileOptions {
-  std::string stdlibDir;        // empty: the embedded standard library
+  std::string stdlibDir;  // empty: the embedded standard library
   std::size_t errorLimit = 50;
   bool warningsAsErrors = false;
 };

@@ -1,11 +1,11 @@
 #include "compiler/lower/Lowering.h"
 
-#include "ir/Pattern.h"
-#include "ir/ReadSet.h"
 #include "compiler/lower/UsageWarnings.h"
 #include "compiler/sema/GeneratorChecker.h"
 #include "compiler/sema/Type.h"
 #include "compiler/sema/TypeChecker.h"
+#include "ir/Pattern.h"
+#include "ir/ReadSet.h"
 
 #include <fmt/format.h>
 
@@ -20,7 +20,7 @@ namespace {
 // A value known at compile time, used for family indices and quantifier bindings.
 struct CVal {
   enum class Kind { Enum, Int, Item, Text, None } kind = Kind::None;
-  std::string text;     // member / entry name, the integer as text, or the string
+  std::string text;  // member / entry name, the integer as text, or the string
   long long number = 0;
   const Decl* decl = nullptr;  // EnumDecl or ItemsDecl
   int index = -1;
@@ -28,8 +28,8 @@ struct CVal {
 
 ir::TypeDesc typeDesc(const Type* t) {
   if (t == nullptr) return {"void", "void"};
-  static const char* kinds[] = {"error", "real", "int", "bool", "text", "enum", "item", "vec",
-                                "SE2", "SE3", "Conf", "set", "tuple", "range", "void"};
+  static const char* kinds[] = {"error", "real", "int",  "bool", "text",  "enum",  "item", "vec",
+                                "SE2",   "SE3",  "Conf", "set",  "tuple", "range", "void"};
   return {kinds[static_cast<int>(t->kind)], t->spelling};
 }
 
@@ -87,7 +87,7 @@ class Lowerer {
  private:
   struct Ctx {
     std::string scope;
-    std::string prefix;  // "<instance>." for skill instances
+    std::string prefix;                                            // "<instance>." for skill instances
     std::map<const Decl*, std::map<std::string, ir::VarId>> vars;  // VarDecl -> member text ("" if scalar) -> id
     const SkillDecl* skill = nullptr;
     std::vector<std::optional<ir::Expr>> skillParams;  // lowered expression per skill parameter (a var node)
@@ -99,7 +99,10 @@ class Lowerer {
     if (!r.valid()) return s;
     s.file = sources_.file(r.file).path;
     LineCol a = sources_.position(r.file, r.begin), b = sources_.position(r.file, r.end);
-    s.line = a.line; s.column = a.column; s.endLine = b.line; s.endColumn = b.column;
+    s.line = a.line;
+    s.column = a.column;
+    s.endLine = b.line;
+    s.endColumn = b.column;
     return s;
   }
 
@@ -109,26 +112,37 @@ class Lowerer {
     if (e == nullptr) return std::nullopt;
     switch (e->kind) {
       case ExprKind::String: {
-        CVal v; v.kind = CVal::Kind::Text; v.text = e->text;
+        CVal v;
+        v.kind = CVal::Kind::Text;
+        v.text = e->text;
         return v;
       }
       case ExprKind::Number:
         if (e->number == std::floor(e->number) && std::fabs(e->number) < 1e15) {
-          CVal v; v.kind = CVal::Kind::Int; v.number = static_cast<long long>(e->number); v.text = std::to_string(v.number);
+          CVal v;
+          v.kind = CVal::Kind::Int;
+          v.number = static_cast<long long>(e->number);
+          v.text = std::to_string(v.number);
           return v;
         }
         return std::nullopt;
       case ExprKind::Unary:
         if (e->unaryOp == UnaryOp::Neg) {
           auto v = evalConst(e->operands[0].get(), ctx);
-          if (v && v->kind == CVal::Kind::Int) { v->number = -v->number; v->text = std::to_string(v->number); return v; }
+          if (v && v->kind == CVal::Kind::Int) {
+            v->number = -v->number;
+            v->text = std::to_string(v->number);
+            return v;
+          }
         }
         return std::nullopt;
       case ExprKind::Binary: {
-        if (e->binaryOp != BinaryOp::Add && e->binaryOp != BinaryOp::Sub && e->binaryOp != BinaryOp::Mul) return std::nullopt;
+        if (e->binaryOp != BinaryOp::Add && e->binaryOp != BinaryOp::Sub && e->binaryOp != BinaryOp::Mul)
+          return std::nullopt;
         auto a = evalConst(e->operands[0].get(), ctx), b = evalConst(e->operands[1].get(), ctx);
         if (!a || !b || a->kind != CVal::Kind::Int || b->kind != CVal::Kind::Int) return std::nullopt;
-        CVal v; v.kind = CVal::Kind::Int;
+        CVal v;
+        v.kind = CVal::Kind::Int;
         // A result that does not fit in 64 bits is not a usable index or bound: not a compile-time value.
         const bool overflow = e->binaryOp == BinaryOp::Add   ? __builtin_add_overflow(a->number, b->number, &v.number)
                               : e->binaryOp == BinaryOp::Sub ? __builtin_sub_overflow(a->number, b->number, &v.number)
@@ -137,15 +151,24 @@ class Lowerer {
         v.text = std::to_string(v.number);
         return v;
       }
-      case ExprKind::Name: case ExprKind::Member:
+      case ExprKind::Name:
+      case ExprKind::Member:
         if (e->ref.kind == RefKind::EnumMember) {
           const auto* en = static_cast<const EnumDecl*>(e->ref.decl);
-          CVal v; v.kind = CVal::Kind::Enum; v.decl = en; v.index = e->ref.index; v.text = en->members[e->ref.index].name;
+          CVal v;
+          v.kind = CVal::Kind::Enum;
+          v.decl = en;
+          v.index = e->ref.index;
+          v.text = en->members[e->ref.index].name;
           return v;
         }
         if (e->ref.kind == RefKind::ItemEntry) {
           const auto* items = static_cast<const ItemsDecl*>(e->ref.decl);
-          CVal v; v.kind = CVal::Kind::Item; v.decl = items; v.index = e->ref.index; v.text = items->entries[e->ref.index].name.name;
+          CVal v;
+          v.kind = CVal::Kind::Item;
+          v.decl = items;
+          v.index = e->ref.index;
+          v.text = items->entries[e->ref.index].name.name;
           return v;
         }
         if (e->ref.kind == RefKind::Binder) {
@@ -170,7 +193,11 @@ class Lowerer {
       const auto* en = static_cast<const EnumDecl*>(set->ref.decl);
       std::vector<CVal> out;
       for (std::size_t i = 0; i < en->members.size(); ++i) {
-        CVal v; v.kind = CVal::Kind::Enum; v.decl = en; v.index = static_cast<int>(i); v.text = en->members[i].name;
+        CVal v;
+        v.kind = CVal::Kind::Enum;
+        v.decl = en;
+        v.index = static_cast<int>(i);
+        v.text = en->members[i].name;
         out.push_back(v);
       }
       return out;
@@ -179,7 +206,11 @@ class Lowerer {
       const auto* items = static_cast<const ItemsDecl*>(set->ref.decl);
       std::vector<CVal> out;
       for (std::size_t i = 0; i < items->entries.size(); ++i) {
-        CVal v; v.kind = CVal::Kind::Item; v.decl = items; v.index = static_cast<int>(i); v.text = items->entries[i].name.name;
+        CVal v;
+        v.kind = CVal::Kind::Item;
+        v.decl = items;
+        v.index = static_cast<int>(i);
+        v.text = items->entries[i].name.name;
         out.push_back(v);
       }
       return out;
@@ -194,7 +225,10 @@ class Lowerer {
       }
       std::vector<CVal> out;
       for (long long i = lo->number; i <= hi->number; ++i) {
-        CVal v; v.kind = CVal::Kind::Int; v.number = i; v.text = std::to_string(i);
+        CVal v;
+        v.kind = CVal::Kind::Int;
+        v.number = i;
+        v.text = std::to_string(i);
         out.push_back(v);
       }
       return out;
@@ -243,23 +277,42 @@ class Lowerer {
     const long long x = a->kind == CVal::Kind::Int ? a->number : a->index;
     const long long y = b->kind == CVal::Kind::Int ? b->number : b->index;
     switch (e->binaryOp) {
-      case BinaryOp::Eq: return x == y;
-      case BinaryOp::Ne: return x != y;
-      case BinaryOp::Lt: return x < y;
-      case BinaryOp::Le: return x <= y;
-      case BinaryOp::Gt: return x > y;
-      case BinaryOp::Ge: return x >= y;
-      default: return std::nullopt;
+      case BinaryOp::Eq:
+        return x == y;
+      case BinaryOp::Ne:
+        return x != y;
+      case BinaryOp::Lt:
+        return x < y;
+      case BinaryOp::Le:
+        return x <= y;
+      case BinaryOp::Gt:
+        return x > y;
+      case BinaryOp::Ge:
+        return x >= y;
+      default:
+        return std::nullopt;
     }
   }
 
   ir::Expr constNode(const CVal& v, const Type* t) {
     ir::Expr x;
     x.type = typeDesc(t);
-    if (v.kind == CVal::Kind::Int) { x.op = "num"; x.number = static_cast<double>(v.number); x.text = v.text; }
-    else if (v.kind == CVal::Kind::Enum) { x.op = "enum"; x.extra = v.decl->name.name; x.text = v.text; }
-    else if (v.kind == CVal::Kind::Text) { x.op = "str"; x.text = v.text; }
-    else { x.op = "item"; x.extra = v.decl->name.name; x.text = v.text; }
+    if (v.kind == CVal::Kind::Int) {
+      x.op = "num";
+      x.number = static_cast<double>(v.number);
+      x.text = v.text;
+    } else if (v.kind == CVal::Kind::Enum) {
+      x.op = "enum";
+      x.extra = v.decl->name.name;
+      x.text = v.text;
+    } else if (v.kind == CVal::Kind::Text) {
+      x.op = "str";
+      x.text = v.text;
+    } else {
+      x.op = "item";
+      x.extra = v.decl->name.name;
+      x.text = v.text;
+    }
     return x;
   }
 
@@ -267,13 +320,29 @@ class Lowerer {
 
   ir::Expr lower(const Expr* e, Ctx& ctx) {
     ir::Expr x;
-    if (e == nullptr) { x.op = "bool"; x.number = 1; x.type = {"bool", "bool"}; return x; }
+    if (e == nullptr) {
+      x.op = "bool";
+      x.number = 1;
+      x.type = {"bool", "bool"};
+      return x;
+    }
     x.type = typeDesc(e->type);
     switch (e->kind) {
-      case ExprKind::Number: x.op = "num"; x.number = e->number; x.text = e->text; return x;
-      case ExprKind::String: x.op = "str"; x.text = e->text; return x;
-      case ExprKind::Bool: x.op = "bool"; x.number = e->boolean ? 1 : 0; return x;
-      case ExprKind::Name: case ExprKind::Member:
+      case ExprKind::Number:
+        x.op = "num";
+        x.number = e->number;
+        x.text = e->text;
+        return x;
+      case ExprKind::String:
+        x.op = "str";
+        x.text = e->text;
+        return x;
+      case ExprKind::Bool:
+        x.op = "bool";
+        x.number = e->boolean ? 1 : 0;
+        return x;
+      case ExprKind::Name:
+      case ExprKind::Member:
         if (e->kind == ExprKind::Member && e->ref.kind != RefKind::EnumMember && e->ref.kind != RefKind::ItemEntry) {
           x.op = "member";
           x.text = e->text;
@@ -307,7 +376,8 @@ class Lowerer {
         x.children.push_back(lower(e->operands[0].get(), ctx));
         x.children.push_back(lower(e->operands[1].get(), ctx));
         return x;
-      case ExprKind::Range: case ExprKind::In:
+      case ExprKind::Range:
+      case ExprKind::In:
         x.op = e->kind == ExprKind::Range ? "range" : "in";
         x.children.push_back(lower(e->operands[0].get(), ctx));
         x.children.push_back(lower(e->operands[1].get(), ctx));
@@ -324,7 +394,8 @@ class Lowerer {
         x.op = "if";
         for (const auto& op : e->operands) x.children.push_back(lower(op.get(), ctx));
         return x;
-      case ExprKind::Tuple: case ExprKind::List:
+      case ExprKind::Tuple:
+      case ExprKind::List:
         x.op = e->kind == ExprKind::Tuple ? "tuple" : "list";
         for (const auto& op : e->operands) x.children.push_back(lower(op.get(), ctx));
         return x;
@@ -363,8 +434,8 @@ class Lowerer {
         return x;
       }
       case RefKind::Param: {
-        if (r.decl->kind == DeclKind::Skill && ctx.skill == r.decl && r.index < static_cast<int>(ctx.skillParams.size()) &&
-            ctx.skillParams[r.index]) {
+        if (r.decl->kind == DeclKind::Skill && ctx.skill == r.decl &&
+            r.index < static_cast<int>(ctx.skillParams.size()) && ctx.skillParams[r.index]) {
           x = *ctx.skillParams[r.index];
           return x;
         }
@@ -380,20 +451,35 @@ class Lowerer {
         return x;
       }
       case RefKind::EnumMember: {
-        CVal v; v.kind = CVal::Kind::Enum; v.decl = r.decl; v.index = r.index;
+        CVal v;
+        v.kind = CVal::Kind::Enum;
+        v.decl = r.decl;
+        v.index = r.index;
         v.text = static_cast<const EnumDecl*>(r.decl)->members[r.index].name;
         x = constNode(v, e.type);
         return x;
       }
       case RefKind::ItemEntry: {
-        CVal v; v.kind = CVal::Kind::Item; v.decl = r.decl; v.index = r.index;
+        CVal v;
+        v.kind = CVal::Kind::Item;
+        v.decl = r.decl;
+        v.index = r.index;
         v.text = static_cast<const ItemsDecl*>(r.decl)->entries[r.index].name.name;
         x = constNode(v, e.type);
         return x;
       }
-      case RefKind::EnumType: x.op = "enumset"; x.text = r.decl->name.name; return x;
-      case RefKind::ItemSet: x.op = "itemset"; x.text = r.decl->name.name; return x;
-      case RefKind::Observation: x.op = "obs"; x.text = r.decl->name.name; return x;
+      case RefKind::EnumType:
+        x.op = "enumset";
+        x.text = r.decl->name.name;
+        return x;
+      case RefKind::ItemSet:
+        x.op = "itemset";
+        x.text = r.decl->name.name;
+        return x;
+      case RefKind::Observation:
+        x.op = "obs";
+        x.text = r.decl->name.name;
+        return x;
       case RefKind::Binder: {
         auto it = ctx.env.find(r.binder);
         if (it != ctx.env.end()) {
@@ -404,8 +490,15 @@ class Lowerer {
         x.text = e.text;
         return x;
       }
-      case RefKind::Builtin: x.op = "num"; x.number = M_PI; x.text = "pi"; return x;
-      default: x.op = "invalid"; x.text = e.text; return x;
+      case RefKind::Builtin:
+        x.op = "num";
+        x.number = M_PI;
+        x.text = "pi";
+        return x;
+      default:
+        x.op = "invalid";
+        x.text = e.text;
+        return x;
     }
   }
 
@@ -513,8 +606,11 @@ class Lowerer {
     graphSize_ += units;
     if (graphSize_ <= kMaxGraphSize) return true;
     tooLarge_ = true;
-    diags_.error("E0317", at, fmt::format("the constraint graph is too large (more than {} variables, constraints, "
-                                          "samplers and expression nodes)", kMaxGraphSize))
+    diags_
+        .error("E0317", at,
+               fmt::format("the constraint graph is too large (more than {} variables, constraints, "
+                           "samplers and expression nodes)",
+                           kMaxGraphSize))
         .help("check the sizes of families, 'for' sets and unrolled 'forall's that this declaration expands");
     return false;
   }
@@ -527,7 +623,9 @@ class Lowerer {
 
   void declareTop(const Decl& d) {
     switch (d.kind) {
-      case DeclKind::Robot: g_.robots.push_back({d.name.name, static_cast<const RobotDecl&>(d).dof}); break;
+      case DeclKind::Robot:
+        g_.robots.push_back({d.name.name, static_cast<const RobotDecl&>(d).dof});
+        break;
       case DeclKind::Enum: {
         ir::Enum e{d.name.name, {}, span(d.range)};
         for (const auto& m : static_cast<const EnumDecl&>(d).members) e.members.push_back(m.name);
@@ -536,7 +634,8 @@ class Lowerer {
       }
       case DeclKind::ItemType: {
         ir::ItemType t{d.name.name, {}, span(d.range)};
-        for (const auto& f : static_cast<const ItemTypeDecl&>(d).fields) t.fields.push_back({f.name.name, typeDesc(f.type.resolved)});
+        for (const auto& f : static_cast<const ItemTypeDecl&>(d).fields)
+          t.fields.push_back({f.name.name, typeDesc(f.type.resolved)});
         g_.itemTypes.push_back(std::move(t));
         break;
       }
@@ -572,12 +671,15 @@ class Lowerer {
         ir::Function f;
         f.name = d.name.name;
         f.kind = "feedback";
-        for (const auto& p : static_cast<const FeedbackDecl&>(d).params) f.params.push_back({p.name.name, typeDesc(p.type.resolved)});
+        for (const auto& p : static_cast<const FeedbackDecl&>(d).params)
+          f.params.push_back({p.name.name, typeDesc(p.type.resolved)});
         f.span = span(d.range);
         g_.feedback.push_back(std::move(f));
         break;
       }
-      case DeclKind::Function: case DeclKind::Sampler: case DeclKind::Action: {
+      case DeclKind::Function:
+      case DeclKind::Sampler:
+      case DeclKind::Action: {
         const auto& c = static_cast<const CallableDecl&>(d);
         ir::Function f;
         f.name = c.name.name;
@@ -592,8 +694,11 @@ class Lowerer {
         g_.functions.push_back(std::move(f));
         break;
       }
-      case DeclKind::Skill: g_.skills.push_back(d.name.name); break;
-      default: break;
+      case DeclKind::Skill:
+        g_.skills.push_back(d.name.name);
+        break;
+      default:
+        break;
     }
   }
 
@@ -636,8 +741,8 @@ class Lowerer {
   void reportEmptyRange(const VarDecl& v, const ir::Domain& d) {
     for (const auto& b : d.bounds) {
       if (b.lo && b.hi && b.lo->op == "num" && b.hi->op == "num" && b.lo->number > b.hi->number) {
-        diags_.error("E0311", v.domain->range, fmt::format("the domain of '{}' is empty: {} > {}", v.name.name,
-                                                           b.lo->number, b.hi->number));
+        diags_.error("E0311", v.domain->range,
+                     fmt::format("the domain of '{}' is empty: {} > {}", v.name.name, b.lo->number, b.hi->number));
       }
     }
   }
@@ -686,7 +791,10 @@ class Lowerer {
       std::size_t units = 1 + (var.init ? nodeCount(*var.init) : 0) + (var.domain.set ? nodeCount(*var.domain.set) : 0);
       for (const auto& b : var.domain.bounds) units += (b.lo ? nodeCount(*b.lo) : 0) + (b.hi ? nodeCount(*b.hi) : 0);
       if (!grow(units, v.range)) return;
-      if (!member.empty()) { var.family = ctx.prefix + v.name.name; var.indexText = member; }
+      if (!member.empty()) {
+        var.family = ctx.prefix + v.name.name;
+        var.indexText = member;
+      }
       var.scope = ctx.scope;
       var.span = span(v.range);
       ctx.vars[&v][member] = var.id;
@@ -752,7 +860,8 @@ class Lowerer {
       auto values = enumerate(cond->binder->set.get(), ctx);
       const auto& names = cond->binder->names;
       std::size_t total = instances;
-      for (std::size_t i = 0; values && i < names.size() && total <= kMaxUnrolled; ++i) total *= std::max<std::size_t>(1, values->size());
+      for (std::size_t i = 0; values && i < names.size() && total <= kMaxUnrolled; ++i)
+        total *= std::max<std::size_t>(1, values->size());
       if (values && total <= kMaxUnrolled) {
         if (values->empty()) return;  // vacuously true: no instance
         std::vector<std::size_t> pos(names.size(), 0);
@@ -801,7 +910,8 @@ class Lowerer {
       return;
     }
     if (!values) {
-      diags_.error("E0305", s.forBinder->set->range, "the 'for' set of a sample statement must be known at compile time");
+      diags_.error("E0305", s.forBinder->set->range,
+                   "the 'for' set of a sample statement must be known at compile time");
       return;
     }
     // One sampler per member; the binder's value is set in ctx.env for each and removed afterwards.
@@ -825,7 +935,8 @@ class Lowerer {
         collectVars(lower(t.get(), inner), writes);
       }
     }
-    const auto* callee = s.samplerRef.kind == RefKind::Sampler ? static_cast<const CallableDecl*>(s.samplerRef.decl) : nullptr;
+    const auto* callee =
+        s.samplerRef.kind == RefKind::Sampler ? static_cast<const CallableDecl*>(s.samplerRef.decl) : nullptr;
     std::size_t units = 1;
     for (const auto* a : orderedArgs(callee, s.args)) {
       smp.args.push_back(lower(a->value.get(), inner));
@@ -893,7 +1004,8 @@ class Lowerer {
     for (const Decl* d : body) {
       if (d->kind == DeclKind::Require) {
         const auto& r = static_cast<const RequireDecl&>(*d);
-        const std::string base = ctx.prefix + (r.name.name.empty() ? fmt::format("require#{}", ++anonymous) : r.name.name);
+        const std::string base =
+            ctx.prefix + (r.name.name.empty() ? fmt::format("require#{}", ++anonymous) : r.name.name);
         lowerRequire(r, ctx, constraints, base, r.condition.get(), "");
       } else if (d->kind == DeclKind::Sample) {
         lowerSample(static_cast<const SampleDecl&>(*d), ctx, samplers);
@@ -926,7 +1038,8 @@ class Lowerer {
       case ActionStmtKind::Call: {
         a.kind = "call";
         a.name = s.callee.name;
-        const auto* callee = s.calleeRef.kind == RefKind::Action ? static_cast<const CallableDecl*>(s.calleeRef.decl) : nullptr;
+        const auto* callee =
+            s.calleeRef.kind == RefKind::Action ? static_cast<const CallableDecl*>(s.calleeRef.decl) : nullptr;
         for (const auto* arg : orderedArgs(callee, s.args)) a.args.push_back(lower(arg->value.get(), ctx));
         break;
       }
@@ -1024,11 +1137,16 @@ class Lowerer {
       mf.span = span(f.range);
       std::vector<const Arg*> positional;
       for (const auto& a : f.args) {
-        if (a.name.name.empty()) positional.push_back(&a);
-        else if (a.name.name == "prompt") mf.prompt = a.value->text;
-        else if (a.name.name == "learning") mf.learning = a.value->text;
-        else if (a.name.name == "scale") mf.scale = a.value->text;
-        else if (a.name.name == "rating") mf.rating = a.value->text;
+        if (a.name.name.empty())
+          positional.push_back(&a);
+        else if (a.name.name == "prompt")
+          mf.prompt = a.value->text;
+        else if (a.name.name == "learning")
+          mf.learning = a.value->text;
+        else if (a.name.name == "scale")
+          mf.scale = a.value->text;
+        else if (a.name.name == "rating")
+          mf.rating = a.value->text;
       }
       if (!positional.empty()) {
         mf.feature = lower(positional[0]->value.get(), none);
@@ -1100,9 +1218,10 @@ class Lowerer {
         }
       }
       if (!any) {
-        Diagnostic& d = diags_.warning("W0401", pat ? pat->patternRange : p.params[i].name.range,
-                                       fmt::format("no {} variable of any task matches parameter '{}' of generator '{}'",
-                                                   want.spelling, p.params[i].name.name, p.name.name));
+        Diagnostic& d =
+            diags_.warning("W0401", pat ? pat->patternRange : p.params[i].name.range,
+                           fmt::format("no {} variable of any task matches parameter '{}' of generator '{}'",
+                                       want.spelling, p.params[i].name.name, p.name.name));
         d.help("`cbtlc emit FILE` lists every variable's name and type");
       }
     }

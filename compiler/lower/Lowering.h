@@ -11,8 +11,8 @@
 
 #include "compiler/ast/Ast.h"
 #include "compiler/diag/DiagnosticEngine.h"
-#include "ir/ConstraintGraph.h"
 #include "compiler/sema/Symbols.h"
+#include "ir/ConstraintGraph.h"
 
 #include <memory>
 #include <vector>

@@ -99,9 +99,11 @@ void reportUsageWarnings(const ir::ConstraintGraph& graph, const std::vector<con
       diags.warning("W0201", d->name.range, fmt::format("variable '{}' is never used", d->name.name))
           .help("no constraint, sampler, cost or action reads it; use it or remove it");
     } else if (unproducible) {
-      diags.warning("W0502", d->name.range,
-                    fmt::format("variable '{}' has no sampler, no initial value and an unbounded domain", d->name.name))
-          .help(fmt::format("add 'sample {} ~ ...;', an initial value '= ...', or bound it with 'in ...'", d->name.name));
+      diags
+          .warning("W0502", d->name.range,
+                   fmt::format("variable '{}' has no sampler, no initial value and an unbounded domain", d->name.name))
+          .help(
+              fmt::format("add 'sample {} ~ ...;', an initial value '= ...', or bound it with 'in ...'", d->name.name));
     }
   }
 }

@@ -23,11 +23,21 @@ std::size_t firstInvalidUtf8(const std::string& s) {
     const unsigned char c = static_cast<unsigned char>(s[i]);
     std::size_t len = 0;
     std::uint32_t cp = 0;
-    if (c < 0x80) { ++i; continue; }
-    if ((c & 0xE0) == 0xC0) { len = 2; cp = c & 0x1F; }
-    else if ((c & 0xF0) == 0xE0) { len = 3; cp = c & 0x0F; }
-    else if ((c & 0xF8) == 0xF0) { len = 4; cp = c & 0x07; }
-    else return i;
+    if (c < 0x80) {
+      ++i;
+      continue;
+    }
+    if ((c & 0xE0) == 0xC0) {
+      len = 2;
+      cp = c & 0x1F;
+    } else if ((c & 0xF0) == 0xE0) {
+      len = 3;
+      cp = c & 0x0F;
+    } else if ((c & 0xF8) == 0xF0) {
+      len = 4;
+      cp = c & 0x07;
+    } else
+      return i;
     if (i + len > s.size()) return i;
     for (std::size_t k = 1; k < len; ++k) {
       const unsigned char cc = static_cast<unsigned char>(s[i + k]);
@@ -53,8 +63,9 @@ ParseOutput parseModule(const SourceManager& sources, FileId file, DiagnosticEng
   const std::string& text = sources.file(file).text;
 
   if (const std::size_t bad = firstInvalidUtf8(text); bad != std::string::npos) {
-    diags.error("E0105", SourceRange{file, static_cast<std::uint32_t>(bad), static_cast<std::uint32_t>(bad + 1)},
-                "the file is not valid UTF-8 text")
+    diags
+        .error("E0105", SourceRange{file, static_cast<std::uint32_t>(bad), static_cast<std::uint32_t>(bad + 1)},
+               "the file is not valid UTF-8 text")
         .help("save the file as UTF-8");
     out.module = std::make_unique<Module>();
     out.module->file = file;
@@ -64,7 +75,8 @@ ParseOutput parseModule(const SourceManager& sources, FileId file, DiagnosticEng
 
   // ANTLR indexes characters by code point; diagnostics use byte offsets. Build the map only when needed.
   std::vector<std::uint32_t> byteOfCodePoint;
-  const bool ascii = std::all_of(text.begin(), text.end(), [](char c) { return (static_cast<unsigned char>(c) & 0x80) == 0; });
+  const bool ascii =
+      std::all_of(text.begin(), text.end(), [](char c) { return (static_cast<unsigned char>(c) & 0x80) == 0; });
   if (!ascii) {
     for (std::uint32_t i = 0; i < text.size(); ++i) {
       if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) byteOfCodePoint.push_back(i);
@@ -79,10 +91,12 @@ ParseOutput parseModule(const SourceManager& sources, FileId file, DiagnosticEng
   // range where they would be, so that every diagnostic has a non-empty span.
   TokenRangeFn tokenRange = [&](antlr4::Token* t) -> SourceRange {
     if (t == nullptr) return sources.insertionPoint(file, 0);
-    if (t->getType() == antlr4::Token::EOF) return sources.insertionPoint(file, static_cast<std::uint32_t>(text.size()));
+    if (t->getType() == antlr4::Token::EOF)
+      return sources.insertionPoint(file, static_cast<std::uint32_t>(text.size()));
     const std::size_t start = t->getStartIndex();
     const std::size_t stop = t->getStopIndex();
-    if (start == INVALID_INDEX || stop == INVALID_INDEX || stop + 1 <= start) return sources.insertionPoint(file, toByte(start));
+    if (start == INVALID_INDEX || stop == INVALID_INDEX || stop + 1 <= start)
+      return sources.insertionPoint(file, toByte(start));
     return SourceRange{file, toByte(start), toByte(stop + 1)};
   };
 

@@ -47,7 +47,8 @@ const std::map<std::string, std::string>& ruleDescriptions() {
 
 std::string describeContext(antlr4::Parser* parser) {
   const auto& ruleNames = parser->getRuleNames();
-  for (antlr4::RuleContext* ctx = parser->getContext(); ctx != nullptr; ctx = dynamic_cast<antlr4::RuleContext*>(ctx->parent)) {
+  for (antlr4::RuleContext* ctx = parser->getContext(); ctx != nullptr;
+       ctx = dynamic_cast<antlr4::RuleContext*>(ctx->parent)) {
     auto it = ruleDescriptions().find(ruleNames[ctx->getRuleIndex()]);
     if (it != ruleDescriptions().end()) return it->second;
     if (ctx->parent == nullptr) break;
@@ -57,11 +58,16 @@ std::string describeContext(antlr4::Parser* parser) {
 
 std::string tokenDisplay(antlr4::Parser* parser, std::size_t type) {
   switch (type) {
-    case antlr4::Token::EOF: return "end of file";
-    case CbtlParser::ID: return "a name";
-    case CbtlParser::NUMBER: return "a number";
-    case CbtlParser::STRING: return "a string";
-    default: return parser->getVocabulary().getDisplayName(type);
+    case antlr4::Token::EOF:
+      return "end of file";
+    case CbtlParser::ID:
+      return "a name";
+    case CbtlParser::NUMBER:
+      return "a number";
+    case CbtlParser::STRING:
+      return "a string";
+    default:
+      return parser->getVocabulary().getDisplayName(type);
   }
 }
 
@@ -73,11 +79,14 @@ std::string foundDisplay(antlr4::Token* t) {
 }
 
 bool isExpressionStart(const antlr4::misc::IntervalSet& set) {
-  return set.contains(static_cast<std::size_t>(CbtlParser::ID)) && set.contains(static_cast<std::size_t>(CbtlParser::NUMBER)) && set.contains(static_cast<std::size_t>(CbtlParser::LPAREN));
+  return set.contains(static_cast<std::size_t>(CbtlParser::ID)) &&
+         set.contains(static_cast<std::size_t>(CbtlParser::NUMBER)) &&
+         set.contains(static_cast<std::size_t>(CbtlParser::LPAREN));
 }
 
 bool isBinaryOperatorSet(const antlr4::misc::IntervalSet& set) {
-  return set.contains(static_cast<std::size_t>(CbtlParser::PLUS)) && set.contains(static_cast<std::size_t>(CbtlParser::AND));
+  return set.contains(static_cast<std::size_t>(CbtlParser::PLUS)) &&
+         set.contains(static_cast<std::size_t>(CbtlParser::AND));
 }
 
 std::string describeExpected(antlr4::Parser* parser, const antlr4::misc::IntervalSet& expected) {
@@ -104,13 +113,34 @@ std::string describeExpected(antlr4::Parser* parser, const antlr4::misc::Interva
 
 bool isDeclarationKeyword(std::size_t type) {
   switch (type) {
-    case CbtlParser::DOMAIN: case CbtlParser::IMPORT: case CbtlParser::WORLD: case CbtlParser::ROBOT:
-    case CbtlParser::CONST: case CbtlParser::ENUM: case CbtlParser::ITEM: case CbtlParser::ITEMS:
-    case CbtlParser::OBSERVE: case CbtlParser::FEEDBACK: case CbtlParser::EXTERN: case CbtlParser::FN:
-    case CbtlParser::VAR: case CbtlParser::REQUIRE: case CbtlParser::SAMPLE: case CbtlParser::MINIMIZE:
-    case CbtlParser::MAXIMIZE: case CbtlParser::PERSONAL: case CbtlParser::SKILL: case CbtlParser::TASK:
-    case CbtlParser::WHEN: case CbtlParser::MODEL: case CbtlParser::LEARN: case CbtlParser::ACCEPT:
-    case CbtlParser::FALLBACK: case CbtlParser::DO: case CbtlParser::RUN: case CbtlParser::RBRACE:
+    case CbtlParser::DOMAIN:
+    case CbtlParser::IMPORT:
+    case CbtlParser::WORLD:
+    case CbtlParser::ROBOT:
+    case CbtlParser::CONST:
+    case CbtlParser::ENUM:
+    case CbtlParser::ITEM:
+    case CbtlParser::ITEMS:
+    case CbtlParser::OBSERVE:
+    case CbtlParser::FEEDBACK:
+    case CbtlParser::EXTERN:
+    case CbtlParser::FN:
+    case CbtlParser::VAR:
+    case CbtlParser::REQUIRE:
+    case CbtlParser::SAMPLE:
+    case CbtlParser::MINIMIZE:
+    case CbtlParser::MAXIMIZE:
+    case CbtlParser::PERSONAL:
+    case CbtlParser::SKILL:
+    case CbtlParser::TASK:
+    case CbtlParser::WHEN:
+    case CbtlParser::MODEL:
+    case CbtlParser::LEARN:
+    case CbtlParser::ACCEPT:
+    case CbtlParser::FALLBACK:
+    case CbtlParser::DO:
+    case CbtlParser::RUN:
+    case CbtlParser::RBRACE:
     case antlr4::Token::EOF:
       return true;
     default:
@@ -158,7 +188,8 @@ void SyntaxErrorStrategy::reportUnexpected(antlr4::Parser* parser, antlr4::Token
     return;
   }
 
-  std::string message = fmt::format("expected {}, found {}", describeExpected(parser, expected), foundDisplay(offending));
+  std::string message =
+      fmt::format("expected {}, found {}", describeExpected(parser, expected), foundDisplay(offending));
   if (!where.empty()) message += " in " + where;
   Diagnostic& d = diags_.error("E0101", tokenRange_(offending), message);
 
@@ -213,9 +244,9 @@ void SyntaxErrorStrategy::reportMissingToken(antlr4::Parser* parser) {
   const std::string what = describeExpected(parser, expected);
   if (previous != nullptr) {
     const SourceRange prev = tokenRange_(previous);
-    diags_.error("E0102", sources_.insertionPoint(prev.file, prev.end),
-                 fmt::format("expected {} after {}", what,
-                             where.empty() ? fmt::format("'{}'", previous->getText()) : where));
+    diags_.error(
+        "E0102", sources_.insertionPoint(prev.file, prev.end),
+        fmt::format("expected {} after {}", what, where.empty() ? fmt::format("'{}'", previous->getText()) : where));
   } else {
     diags_.error("E0102", tokenRange_(t), fmt::format("expected {} before {}", what, foundDisplay(t)));
   }

@@ -1,8 +1,8 @@
 #include "compiler/sema/GeneratorChecker.h"
 
-#include "ir/Pattern.h"
 #include "compiler/sema/Type.h"
 #include "compiler/util/Suggest.h"
+#include "ir/Pattern.h"
 
 #include <fmt/format.h>
 
@@ -41,7 +41,8 @@ class GenChecker {
     }
     for (const auto& p : g.params) {
       if (p.type.resolved && !p.type.resolved->isError() && !p.type.resolved->isVariableType()) {
-        diags_.error("E0415", p.type.range, fmt::format("a generator parameter cannot have type {}", p.type.resolved->spelling));
+        diags_.error("E0415", p.type.range,
+                     fmt::format("a generator parameter cannot have type {}", p.type.resolved->spelling));
       }
     }
     checkPatterns(g);
@@ -50,7 +51,8 @@ class GenChecker {
     checkProbability(g.fallbacks, "fallback", /*allowZero=*/true);
     for (auto& rule : g.learnRules) checkRule(g, rule);
     if (g.learnRules.empty()) {
-      diags_.warning("W0402", g.name.range, fmt::format("generator '{}' has no learning rule, so it never learns", g.name.name));
+      diags_.warning("W0402", g.name.range,
+                     fmt::format("generator '{}' has no learning rule, so it never learns", g.name.name));
     }
   }
 
@@ -64,7 +66,8 @@ class GenChecker {
 
   void checkPatterns(PersonalDecl& g) {
     for (std::size_t i = 1; i < g.whenRanges.size(); ++i) {
-      diags_.error("E0414", g.whenRanges[i], "a generator has one 'when' clause; list all patterns in it, separated by ','");
+      diags_.error("E0414", g.whenRanges[i],
+                   "a generator has one 'when' clause; list all patterns in it, separated by ','");
     }
     std::set<int> seen;
     for (auto& p : g.patterns) {
@@ -74,8 +77,9 @@ class GenChecker {
       if (p.paramIndex < 0) {
         std::vector<std::string> names;
         for (const auto& prm : g.params) names.push_back(prm.name.name);
-        Diagnostic& d = diags_.error("E0402", p.param.range,
-                                     fmt::format("'{}' is not a parameter of generator '{}'", p.param.name, g.name.name));
+        Diagnostic& d =
+            diags_.error("E0402", p.param.range,
+                         fmt::format("'{}' is not a parameter of generator '{}'", p.param.name, g.name.name));
         const std::string guess = closestMatch(p.param.name, names);
         if (!guess.empty()) d.help(fmt::format("did you mean '{}'?", guess));
         continue;
@@ -91,7 +95,8 @@ class GenChecker {
         if (!glob) {
           // +1 skips the opening quote of the string literal.
           const auto begin = static_cast<std::uint32_t>(p.patternRange.begin + 1 + at);
-          diags_.error("E0401", SourceRange{p.patternRange.file, begin, begin + 1}, fmt::format("malformed glob: {}", error));
+          diags_.error("E0401", SourceRange{p.patternRange.file, begin, begin + 1},
+                       fmt::format("malformed glob: {}", error));
           continue;
         }
         for (const auto& c : glob->captures) {
@@ -109,8 +114,9 @@ class GenChecker {
     std::size_t count = 0;
     for (const auto& a : f.args) count += a.name.name.empty() ? 1 : 0;
     if (count != positional) {
-      diags_.error("E0406", f.range, fmt::format("{} takes {} positional argument{}: {}", f.kind.name, positional,
-                                                 positional == 1 ? "" : "s", form));
+      diags_.error("E0406", f.range,
+                   fmt::format("{} takes {} positional argument{}: {}", f.kind.name, positional,
+                               positional == 1 ? "" : "s", form));
     }
   }
 
@@ -127,9 +133,10 @@ class GenChecker {
   void realFeature(const ModelFactor& f, const Expr* feature) {
     if (feature == nullptr || feature->type == nullptr || feature->type->isError()) return;
     if (!feature->type->isNumeric()) {
-      diags_.error("E0405", feature->range, fmt::format("the feature of {} {} model must be real-valued, but this is {}",
-                                                        f.kind.name == "interval" ? "an" : "a", f.kind.name,
-                                                        feature->type->spelling))
+      diags_
+          .error("E0405", feature->range,
+                 fmt::format("the feature of {} {} model must be real-valued, but this is {}",
+                             f.kind.name == "interval" ? "an" : "a", f.kind.name, feature->type->spelling))
           .help("compute a number from the parameters, e.g. distance(p, center) or occlusion(c)");
     }
   }
@@ -151,19 +158,24 @@ class GenChecker {
       }
       const Expr* first = nullptr;
       for (const auto& a : f.args) {
-        if (a.name.name.empty()) { first = a.value.get(); break; }
+        if (a.name.name.empty()) {
+          first = a.value.get();
+          break;
+        }
       }
       if (k == "interval") {
         needArgs(f, 2, "interval(feature, lo .. hi)");
         realFeature(f, first);
         if (f.args.size() >= 2 && !constantRange(f.args[1].value.get())) {
-          diags_.error("E0406", f.args[1].range, "the prior bounds of an interval model are a range of literal numbers, lo .. hi");
+          diags_.error("E0406", f.args[1].range,
+                       "the prior bounds of an interval model are a range of literal numbers, lo .. hi");
         }
       } else if (k == "threshold") {
         needArgs(f, 3, "threshold(feature, lo .. hi, above|below)");
         realFeature(f, first);
         if (f.args.size() >= 2 && !constantRange(f.args[1].value.get())) {
-          diags_.error("E0406", f.args[1].range, "the prior bounds of a threshold model are a range of literal numbers, lo .. hi");
+          diags_.error("E0406", f.args[1].range,
+                       "the prior bounds of a threshold model are a range of literal numbers, lo .. hi");
         }
         if (f.args.size() >= 3) {
           const Expr* dir = f.args[2].value.get();
@@ -174,20 +186,24 @@ class GenChecker {
       } else if (k == "table") {
         needArgs(f, 1, "table(key)");
         if (first && first->type && !first->type->isError() && !first->type->isDiscrete()) {
-          diags_.error("E0406", first->range, fmt::format("a table model needs a discrete key (enum, item, int, bool or text), not {}",
-                                                          first->type->spelling));
+          diags_.error("E0406", first->range,
+                       fmt::format("a table model needs a discrete key (enum, item, int, bool or text), not {}",
+                                   first->type->spelling));
         }
       } else if (k == "text") {
-        needArgs(f, 1, "text(subject, prompt: \"...\", learning: \"...\", scale: relative|absolute, rating: digits|options)");
+        needArgs(f, 1,
+                 "text(subject, prompt: \"...\", learning: \"...\", scale: relative|absolute, rating: digits|options)");
         if (first && first->type && !first->type->isError() && first->type->kind != TypeKind::Item &&
             first->type->kind != TypeKind::Enum && first->type->kind != TypeKind::Text) {
-          diags_.error("E0406", first->range, fmt::format("a text model's subject is an item, an enum or text, not {}",
-                                                          first->type->spelling));
+          diags_.error(
+              "E0406", first->range,
+              fmt::format("a text model's subject is an item, an enum or text, not {}", first->type->spelling));
         }
         for (const auto& a : f.args) {
           if (a.name.name.empty()) continue;
           if (a.name.name == "prompt" || a.name.name == "learning") {
-            if (a.value->kind != ExprKind::String) diags_.error("E0406", a.range, fmt::format("'{}' must be a string", a.name.name));
+            if (a.value->kind != ExprKind::String)
+              diags_.error("E0406", a.range, fmt::format("'{}' must be a string", a.name.name));
           } else if (a.name.name == "scale") {
             if (a.value->kind != ExprKind::Name || (a.value->text != "relative" && a.value->text != "absolute")) {
               diags_.error("E0406", a.range, "'scale' is 'relative' or 'absolute'");
@@ -204,8 +220,10 @@ class GenChecker {
       } else {
         Diagnostic& d = diags_.error("E0404", f.kind.range, fmt::format("unknown model kind '{}'", k));
         const std::string guess = closestMatch(k, modelKinds());
-        if (!guess.empty()) d.help(fmt::format("did you mean '{}'?", guess));
-        else d.help("known kinds: interval, threshold, table, text");
+        if (!guess.empty())
+          d.help(fmt::format("did you mean '{}'?", guess));
+        else
+          d.help("known kinds: interval, threshold, table, text");
         continue;
       }
       if (k != "text") {
@@ -215,11 +233,14 @@ class GenChecker {
       }
     }
     for (const auto& key : g.perKeys) {
-      const bool isCapture = std::any_of(g.captures.begin(), g.captures.end(), [&](const Ident& c) { return c.name == key.name; });
+      const bool isCapture =
+          std::any_of(g.captures.begin(), g.captures.end(), [&](const Ident& c) { return c.name == key.name; });
       const int pi = paramIndex(g, key.name);
       const bool isDiscreteParam = pi >= 0 && g.params[pi].type.resolved && g.params[pi].type.resolved->isDiscrete();
       if (!isCapture && !isDiscreteParam) {
-        diags_.error("E0412", key.range, fmt::format("'{}' is neither a capture of the 'when' patterns nor a discrete parameter", key.name));
+        diags_.error(
+            "E0412", key.range,
+            fmt::format("'{}' is neither a capture of the 'when' patterns nor a discrete parameter", key.name));
       }
     }
   }
@@ -233,7 +254,8 @@ class GenChecker {
       }
       const bool literal = e->kind == ExprKind::Number && e->text != "<missing>";
       if (!literal || e->number > 1 || e->number < 0 || (!allowZero && e->number == 0)) {
-        diags_.error("E0411", e->range, fmt::format("'{}' takes a number in {}", what, allowZero ? "[0, 1]" : "(0, 1]"));
+        diags_.error("E0411", e->range,
+                     fmt::format("'{}' takes a number in {}", what, allowZero ? "[0, 1]" : "(0, 1]"));
       }
     }
   }
@@ -242,9 +264,10 @@ class GenChecker {
     if (rule.eventRef.kind != RefKind::Feedback) return;  // reported by name resolution
     const auto& ev = static_cast<const FeedbackDecl&>(*rule.eventRef.decl);
     if (rule.binders.size() != ev.params.size()) {
-      diags_.error("E0407", rule.event.range,
-                   fmt::format("event '{}' has {} parameter{}, but the rule binds {}", ev.name.name, ev.params.size(),
-                               ev.params.size() == 1 ? "" : "s", rule.binders.size()))
+      diags_
+          .error("E0407", rule.event.range,
+                 fmt::format("event '{}' has {} parameter{}, but the rule binds {}", ev.name.name, ev.params.size(),
+                             ev.params.size() == 1 ? "" : "s", rule.binders.size()))
           .note("declared here", ev.name.range);
       return;
     }
@@ -270,12 +293,15 @@ class GenChecker {
     const bool product = g.modelRanges.size() == 1 && g.factors.size() > 1;
     std::set<std::string> labelled;
     for (auto& label : rule.labels) {
-      if (label.value && label.value->type && !label.value->type->isError() && label.value->type->kind != TypeKind::Bool) {
-        diags_.error("E0409", label.value->range, fmt::format("a label must be bool, but this is {}", label.value->type->spelling));
+      if (label.value && label.value->type && !label.value->type->isError() &&
+          label.value->type->kind != TypeKind::Bool) {
+        diags_.error("E0409", label.value->range,
+                     fmt::format("a label must be bool, but this is {}", label.value->type->spelling));
       }
       if (label.factor.name.empty()) {
         if (product) {
-          diags_.error("E0409", label.value->range, "the model is a product; say which factor this labels, as in 'temp: good'");
+          diags_.error("E0409", label.value->range,
+                       "the model is a product; say which factor this labels, as in 'temp: good'");
         }
         for (const auto& f : g.factors) labelled.insert(factorName(g, f));
         continue;
@@ -303,16 +329,18 @@ class GenChecker {
       for (int pi : reads) {
         const std::string& name = g.params[pi].name.name;
         if (!bound.count(name)) {
-          diags_.error("E0410", rule.range,
-                       fmt::format("this rule labels factor '{}', which reads parameter '{}', but does not bind it",
-                                   factorName(g, f), name))
+          diags_
+              .error("E0410", rule.range,
+                     fmt::format("this rule labels factor '{}', which reads parameter '{}', but does not bind it",
+                                 factorName(g, f), name))
               .help(fmt::format("name the event binder '{}' in the position that carries it", name));
         }
       }
     }
     for (const auto& key : g.perKeys) {
-      const bool validKey = std::any_of(g.captures.begin(), g.captures.end(), [&](const Ident& c) { return c.name == key.name; }) ||
-                            paramIndex(g, key.name) >= 0;
+      const bool validKey =
+          std::any_of(g.captures.begin(), g.captures.end(), [&](const Ident& c) { return c.name == key.name; }) ||
+          paramIndex(g, key.name) >= 0;
       if (validKey && !bound.count(key.name)) {  // an invalid key is reported once, as E0412
         diags_.error("E0410", rule.range, fmt::format("this rule does not bind the key '{}'", key.name))
             .help(fmt::format("name the event binder '{}' in the position that carries it", key.name));

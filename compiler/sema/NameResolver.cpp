@@ -31,16 +31,26 @@ bool isModelKeyword(const std::string& name) {
 
 RefKind refKindOf(const Decl& d) {
   switch (d.kind) {
-    case DeclKind::Const: return RefKind::Const;
-    case DeclKind::Enum: return RefKind::EnumType;
-    case DeclKind::ItemSet: return RefKind::ItemSet;
-    case DeclKind::Observe: return RefKind::Observation;
-    case DeclKind::Var: return RefKind::Variable;
-    case DeclKind::Function: return RefKind::Function;
-    case DeclKind::Sampler: return RefKind::Sampler;
-    case DeclKind::Action: return RefKind::Action;
-    case DeclKind::Feedback: return RefKind::Feedback;
-    default: return RefKind::Unresolved;
+    case DeclKind::Const:
+      return RefKind::Const;
+    case DeclKind::Enum:
+      return RefKind::EnumType;
+    case DeclKind::ItemSet:
+      return RefKind::ItemSet;
+    case DeclKind::Observe:
+      return RefKind::Observation;
+    case DeclKind::Var:
+      return RefKind::Variable;
+    case DeclKind::Function:
+      return RefKind::Function;
+    case DeclKind::Sampler:
+      return RefKind::Sampler;
+    case DeclKind::Action:
+      return RefKind::Action;
+    case DeclKind::Feedback:
+      return RefKind::Feedback;
+    default:
+      return RefKind::Unresolved;
   }
 }
 
@@ -120,7 +130,9 @@ class Resolver {
             symbols_.generators[d.name.name] = static_cast<const PersonalDecl*>(&d);
           }
           break;
-        case DeclKind::Require: case DeclKind::Sample: case DeclKind::Cost:
+        case DeclKind::Require:
+        case DeclKind::Sample:
+        case DeclKind::Cost:
           symbols_.globalScope.push_back(&d);
           if (d.kind == DeclKind::Require && !d.name.name.empty()) claim(d.name);
           break;
@@ -234,18 +246,39 @@ class Resolver {
     };
     auto oneArg = [&]() -> TypeRef::Arg* {
       if (t.args.size() != 1) {
-        diags_.error("E0309", t.range, fmt::format("type '{}' takes exactly one argument, as in {}", n,
-                                                   n == "vec" ? "vec<3>" : n == "Conf" ? "Conf<gen3>" : "set<Book>"));
+        diags_.error("E0309", t.range,
+                     fmt::format("type '{}' takes exactly one argument, as in {}", n,
+                                 n == "vec"    ? "vec<3>"
+                                 : n == "Conf" ? "Conf<gen3>"
+                                               : "set<Book>"));
         return nullptr;
       }
       return &t.args.front();
     };
-    if (n == "real") { noArgs(); return types_.real(); }
-    if (n == "int") { noArgs(); return types_.integer(); }
-    if (n == "bool") { noArgs(); return types_.boolean(); }
-    if (n == "text") { noArgs(); return types_.text(); }
-    if (n == "SE2") { noArgs(); return types_.se2(); }
-    if (n == "SE3") { noArgs(); return types_.se3(); }
+    if (n == "real") {
+      noArgs();
+      return types_.real();
+    }
+    if (n == "int") {
+      noArgs();
+      return types_.integer();
+    }
+    if (n == "bool") {
+      noArgs();
+      return types_.boolean();
+    }
+    if (n == "text") {
+      noArgs();
+      return types_.text();
+    }
+    if (n == "SE2") {
+      noArgs();
+      return types_.se2();
+    }
+    if (n == "SE3") {
+      noArgs();
+      return types_.se3();
+    }
     if (n == "vec") {
       TypeRef::Arg* a = oneArg();
       if (a == nullptr) return types_.error();
@@ -271,8 +304,10 @@ class Resolver {
         for (const auto& [name, decl] : symbols_.robots) robots.push_back(name);
         Diagnostic& d = diags_.error("E0309", a->range, fmt::format("unknown robot '{}' in Conf<{}>", r, r));
         const std::string guess = closestMatch(r, robots);
-        if (!guess.empty()) d.help(fmt::format("did you mean '{}'?", guess));
-        else d.help(fmt::format("declare it: robot {} {{ dof: 7; }}  (or import std.kinova for gen3)", r));
+        if (!guess.empty())
+          d.help(fmt::format("did you mean '{}'?", guess));
+        else
+          d.help(fmt::format("declare it: robot {} {{ dof: 7; }}  (or import std.kinova for gen3)", r));
         return types_.error();
       }
       diags_.error("E0309", a->range, "Conf<R> needs a robot name");
@@ -297,8 +332,10 @@ class Resolver {
     std::vector<std::string> candidates = builtinTypeNames();
     for (const auto& [name, decl] : symbols_.types) candidates.push_back(name);
     const std::string guess = closestMatch(n, candidates);
-    if (!guess.empty()) d.help(fmt::format("did you mean '{}'?", guess));
-    else if (symbols_.values.count(n)) d.note(fmt::format("'{}' is a value, not a type", n));
+    if (!guess.empty())
+      d.help(fmt::format("did you mean '{}'?", guess));
+    else if (symbols_.values.count(n))
+      d.note(fmt::format("'{}' is a value, not a type", n));
     return types_.error();
   }
 
@@ -444,8 +481,9 @@ class Resolver {
     for (const auto& d : body) {
       if (d->kind == DeclKind::Var) {
         if (symbols_.values.count(d->name.name) && symbols_.values.at(d->name.name).kind == RefKind::Variable) {
-          diags_.error("E0202", d->name.range,
-                       fmt::format("'{}' is already a top-level variable, shared by every task", d->name.name))
+          diags_
+              .error("E0202", d->name.range,
+                     fmt::format("'{}' is already a top-level variable, shared by every task", d->name.name))
               .note("declared here", symbols_.values.at(d->name.name).range);
           continue;
         }
@@ -460,15 +498,17 @@ class Resolver {
         case ActionStmtKind::Call: {
           s->calleeRef = lookup(s->callee.name, s->callee.range, false);
           if (s->calleeRef.kind != RefKind::Action) {
-            Diagnostic& d = diags_.error("E0503", s->callee.range,
-                                         fmt::format("'{}' is not an action", s->callee.name));
+            Diagnostic& d =
+                diags_.error("E0503", s->callee.range, fmt::format("'{}' is not an action", s->callee.name));
             std::vector<std::string> actions;
             for (const auto& [n, sym] : symbols_.values) {
               if (sym.kind == RefKind::Action) actions.push_back(n);
             }
             const std::string guess = closestMatch(s->callee.name, actions);
-            if (!guess.empty()) d.help(fmt::format("did you mean '{}'?", guess));
-            else d.help("declare it with 'extern action NAME(...);' or import std.actions");
+            if (!guess.empty())
+              d.help(fmt::format("did you mean '{}'?", guess));
+            else
+              d.help("declare it with 'extern action NAME(...);' or import std.actions");
             s->calleeRef = NameRef{};
           }
           resolveArgs(s->args);
@@ -499,7 +539,8 @@ class Resolver {
     if (c.result) resolveType(*c.result);
     typeParams_.clear();
     if (c.kind == DeclKind::Function && !c.isExtern && !c.body) {
-      diags_.error("E0315", c.name.range, fmt::format("function '{}' needs a body ('= expression') or 'extern'", c.name.name));
+      diags_.error("E0315", c.name.range,
+                   fmt::format("function '{}' needs a body ('= expression') or 'extern'", c.name.name));
     }
     if (c.kind == DeclKind::Function && c.isExtern && c.body) {
       diags_.error("E0315", c.body->range, "an extern function is implemented in C++ and cannot have a body");
@@ -646,10 +687,15 @@ class Resolver {
         case DeclKind::Feedback:
           for (auto& p : static_cast<FeedbackDecl&>(d).params) resolveType(p.type);
           break;
-        case DeclKind::Function: case DeclKind::Sampler: case DeclKind::Action:
+        case DeclKind::Function:
+        case DeclKind::Sampler:
+        case DeclKind::Action:
           resolveCallable(static_cast<CallableDecl&>(d));
           break;
-        case DeclKind::Var: case DeclKind::Require: case DeclKind::Sample: case DeclKind::Cost:
+        case DeclKind::Var:
+        case DeclKind::Require:
+        case DeclKind::Sample:
+        case DeclKind::Cost:
           resolveScopeStmt(d);
           break;
         case DeclKind::Personal:

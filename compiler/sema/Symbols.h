@@ -14,20 +14,20 @@ struct Symbol {
   RefKind kind = RefKind::Unresolved;
   const Decl* decl = nullptr;
   int index = -1;
-  SourceRange range;  // where the name is declared
+  SourceRange range;                   // where the name is declared
   const BinderDecl* binder = nullptr;  // RefKind::Binder
 };
 
 // Kinds of top-level declarations that are not values: they live in their own tables.
 struct GlobalSymbols {
-  std::map<std::string, Symbol> values;                       // consts, vars, observations, functions, ...
-  std::map<std::string, const Decl*> types;                   // enum and item type declarations
+  std::map<std::string, Symbol> values;      // consts, vars, observations, functions, ...
+  std::map<std::string, const Decl*> types;  // enum and item type declarations
   std::map<std::string, const Decl*> robots;
   std::map<std::string, const SkillDecl*> skills;
   std::map<std::string, const TaskDecl*> tasks;
   std::map<std::string, const PersonalDecl*> generators;
-  std::map<std::string, std::vector<Symbol>> enumMembers;     // bare member name -> every enum that has it
-  std::vector<const Decl*> globalScope;                       // top-level var/require/sample/cost, in order
+  std::map<std::string, std::vector<Symbol>> enumMembers;  // bare member name -> every enum that has it
+  std::vector<const Decl*> globalScope;                    // top-level var/require/sample/cost, in order
   const WorldDecl* world = nullptr;
   std::string domainName;
 

@@ -6,8 +6,16 @@ namespace cbtl {
 
 bool Type::isVariableType() const {
   switch (kind) {
-    case TypeKind::Real: case TypeKind::Int: case TypeKind::Bool: case TypeKind::Text: case TypeKind::Enum:
-    case TypeKind::Item: case TypeKind::Vec: case TypeKind::SE2: case TypeKind::SE3: case TypeKind::Conf:
+    case TypeKind::Real:
+    case TypeKind::Int:
+    case TypeKind::Bool:
+    case TypeKind::Text:
+    case TypeKind::Enum:
+    case TypeKind::Item:
+    case TypeKind::Vec:
+    case TypeKind::SE2:
+    case TypeKind::SE3:
+    case TypeKind::Conf:
       return true;
     default:
       return false;
@@ -16,7 +24,11 @@ bool Type::isVariableType() const {
 
 bool Type::isDiscrete() const {
   switch (kind) {
-    case TypeKind::Int: case TypeKind::Bool: case TypeKind::Text: case TypeKind::Enum: case TypeKind::Item:
+    case TypeKind::Int:
+    case TypeKind::Bool:
+    case TypeKind::Text:
+    case TypeKind::Enum:
+    case TypeKind::Item:
       return true;
     default:
       return false;

@@ -14,18 +14,27 @@ namespace cbtl {
 
 const Type* declaredType(const Decl& d) {
   switch (d.kind) {
-    case DeclKind::Var: return static_cast<const VarDecl&>(d).type.resolved;
-    case DeclKind::Observe: return static_cast<const ObserveDecl&>(d).type.resolved;
-    case DeclKind::Const: return static_cast<const ConstDecl&>(d).valueType;
-    default: return nullptr;
+    case DeclKind::Var:
+      return static_cast<const VarDecl&>(d).type.resolved;
+    case DeclKind::Observe:
+      return static_cast<const ObserveDecl&>(d).type.resolved;
+    case DeclKind::Const:
+      return static_cast<const ConstDecl&>(d).valueType;
+    default:
+      return nullptr;
   }
 }
 
 bool isConstantExpr(const Expr& e, bool allowObservations) {
   if (e.kind == ExprKind::Name || ((e.kind == ExprKind::Member) && e.ref.kind != RefKind::Unresolved)) {
     switch (e.ref.kind) {
-      case RefKind::Const: case RefKind::EnumType: case RefKind::EnumMember: case RefKind::ItemSet:
-      case RefKind::ItemEntry: case RefKind::Builtin: case RefKind::Binder:
+      case RefKind::Const:
+      case RefKind::EnumType:
+      case RefKind::EnumMember:
+      case RefKind::ItemSet:
+      case RefKind::ItemEntry:
+      case RefKind::Builtin:
+      case RefKind::Binder:
         return true;
       case RefKind::Observation:
         return allowObservations;
@@ -57,19 +66,27 @@ namespace {
 bool isFamily(const Decl* d) {
   if (d == nullptr) return false;
   switch (d->kind) {
-    case DeclKind::Var: return static_cast<const VarDecl*>(d)->index != nullptr;
-    case DeclKind::Const: return static_cast<const ConstDecl*>(d)->index != nullptr;
-    case DeclKind::Observe: return static_cast<const ObserveDecl*>(d)->index != nullptr;
-    default: return false;
+    case DeclKind::Var:
+      return static_cast<const VarDecl*>(d)->index != nullptr;
+    case DeclKind::Const:
+      return static_cast<const ConstDecl*>(d)->index != nullptr;
+    case DeclKind::Observe:
+      return static_cast<const ObserveDecl*>(d)->index != nullptr;
+    default:
+      return false;
   }
 }
 
 const IndexSpec* indexOf(const Decl* d) {
   switch (d->kind) {
-    case DeclKind::Var: return static_cast<const VarDecl*>(d)->index.get();
-    case DeclKind::Const: return static_cast<const ConstDecl*>(d)->index.get();
-    case DeclKind::Observe: return static_cast<const ObserveDecl*>(d)->index.get();
-    default: return nullptr;
+    case DeclKind::Var:
+      return static_cast<const VarDecl*>(d)->index.get();
+    case DeclKind::Const:
+      return static_cast<const ConstDecl*>(d)->index.get();
+    case DeclKind::Observe:
+      return static_cast<const ObserveDecl*>(d)->index.get();
+    default:
+      return nullptr;
   }
 }
 
@@ -101,7 +118,9 @@ class Checker {
   const Type* paramType(const NameRef& r) {
     if (r.decl == nullptr || r.index < 0) return err();
     switch (r.decl->kind) {
-      case DeclKind::Function: case DeclKind::Sampler: case DeclKind::Action: {
+      case DeclKind::Function:
+      case DeclKind::Sampler:
+      case DeclKind::Action: {
         const auto& c = static_cast<const CallableDecl&>(*r.decl);
         return c.params.at(r.index).type.resolved ? c.params.at(r.index).type.resolved : err();
       }
@@ -121,11 +140,14 @@ class Checker {
   const Type* nameType(Expr& e, bool allowFamily) {
     const NameRef& r = e.ref;
     switch (r.kind) {
-      case RefKind::Unresolved: return err();
-      case RefKind::Const: case RefKind::Variable: case RefKind::Observation: {
+      case RefKind::Unresolved:
+        return err();
+      case RefKind::Const:
+      case RefKind::Variable:
+      case RefKind::Observation: {
         if (isFamily(r.decl) && !allowFamily) {
-          diags_.error("E0306", e.range, fmt::format("'{}' is an indexed family; give an index, as in {}[...]",
-                                                     e.text, e.text));
+          diags_.error("E0306", e.range,
+                       fmt::format("'{}' is an indexed family; give an index, as in {}[...]", e.text, e.text));
           return err();
         }
         if (r.kind == RefKind::Const) return constType(e, static_cast<const ConstDecl&>(*r.decl));
@@ -144,18 +166,24 @@ class Checker {
         const auto* items = static_cast<const ItemsDecl*>(r.decl);
         return items->itemType.resolved ? items->itemType.resolved : err();
       }
-      case RefKind::Param: return paramType(r);
-      case RefKind::Binder: return r.binder && r.binder->type ? r.binder->type : err();
+      case RefKind::Param:
+        return paramType(r);
+      case RefKind::Binder:
+        return r.binder && r.binder->type ? r.binder->type : err();
       case RefKind::Builtin:
         if (r.index == static_cast<int>(BuiltinId::Pi)) return types_.real();
-        diags_.error("E0313", e.range, fmt::format("'{}' can only be used in a {}", e.text,
-                                                   r.index == static_cast<int>(BuiltinId::Box) ? "domain" : "sample statement"));
+        diags_.error("E0313", e.range,
+                     fmt::format("'{}' can only be used in a {}", e.text,
+                                 r.index == static_cast<int>(BuiltinId::Box) ? "domain" : "sample statement"));
         return err();
-      case RefKind::Function: case RefKind::Sampler: case RefKind::Action: case RefKind::Feedback:
-      {
+      case RefKind::Function:
+      case RefKind::Sampler:
+      case RefKind::Action:
+      case RefKind::Feedback: {
         const std::string kind = toString(r.decl->kind);
         const char* article = std::string_view("aeiou").find(kind.front()) != std::string_view::npos ? "an" : "a";
-        diags_.error("E0207", e.range, fmt::format("'{}' is {} {} and cannot be used as a value", e.text, article, kind));
+        diags_.error("E0207", e.range,
+                     fmt::format("'{}' is {} {} and cannot be used as a value", e.text, article, kind));
         return err();
       }
     }
@@ -167,12 +195,15 @@ class Checker {
     if (collection->kind == TypeKind::Set) return collection->element;
     if (collection->kind == TypeKind::Range) {
       if (collection->element->kind == TypeKind::Int) return collection->element;
-      diags_.error("E0301", at.range, fmt::format("{} must be a finite set; a range of reals has infinitely many values", what))
+      diags_
+          .error("E0301", at.range,
+                 fmt::format("{} must be a finite set; a range of reals has infinitely many values", what))
           .help("use an integer range such as 0 .. 3, an enum, an item set or a list");
       return err();
     }
-    diags_.error("E0301", at.range, fmt::format("{} must be a set, an enum, an integer range or a list, not {}", what,
-                                                collection->spelling));
+    diags_.error(
+        "E0301", at.range,
+        fmt::format("{} must be a set, an enum, an integer range or a list, not {}", what, collection->spelling));
     return err();
   }
 
@@ -185,7 +216,8 @@ class Checker {
   const Type* expect(Expr* e, const Type* want, const char* context) {
     const Type* got = check(e);
     if (!assignable(want, got)) {
-      diags_.error("E0301", e->range, fmt::format("{} must be {}, but this is {}", context, want->spelling, got->spelling));
+      diags_.error("E0301", e->range,
+                   fmt::format("{} must be {}, but this is {}", context, want->spelling, got->spelling));
     }
     return got;
   }
@@ -226,7 +258,8 @@ class Checker {
     Diagnostic& d = diags_.error("E0208", e.nameRange.valid() ? e.nameRange : e.range,
                                  fmt::format("{} has no member '{}'", t->spelling, m));
     const std::string guess = closestMatch(m, fields);
-    if (!guess.empty()) d.help(fmt::format("did you mean '{}'?", guess));
+    if (!guess.empty())
+      d.help(fmt::format("did you mean '{}'?", guess));
     else if (!fields.empty()) {
       std::string list;
       for (std::size_t i = 0; i < fields.size(); ++i) list += (i ? ", " : "") + fields[i];
@@ -251,8 +284,10 @@ class Checker {
           continue;
         }
         if (positional >= params.size()) {
-          diags_.error("E0302", a.range, fmt::format("{} '{}' takes {} argument{}, but {} were given", what, name,
-                                                     params.size(), params.size() == 1 ? "" : "s", args.size()))
+          diags_
+              .error("E0302", a.range,
+                     fmt::format("{} '{}' takes {} argument{}, but {} were given", what, name, params.size(),
+                                 params.size() == 1 ? "" : "s", args.size()))
               .note("declared here", declAt);
           return false;
         }
@@ -283,8 +318,10 @@ class Checker {
     }
     for (std::size_t i = 0; i < params.size(); ++i) {
       if (order[i] == nullptr && ok) {
-        diags_.error("E0302", at, fmt::format("{} '{}' takes {} argument{}; '{}' is missing", what, name, params.size(),
-                                              params.size() == 1 ? "" : "s", params[i].name.name))
+        diags_
+            .error("E0302", at,
+                   fmt::format("{} '{}' takes {} argument{}; '{}' is missing", what, name, params.size(),
+                               params.size() == 1 ? "" : "s", params[i].name.name))
             .note("declared here", declAt);
         return false;
       }
@@ -304,9 +341,10 @@ class Checker {
       const Type* actual = order[i]->value->type;
       if (formal == nullptr || actual == nullptr) continue;
       if (!unifier.unify(formal, actual)) {
-        diags_.error("E0301", order[i]->value->range,
-                     fmt::format("argument '{}' of '{}' must be {}, but this is {}", c.params[i].name.name, c.name.name,
-                                 unifier.substitute(formal)->spelling, actual->spelling))
+        diags_
+            .error("E0301", order[i]->value->range,
+                   fmt::format("argument '{}' of '{}' must be {}, but this is {}", c.params[i].name.name, c.name.name,
+                               unifier.substitute(formal)->spelling, actual->spelling))
             .note("declared here", c.params[i].name.range);
         ok = false;
       }
@@ -315,8 +353,9 @@ class Checker {
     if (!c.result || !c.result->resolved) return types_.voidType();
     const Type* result = unifier.substitute(c.result->resolved);
     if (result->isGeneric()) {
-      diags_.error("E0301", at, fmt::format("cannot infer the result type {} of '{}' from its arguments",
-                                            c.result->resolved->spelling, c.name.name));
+      diags_.error("E0301", at,
+                   fmt::format("cannot infer the result type {} of '{}' from its arguments",
+                               c.result->resolved->spelling, c.name.name));
       return err();
     }
     return result;
@@ -337,13 +376,14 @@ class Checker {
     if (r.kind == RefKind::Function) return checkCallable(static_cast<const CallableDecl&>(*r.decl), e.args, e.range);
     if (r.kind == RefKind::Builtin && r.index == static_cast<int>(BuiltinId::Box)) {
       if (!inDomain_) {
-        diags_.error("E0313", callee->range, "box(...) describes a domain; use it after 'in' in a variable declaration");
+        diags_.error("E0313", callee->range,
+                     "box(...) describes a domain; use it after 'in' in a variable declaration");
       }
       for (auto& a : e.args) check(a.value.get());
       return types_.voidType();
     }
     for (auto& a : e.args) check(a.value.get());
-    const char* hint = r.kind == RefKind::Sampler ? "samplers are used in 'sample x ~ name(...);'"
+    const char* hint = r.kind == RefKind::Sampler  ? "samplers are used in 'sample x ~ name(...);'"
                        : r.kind == RefKind::Action ? "actions are called in a skill's 'do' block"
                                                    : "only functions can be called in expressions";
     diags_.error("E0313", callee->range, fmt::format("'{}' cannot be called here", callee->text)).help(hint);
@@ -364,15 +404,17 @@ class Checker {
                                             x.binaryOp == BinaryOp::Gt || x.binaryOp == BinaryOp::Ge);
     };
     auto fail = [&]() {
-      Diagnostic& d = diags_.error("E0303", e.range, fmt::format("operator '{}' does not apply to {} and {}", toString(op),
-                                                                 a->spelling, b->spelling));
+      Diagnostic& d = diags_.error(
+          "E0303", e.range,
+          fmt::format("operator '{}' does not apply to {} and {}", toString(op), a->spelling, b->spelling));
       if (isComparison(e) && isComparison(*e.operands[0])) {
         d.help("comparisons do not chain: write 'a < b and b < c' instead of 'a < b < c'");
       }
       return err();
     };
     switch (op) {
-      case BinaryOp::Add: case BinaryOp::Sub:
+      case BinaryOp::Add:
+      case BinaryOp::Sub:
         if (a->isNumeric() && b->isNumeric()) return numericResult(a, b);
         if (a->kind == TypeKind::Vec && a == b) return a;
         if (op == BinaryOp::Add && a->kind == TypeKind::Text && b->kind == TypeKind::Text) return a;
@@ -393,13 +435,20 @@ class Checker {
       case BinaryOp::Pow:
         if (a->isNumeric() && b->isNumeric()) return types_.real();
         return fail();
-      case BinaryOp::Eq: case BinaryOp::Ne:
+      case BinaryOp::Eq:
+      case BinaryOp::Ne:
         if (a == b || (a->isNumeric() && b->isNumeric())) return types_.boolean();
         return fail();
-      case BinaryOp::Lt: case BinaryOp::Le: case BinaryOp::Gt: case BinaryOp::Ge:
+      case BinaryOp::Lt:
+      case BinaryOp::Le:
+      case BinaryOp::Gt:
+      case BinaryOp::Ge:
         if (a->isNumeric() && b->isNumeric()) return types_.boolean();
         return fail();
-      case BinaryOp::And: case BinaryOp::Or: case BinaryOp::Implies: case BinaryOp::Iff:
+      case BinaryOp::And:
+      case BinaryOp::Or:
+      case BinaryOp::Implies:
+      case BinaryOp::Iff:
         if (a->kind == TypeKind::Bool && b->kind == TypeKind::Bool) return a;
         return fail();
     }
@@ -419,11 +468,16 @@ class Checker {
       case ExprKind::Number:
         if (e.text == "<missing>") return err();
         return e.text.find_first_of(".eE") == std::string::npos ? types_.integer() : types_.real();
-      case ExprKind::String: return types_.text();
-      case ExprKind::Bool: return types_.boolean();
-      case ExprKind::Name: return nameType(e, allowFamily);
-      case ExprKind::Member: return memberType(e);
-      case ExprKind::Call: return callType(e);
+      case ExprKind::String:
+        return types_.text();
+      case ExprKind::Bool:
+        return types_.boolean();
+      case ExprKind::Name:
+        return nameType(e, allowFamily);
+      case ExprKind::Member:
+        return memberType(e);
+      case ExprKind::Call:
+        return callType(e);
       case ExprKind::Index: {
         Expr* base = e.operands[0].get();
         const Type* bt = check(base, /*allowFamily=*/true);
@@ -453,10 +507,12 @@ class Checker {
         if (t->isError()) return t;
         if (e.unaryOp == UnaryOp::Neg && (t->isNumeric() || t->kind == TypeKind::Vec)) return t;
         if (e.unaryOp == UnaryOp::Not && t->kind == TypeKind::Bool) return t;
-        diags_.error("E0303", e.range, fmt::format("operator '{}' does not apply to {}", toString(e.unaryOp), t->spelling));
+        diags_.error("E0303", e.range,
+                     fmt::format("operator '{}' does not apply to {}", toString(e.unaryOp), t->spelling));
         return err();
       }
-      case ExprKind::Binary: return binaryType(e);
+      case ExprKind::Binary:
+        return binaryType(e);
       case ExprKind::Range: {
         const Type* a = check(e.operands[0].get());
         const Type* b = check(e.operands[1].get());
@@ -472,7 +528,8 @@ class Checker {
         const Type* s = check(e.operands[1].get());
         if (a->isError() || s->isError()) return types_.boolean();
         if (s->kind == TypeKind::Range) {
-          if (!a->isNumeric()) diags_.error("E0303", e.range, fmt::format("'in' a range needs a number, not {}", a->spelling));
+          if (!a->isNumeric())
+            diags_.error("E0303", e.range, fmt::format("'in' a range needs a number, not {}", a->spelling));
         } else if (s->kind == TypeKind::Set) {
           if (!assignable(s->element, a) && !(a->isNumeric() && s->element->isNumeric())) {
             diags_.error("E0303", e.range, fmt::format("{} cannot be a member of {}", a->spelling, s->spelling));
@@ -495,8 +552,8 @@ class Checker {
         if (a->isError() || b->isError()) return err();
         if (a == b) return a;
         if (a->isNumeric() && b->isNumeric()) return numericResult(a, b);
-        diags_.error("E0301", e.range, fmt::format("the branches of 'if' have different types, {} and {}", a->spelling,
-                                                   b->spelling));
+        diags_.error("E0301", e.range,
+                     fmt::format("the branches of 'if' have different types, {} and {}", a->spelling, b->spelling));
         return err();
       }
       case ExprKind::Tuple: {
@@ -515,8 +572,9 @@ class Checker {
             if (elem->isNumeric() && t->isNumeric()) {
               elem = types_.real();
             } else if (elem->kind != TypeKind::Range || t->kind != TypeKind::Range) {
-              diags_.error("E0301", op->range, fmt::format("list elements must have one type; this is {}, earlier ones are {}",
-                                                           t->spelling, elem->spelling));
+              diags_.error("E0301", op->range,
+                           fmt::format("list elements must have one type; this is {}, earlier ones are {}", t->spelling,
+                                       elem->spelling));
               return err();
             }
           }
@@ -576,7 +634,10 @@ class Checker {
     if (set->kind == ExprKind::Range) {
       auto literal = [](const Expr* x) -> std::optional<double> {
         double sign = 1;
-        if (x->kind == ExprKind::Unary && x->unaryOp == UnaryOp::Neg) { sign = -1; x = x->operands[0].get(); }
+        if (x->kind == ExprKind::Unary && x->unaryOp == UnaryOp::Neg) {
+          sign = -1;
+          x = x->operands[0].get();
+        }
         if (x->kind != ExprKind::Number || x->text.find_first_of(".eE<") != std::string::npos) return std::nullopt;
         return sign * x->number;
       };
@@ -590,7 +651,8 @@ class Checker {
     checkIndex(c.index.get());
     const Type* t = check(c.value.get());
     if (c.value && !isConstantExpr(*c.value, false)) {
-      diags_.error("E0305", c.value->range, fmt::format("the value of constant '{}' must not depend on variables or observations", c.name.name));
+      diags_.error("E0305", c.value->range,
+                   fmt::format("the value of constant '{}' must not depend on variables or observations", c.name.name));
     }
     if (c.index) {
       if (c.value && c.value->kind != ExprKind::List) {
@@ -599,10 +661,11 @@ class Checker {
         return;
       }
       if (const auto size = indexSetSize(c.index->set.get()); c.value && size && *size != c.value->operands.size()) {
-        diags_.error("E0312", c.value->range,
-                     fmt::format("constant '{}' has {} value{}, but its index set has {} member{}", c.name.name,
-                                 c.value->operands.size(), c.value->operands.size() == 1 ? "" : "s", *size,
-                                 *size == 1 ? "" : "s"))
+        diags_
+            .error("E0312", c.value->range,
+                   fmt::format("constant '{}' has {} value{}, but its index set has {} member{}", c.name.name,
+                               c.value->operands.size(), c.value->operands.size() == 1 ? "" : "s", *size,
+                               *size == 1 ? "" : "s"))
             .note("the index set", c.index->set->range);
       }
       t = t->kind == TypeKind::Set ? t->element : err();
@@ -610,8 +673,8 @@ class Checker {
     if (c.type && c.type->resolved && !c.type->resolved->isError()) {
       if (!assignable(c.type->resolved, t)) {
         diags_.error("E0315", c.value->range,
-                     fmt::format("constant '{}' is declared {}, but its value is {}", c.name.name, c.type->resolved->spelling,
-                                 t->spelling));
+                     fmt::format("constant '{}' is declared {}, but its value is {}", c.name.name,
+                                 c.type->resolved->spelling, t->spelling));
       }
       t = c.type->resolved;
     }
@@ -652,8 +715,9 @@ class Checker {
       std::set<std::string> seen;
       for (const auto& a : d->args) {
         if (std::find(names.begin(), names.end(), a.name.name) == names.end() || !seen.insert(a.name.name).second) {
-          diags_.error("E0304", a.range, fmt::format("box(...) for {} takes named ranges {}", t->spelling,
-                                                     fmt::format("{}", fmt::join(names, ", "))));
+          diags_.error("E0304", a.range,
+                       fmt::format("box(...) for {} takes named ranges {}", t->spelling,
+                                   fmt::format("{}", fmt::join(names, ", "))));
           return true;
         }
         if (!a.value->type || a.value->type->kind != TypeKind::Range) {
@@ -663,13 +727,17 @@ class Checker {
       return true;
     };
     switch (t->kind) {
-      case TypeKind::Real: case TypeKind::Int:
-        if (dt->kind != TypeKind::Range) bad("lo .. hi");
-        else if (t->kind == TypeKind::Int && dt->element->kind != TypeKind::Int) bad("with whole-number bounds, lo .. hi");
+      case TypeKind::Real:
+      case TypeKind::Int:
+        if (dt->kind != TypeKind::Range)
+          bad("lo .. hi");
+        else if (t->kind == TypeKind::Int && dt->element->kind != TypeKind::Int)
+          bad("with whole-number bounds, lo .. hi");
         break;
       case TypeKind::Vec:
         if (checkBox({"x", "y", "z"})) break;
-        if (!isRangeList(static_cast<std::size_t>(t->size))) bad(fmt::format("as a list of {} ranges, [lo .. hi, ...]", t->size));
+        if (!isRangeList(static_cast<std::size_t>(t->size)))
+          bad(fmt::format("as a list of {} ranges, [lo .. hi, ...]", t->size));
         break;
       case TypeKind::SE2:
         if (!checkBox({"x", "y", "yaw"})) bad("box(x: lo .. hi, y: lo .. hi, yaw: lo .. hi)");
@@ -677,7 +745,10 @@ class Checker {
       case TypeKind::SE3:
         if (!checkBox({"x", "y", "z"})) bad("box(x: lo .. hi, y: lo .. hi, z: lo .. hi)");
         break;
-      case TypeKind::Enum: case TypeKind::Item: case TypeKind::Text: case TypeKind::Bool:
+      case TypeKind::Enum:
+      case TypeKind::Item:
+      case TypeKind::Text:
+      case TypeKind::Bool:
         if (dt->kind != TypeKind::Set || !assignable(t, dt->element)) {
           bad(fmt::format("as a set of {} values (a list, an item set or an observed set)", t->spelling));
         }
@@ -696,8 +767,9 @@ class Checker {
     if (v.init) {
       const Type* it = check(v.init.get());
       if (v.type.resolved && !assignable(v.type.resolved, it)) {
-        diags_.error("E0315", v.init->range, fmt::format("the initial value of '{}' must be {}, but this is {}",
-                                                         v.name.name, v.type.resolved->spelling, it->spelling));
+        diags_.error("E0315", v.init->range,
+                     fmt::format("the initial value of '{}' must be {}, but this is {}", v.name.name,
+                                 v.type.resolved->spelling, it->spelling));
       } else if (!isConstantExpr(*v.init, true)) {
         diags_.error("E0305", v.init->range, "an initial value may depend on constants and observations only");
       }
@@ -745,16 +817,21 @@ class Checker {
 
   void checkScopeStmt(Decl& d) {
     switch (d.kind) {
-      case DeclKind::Var: checkVar(static_cast<VarDecl&>(d)); break;
+      case DeclKind::Var:
+        checkVar(static_cast<VarDecl&>(d));
+        break;
       case DeclKind::Require: {
         auto& r = static_cast<RequireDecl&>(d);
         const Type* t = check(r.condition.get());
         if (!t->isError() && t->kind != TypeKind::Bool) {
-          diags_.error("E0301", r.condition->range, fmt::format("a constraint must be bool, but this is {}", t->spelling));
+          diags_.error("E0301", r.condition->range,
+                       fmt::format("a constraint must be bool, but this is {}", t->spelling));
         }
         break;
       }
-      case DeclKind::Sample: checkSample(static_cast<SampleDecl&>(d)); break;
+      case DeclKind::Sample:
+        checkSample(static_cast<SampleDecl&>(d));
+        break;
       case DeclKind::Cost: {
         auto& c = static_cast<CostDecl&>(d);
         const Type* t = check(c.value.get());
@@ -763,7 +840,8 @@ class Checker {
         }
         break;
       }
-      default: break;
+      default:
+        break;
     }
   }
 
@@ -801,11 +879,15 @@ class Checker {
       const std::string& instName = inst.instanceName();
       if (auto it = names.find(instName); it != names.end()) {
         if (inst.alias.name.empty()) {
-          diags_.error("E0501", inst.range, fmt::format("skill '{}' runs twice in task '{}'", inst.skill.name, t.name.name))
+          diags_
+              .error("E0501", inst.range,
+                     fmt::format("skill '{}' runs twice in task '{}'", inst.skill.name, t.name.name))
               .help(fmt::format("name this instance: {} as {}2", inst.skill.name, inst.skill.name))
               .note("first run here", it->second);
         } else {
-          diags_.error("E0504", inst.alias.range, fmt::format("instance name '{}' is used twice in task '{}'", instName, t.name.name))
+          diags_
+              .error("E0504", inst.alias.range,
+                     fmt::format("instance name '{}' is used twice in task '{}'", instName, t.name.name))
               .note("first used here", it->second);
         }
         continue;
@@ -814,29 +896,33 @@ class Checker {
       if (inst.skillDecl == nullptr) continue;
       const auto& params = inst.skillDecl->params;
       if (inst.args.size() != params.size()) {
-        diags_.error("E0502", inst.range, fmt::format("skill '{}' takes {} argument{}, but {} {} given", inst.skill.name,
-                                                      params.size(), params.size() == 1 ? "" : "s", inst.args.size(),
-                                                      inst.args.size() == 1 ? "is" : "are"))
+        diags_
+            .error("E0502", inst.range,
+                   fmt::format("skill '{}' takes {} argument{}, but {} {} given", inst.skill.name, params.size(),
+                               params.size() == 1 ? "" : "s", inst.args.size(), inst.args.size() == 1 ? "is" : "are"))
             .note("declared here", inst.skillDecl->name.range);
         continue;
       }
       for (std::size_t i = 0; i < params.size(); ++i) {
         Arg& a = inst.args[i];
-        const bool isVar = a.value->kind == ExprKind::Name && a.value->ref.kind == RefKind::Variable &&
-                           !isFamily(a.value->ref.decl);
+        const bool isVar =
+            a.value->kind == ExprKind::Name && a.value->ref.kind == RefKind::Variable && !isFamily(a.value->ref.decl);
         const bool isMember = a.value->kind == ExprKind::Index && a.value->operands[0]->kind == ExprKind::Name &&
                               a.value->operands[0]->ref.kind == RefKind::Variable;
         if (!isVar && !isMember) {
-          diags_.error("E0502", a.range, fmt::format("argument '{}' of skill '{}' must be a variable", params[i].name.name,
-                                                     inst.skill.name))
+          diags_
+              .error(
+                  "E0502", a.range,
+                  fmt::format("argument '{}' of skill '{}' must be a variable", params[i].name.name, inst.skill.name))
               .help("skill parameters share a task variable with the skill; declare one with 'var'");
           continue;
         }
         if (params[i].type.resolved && a.value->type && !a.value->type->isError() &&
             params[i].type.resolved != a.value->type) {
-          diags_.error("E0502", a.range, fmt::format("argument '{}' of skill '{}' must be {}, but this variable is {}",
-                                                     params[i].name.name, inst.skill.name,
-                                                     params[i].type.resolved->spelling, a.value->type->spelling));
+          diags_.error(
+              "E0502", a.range,
+              fmt::format("argument '{}' of skill '{}' must be {}, but this variable is {}", params[i].name.name,
+                          inst.skill.name, params[i].type.resolved->spelling, a.value->type->spelling));
         }
       }
     }
@@ -852,7 +938,8 @@ class Checker {
     std::set<std::string> entryNames;
     for (auto& e : items.entries) {
       if (!entryNames.insert(e.name.name).second) {
-        diags_.error("E0202", e.name.range, fmt::format("item '{}' appears twice in '{}'", e.name.name, items.name.name));
+        diags_.error("E0202", e.name.range,
+                     fmt::format("item '{}' appears twice in '{}'", e.name.name, items.name.name));
       }
       std::set<std::string> given;
       for (auto& f : e.fields) {
@@ -864,7 +951,8 @@ class Checker {
         if (field == nullptr) {
           std::vector<std::string> names;
           for (const auto& p : t->itemDecl->fields) names.push_back(p.name.name);
-          Diagnostic& d = diags_.error("E0314", f.name.range, fmt::format("{} has no field '{}'", t->spelling, f.name.name));
+          Diagnostic& d =
+              diags_.error("E0314", f.name.range, fmt::format("{} has no field '{}'", t->spelling, f.name.name));
           const std::string guess = closestMatch(f.name.name, names);
           if (!guess.empty()) d.help(fmt::format("did you mean '{}'?", guess));
           continue;
@@ -874,8 +962,9 @@ class Checker {
           continue;
         }
         if (field->type.resolved && !assignable(field->type.resolved, vt)) {
-          diags_.error("E0314", f.value->range, fmt::format("field '{}' is {}, but this value is {}", f.name.name,
-                                                            field->type.resolved->spelling, vt->spelling));
+          diags_.error("E0314", f.value->range,
+                       fmt::format("field '{}' is {}, but this value is {}", f.name.name,
+                                   field->type.resolved->spelling, vt->spelling));
         } else if (!isConstantExpr(*f.value, false)) {
           diags_.error("E0305", f.value->range, "item fields must be constants");
         }
@@ -894,7 +983,8 @@ class Checker {
       const Type* t = check(f.value.get());
       if (f.name.name == "dof") {
         sawDof = true;
-        if (t->kind != TypeKind::Int || f.value->kind != ExprKind::Number || f.value->number < 1 || f.value->number > 64) {
+        if (t->kind != TypeKind::Int || f.value->kind != ExprKind::Number || f.value->number < 1 ||
+            f.value->number > 64) {
           diags_.error("E0315", f.value->range, "'dof' must be a whole number from 1 to 64");
         } else {
           r.dof = static_cast<int>(f.value->number);
@@ -934,31 +1024,44 @@ class Checker {
 
   void checkTop(Decl& d) {
     switch (d.kind) {
-      case DeclKind::Robot: checkRobot(static_cast<RobotDecl&>(d)); break;
-      case DeclKind::ItemSet: checkItems(static_cast<ItemsDecl&>(d)); break;
+      case DeclKind::Robot:
+        checkRobot(static_cast<RobotDecl&>(d));
+        break;
+      case DeclKind::ItemSet:
+        checkItems(static_cast<ItemsDecl&>(d));
+        break;
       case DeclKind::Function: {
         auto& f = static_cast<FuncDecl&>(d);
         if (f.body) {
           const Type* t = check(f.body.get());
           if (f.result && f.result->resolved && !assignable(f.result->resolved, t)) {
-            diags_.error("E0301", f.body->range, fmt::format("function '{}' returns {}, but its body is {}", f.name.name,
-                                                             f.result->resolved->spelling, t->spelling));
+            diags_.error("E0301", f.body->range,
+                         fmt::format("function '{}' returns {}, but its body is {}", f.name.name,
+                                     f.result->resolved->spelling, t->spelling));
           }
         }
         break;
       }
-      case DeclKind::Var: case DeclKind::Require: case DeclKind::Sample: case DeclKind::Cost:
+      case DeclKind::Var:
+      case DeclKind::Require:
+      case DeclKind::Sample:
+      case DeclKind::Cost:
         checkScopeStmt(d);
         break;
-      case DeclKind::Personal: checkPersonal(static_cast<PersonalDecl&>(d)); break;
+      case DeclKind::Personal:
+        checkPersonal(static_cast<PersonalDecl&>(d));
+        break;
       case DeclKind::Skill: {
         auto& s = static_cast<SkillDecl&>(d);
         for (auto& b : s.body) checkScopeStmt(*b);
         checkActions(s.actions);
         break;
       }
-      case DeclKind::Task: checkTask(static_cast<TaskDecl&>(d)); break;
-      default: break;
+      case DeclKind::Task:
+        checkTask(static_cast<TaskDecl&>(d));
+        break;
+      default:
+        break;
     }
   }
 

@@ -32,9 +32,9 @@ struct LineCol {
 };
 
 struct SourceFile {
-  std::string path;     // as given
+  std::string path;  // as given
   std::string text;
-  bool embedded = false;  // a standard-library module compiled into the binary
+  bool embedded = false;                  // a standard-library module compiled into the binary
   std::vector<std::uint32_t> lineStarts;  // byte offset of each line's first byte
 };
 

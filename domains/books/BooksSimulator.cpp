@@ -1,10 +1,10 @@
 #include "domains/books/BooksSimulator.h"
 
 #include "domains/books/BookCatalog.h"
-#include "robot/actions/CallArguments.h"
 #include "domains/home/HomeEpisode.h"
 #include "domains/home/HomeScene.h"
 #include "domains/home/HomeSurfaces.h"
+#include "robot/actions/CallArguments.h"
 #include "robot/actions/SurfaceGeometry.h"
 
 #include <stdexcept>
@@ -114,10 +114,10 @@ StepResult BooksSimulator::handOver(StepResult r) {
   const bool reached = user_->reaches(hand_, point);
   const bool enjoyed = reached && user_->enjoys(entry);
   const std::string said = user_->reaction(entry, reached);
-  r.feedback.push_back(sim::FeedbackEvent{
-      "handoverOutcome",
-      {Value::name(entry), Value::vec({point.x(), point.y(), point.z()}), Value::num(reached ? 1 : 0),
-       Value::name(said), Value::num(enjoyed ? 1 : 0)}});
+  r.feedback.push_back(
+      sim::FeedbackEvent{"handoverOutcome",
+                         {Value::name(entry), Value::vec({point.x(), point.y(), point.z()}),
+                          Value::num(reached ? 1 : 0), Value::name(said), Value::num(enjoyed ? 1 : 0)}});
   r.hasSatisfaction = true;
   r.satisfaction = reached && enjoyed ? 1.0 : -1.0;
   r.message = said;

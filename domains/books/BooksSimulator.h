@@ -36,9 +36,9 @@
 // Lifetime state (not touched by reset): the user, shared with evaluation twins.
 #pragma once
 
-#include "runtime/sim/DomainSimulator.h"
 #include "domains/books/BooksUser.h"
 #include "robot/actions/RobotActions.h"
+#include "runtime/sim/DomainSimulator.h"
 
 #include "robot/world/WorldOperations.h"
 

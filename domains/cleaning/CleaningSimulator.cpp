@@ -102,7 +102,8 @@ StepResult CleaningSimulator::act(const sim::ActionCall& call) {
   if (call.name == "wipe") {
     if (const auto surface = home::surfaceMemberOfGeom(call.args[0].text)) {
       const bool welcome = user_->welcomes(*surface);
-      r.feedback.push_back(sim::FeedbackEvent{"cleaningReaction", {Value::name(*surface), Value::num(welcome ? 1 : 0)}});
+      r.feedback.push_back(
+          sim::FeedbackEvent{"cleaningReaction", {Value::name(*surface), Value::num(welcome ? 1 : 0)}});
       r.hasSatisfaction = true;
       r.satisfaction = welcome ? 1.0 : -1.0;
       r.taskDone = true;

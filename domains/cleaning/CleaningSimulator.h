@@ -35,9 +35,9 @@
 // Lifetime state (not touched by reset): the user, shared with evaluation twins.
 #pragma once
 
-#include "runtime/sim/DomainSimulator.h"
 #include "domains/cleaning/CleaningUser.h"
 #include "robot/actions/RobotActions.h"
+#include "runtime/sim/DomainSimulator.h"
 
 #include "robot/world/WorldOperations.h"
 

@@ -28,10 +28,14 @@ StepResult unknown(std::string message) {
 
 const char* kindName(Value::Kind kind) {
   switch (kind) {
-    case Value::Kind::Number: return "a number";
-    case Value::Kind::Vector: return "a vector";
-    case Value::Kind::Name: return "a name";
-    case Value::Kind::Names: return "a set of names";
+    case Value::Kind::Number:
+      return "a number";
+    case Value::Kind::Vector:
+      return "a vector";
+    case Value::Kind::Name:
+      return "a name";
+    case Value::Kind::Names:
+      return "a set of names";
   }
   return "a value";
 }
@@ -267,7 +271,8 @@ StepResult CookingSimulator::serve(const ActionCall& call) {
   r.taskDone = true;
   r.hasSatisfaction = true;
   r.satisfaction = verdict.satisfied ? 1.0 : -1.0;
-  r.message = verdict.satisfied ? "served " + mealName + ": the user enjoyed it" : "served " + mealName + ": " + verdict.reason;
+  r.message =
+      verdict.satisfied ? "served " + mealName + ": the user enjoyed it" : "served " + mealName + ": " + verdict.reason;
   if (!world_.queuedAdditions().empty()) r.message += " (additions queued after the last tick were dropped)";
   const int total = world_.mealTicks();
   for (std::size_t i = 0; i < contents.size(); ++i) {

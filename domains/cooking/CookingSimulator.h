@@ -35,10 +35,10 @@
 // the stock is then set to exactly 0.9 (the least the spec allows), which may leave the user satisfiable.
 #pragma once
 
-#include "runtime/sim/DomainSimulator.h"
 #include "domains/cooking/CookingRandom.h"
 #include "domains/cooking/CookingUser.h"
 #include "domains/cooking/CookingWorld.h"
+#include "runtime/sim/DomainSimulator.h"
 
 #include <cstdint>
 #include <memory>
@@ -93,8 +93,8 @@ class CookingSimulator final : public sim::DomainSimulator {
   sim::SimulatorOptions options_;
   std::shared_ptr<CookingUser> user_;
   bool shiftsUser_ = true;
-  Rng rng_;        // the world: stock, unsatisfiable picks; reseeded by reset
-  Rng shiftRng_;   // the user's shifts; seeded once at construction
+  Rng rng_;       // the world: stock, unsatisfiable picks; reseeded by reset
+  Rng shiftRng_;  // the user's shifts; seeded once at construction
   CookingWorld world_;
   std::int64_t steps_ = 0;
 };

@@ -12,18 +12,24 @@ Range Range::scaledAboutZero(double f) const {
 
 std::string_view critiqueName(TempCritique c) {
   switch (c) {
-    case TempCritique::Good: return "tempGood";
-    case TempCritique::WantHotter: return "wantHotter";
-    case TempCritique::WantColder: return "wantColder";
+    case TempCritique::Good:
+      return "tempGood";
+    case TempCritique::WantHotter:
+      return "wantHotter";
+    case TempCritique::WantColder:
+      return "wantColder";
   }
   return "tempGood";
 }
 
 std::string_view critiqueName(AmountCritique c) {
   switch (c) {
-    case AmountCritique::Good: return "amountGood";
-    case AmountCritique::WantMore: return "wantMore";
-    case AmountCritique::WantLess: return "wantLess";
+    case AmountCritique::Good:
+      return "amountGood";
+    case AmountCritique::WantMore:
+      return "wantMore";
+    case AmountCritique::WantLess:
+      return "wantLess";
   }
   return "amountGood";
 }
@@ -63,10 +69,14 @@ std::optional<double> CookingUser::quantityMin(Ingredient ingredient) const {
 
 Critique CookingUser::critique(const IngredientTaste& taste, double temperature, double quantity) {
   Critique c;
-  if (temperature < taste.temperature.lo) c.heat = TempCritique::WantHotter;
-  else if (temperature > taste.temperature.hi) c.heat = TempCritique::WantColder;
-  if (quantity < taste.quantity.lo) c.amount = AmountCritique::WantMore;
-  else if (quantity > taste.quantity.hi) c.amount = AmountCritique::WantLess;
+  if (temperature < taste.temperature.lo)
+    c.heat = TempCritique::WantHotter;
+  else if (temperature > taste.temperature.hi)
+    c.heat = TempCritique::WantColder;
+  if (quantity < taste.quantity.lo)
+    c.amount = AmountCritique::WantMore;
+  else if (quantity > taste.quantity.hi)
+    c.amount = AmountCritique::WantLess;
   return c;
 }
 
@@ -90,8 +100,8 @@ MealVerdict CookingUser::judge(std::string_view mealName, const std::vector<Tast
     allGood = allGood && verdict.critiques[i]->good();
   }
   for (const auto& [ingredient, taste] : m->ingredients) {
-    const bool present = std::any_of(tasted.begin(), tasted.end(),
-                                     [&](const Tasted& t) { return t.ingredient == ingredient; });
+    const bool present =
+        std::any_of(tasted.begin(), tasted.end(), [&](const Tasted& t) { return t.ingredient == ingredient; });
     if (!present) {
       verdict.reason = m->name + " needs " + std::string(ingredientName(ingredient));
       return verdict;

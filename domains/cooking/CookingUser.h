@@ -39,7 +39,7 @@ struct IngredientTaste {
 };
 
 struct MealTaste {
-  std::string name;                                  // e.g. "seasoning"
+  std::string name;                                   // e.g. "seasoning"
   std::map<Ingredient, IngredientTaste> ingredients;  // the required ingredients and how the user likes them
 };
 

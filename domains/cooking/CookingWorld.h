@@ -22,25 +22,25 @@
 
 namespace cbtl::domains::cooking {
 
-inline constexpr double kStoveSize = 10.0;            // stove units; the stove is [0, 10] x [0, 10]
-inline constexpr std::size_t kPotCount = 4;           // pot0 .. pot3; pots are addressed by index 0 .. 3
+inline constexpr double kStoveSize = 10.0;   // stove units; the stove is [0, 10] x [0, 10]
+inline constexpr std::size_t kPotCount = 4;  // pot0 .. pot3; pots are addressed by index 0 .. 3
 inline constexpr std::array<double, kPotCount> kPotRadius = {0.5, 1.0, 0.5, 0.5};  // stove units
-inline constexpr int kTicksPerTemperatureUnit = 10;   // 1 tick = 0.1 temperature units
+inline constexpr int kTicksPerTemperatureUnit = 10;                                // 1 tick = 0.1 temperature units
 
 // The temperature, in temperature units, of `ticks` ticks. Division (not accumulation) is exact to the
 // nearest double, so 28 ticks compare equal to the literal 2.8.
 inline double ticksToTemperature(int ticks) { return ticks / static_cast<double>(kTicksPerTemperatureUnit); }
 
-using Stock = std::array<double, kIngredientCount>;   // indexed by indexOf(Ingredient)
+using Stock = std::array<double, kIngredientCount>;  // indexed by indexOf(Ingredient)
 
 struct PotState {
-  double radius = 0;                       // stove units
+  double radius = 0;  // stove units
   bool onStove = false;
-  double x = 0, y = 0;                     // centre in the stove frame; meaningful only when onStove
-  std::optional<Ingredient> ingredient;    // what the pot holds (at most one ingredient)
-  double quantity = 0;                     // of `ingredient`; 0 when empty
-  int temperatureTicks = 0;                // 0 when the ingredient went in
-  int startTick = 0;                       // the meal tick (ticks before the one that added it) of the addition
+  double x = 0, y = 0;                   // centre in the stove frame; meaningful only when onStove
+  std::optional<Ingredient> ingredient;  // what the pot holds (at most one ingredient)
+  double quantity = 0;                   // of `ingredient`; 0 when empty
+  int temperatureTicks = 0;              // 0 when the ingredient went in
+  int startTick = 0;                     // the meal tick (ticks before the one that added it) of the addition
 };
 
 // An addition waiting for the next tick.
@@ -52,10 +52,10 @@ struct Addition {
 
 enum class MoveOutcome {
   Moved,
-  NoSuchPot,     // pot index >= kPotCount
-  BadPosition,   // a coordinate is not finite
-  LeavesStove,   // the disc would not lie inside the stove (touching the edge is inside)
-  Overlaps,      // the disc would overlap another on-stove pot (centre distance < r1 + r2; touching is fine)
+  NoSuchPot,    // pot index >= kPotCount
+  BadPosition,  // a coordinate is not finite
+  LeavesStove,  // the disc would not lie inside the stove (touching the edge is inside)
+  Overlaps,     // the disc would overlap another on-stove pot (centre distance < r1 + r2; touching is fine)
 };
 
 enum class AddOutcome {

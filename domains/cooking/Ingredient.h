@@ -15,8 +15,8 @@ namespace cbtl::domains::cooking {
 enum class Ingredient { Salt, Pepper, Sugar, Flour };
 
 inline constexpr std::size_t kIngredientCount = 4;
-inline constexpr std::array<Ingredient, kIngredientCount> kAllIngredients = {
-    Ingredient::Salt, Ingredient::Pepper, Ingredient::Sugar, Ingredient::Flour};
+inline constexpr std::array<Ingredient, kIngredientCount> kAllIngredients = {Ingredient::Salt, Ingredient::Pepper,
+                                                                             Ingredient::Sugar, Ingredient::Flour};
 
 // Position of `ingredient` in kAllIngredients, for per-ingredient arrays.
 constexpr std::size_t indexOf(Ingredient ingredient) { return static_cast<std::size_t>(ingredient); }

@@ -1,7 +1,7 @@
 #include "domains/feeding/FeedingSimulator.h"
 
-#include "robot/actions/CallArguments.h"
 #include "domains/home/HomeEpisode.h"
+#include "robot/actions/CallArguments.h"
 
 #include <fmt/format.h>
 
@@ -29,8 +29,8 @@ constexpr double kDrinkGraspStandoff = 0.10;
 constexpr double kDrinkLift = 0.01;  // metres the tool rises after closing on the handle
 // The utensil mount's grasp pose (feeding.cbtl mountX, mountY, mountLowZ), tool pointing down.
 const Eigen::Vector3d kMountLow(0.242, -0.077, 0.07);
-constexpr double kMountTolerance = 0.03;      // metres from the mount pose where a release re-mounts the utensil
-constexpr double kFoodReach = 0.10;           // metres from the plate centre where food can be picked up
+constexpr double kMountTolerance = 0.03;  // metres from the mount pose where a release re-mounts the utensil
+constexpr double kFoodReach = 0.10;       // metres from the plate centre where food can be picked up
 
 const std::vector<std::string> kFoods = {"french fries", "potato wedges", "tater tots", "carrot sticks"};
 const std::vector<std::string> kDips = {"ketchup", "bbqSauce", "ranch", "hummus"};  // noDip is always possible
@@ -48,9 +48,12 @@ Eigen::Quaterniond towardsPlusY() { return Eigen::Quaterniond(0.0, 0.0, 0.707106
 
 const char* toString(Request r) {
   switch (r) {
-    case Request::Food: return "food";
-    case Request::Prepare: return "prepare";
-    case Request::Drink: return "drink";
+    case Request::Food:
+      return "food";
+    case Request::Prepare:
+      return "prepare";
+    case Request::Drink:
+      return "drink";
   }
   return "?";
 }
@@ -61,8 +64,10 @@ std::shared_ptr<const world::Scene> feedingScene() {
   static std::string error;
   std::call_once(once, [] {
     const auto r = world::Scene::loadFile(CBTL_FEEDING_SCENE_PATH);
-    if (r.status == world::LoadStatus::Ok) scene = r.scene;
-    else error = r.message;
+    if (r.status == world::LoadStatus::Ok)
+      scene = r.scene;
+    else
+      error = r.message;
   });
   if (!scene) throw std::runtime_error("the Feeding scene cannot be loaded: " + error);
   return scene;
@@ -151,9 +156,12 @@ void FeedingSimulator::restoreHome() {
 
 std::string FeedingSimulator::requestedTask() const {
   switch (request_) {
-    case Request::Food: return "feedBite";
-    case Request::Prepare: return "prepareDrink";
-    case Request::Drink: return "giveDrink";
+    case Request::Food:
+      return "feedBite";
+    case Request::Prepare:
+      return "prepareDrink";
+    case Request::Drink:
+      return "giveDrink";
   }
   return {};
 }
@@ -195,18 +203,21 @@ sim::StepResult FeedingSimulator::graspDrink() {
     return fail(std::move(r));
   }
   const Pose3 drink = *ws.objectPose("drink");
-  const Pose3 handle{drink.transformPoint(kDrinkGraspOffset) - Eigen::Vector3d(0, kDrinkGraspStandoff, 0), towardsPlusY()};
+  const Pose3 handle{drink.transformPoint(kDrinkGraspOffset) - Eigen::Vector3d(0, kDrinkGraspStandoff, 0),
+                     towardsPlusY()};
   // IK from random starts: seeded at the folded arm, every converged solution reaches around the table.
   std::optional<world::ArmConfig> q;
   for (int attempt = 0; attempt < 5 && !q; ++attempt) q = world::builtins::sampleIk(*world_, handle, rng_);
   if (!q) {
-    r.message = fmt::format("grasp(drink): no collision-free IK solution for the handle of the drink at ({:.3f}, {:.3f})",
-                            drink.position.x(), drink.position.y());
+    r.message =
+        fmt::format("grasp(drink): no collision-free IK solution for the handle of the drink at ({:.3f}, {:.3f})",
+                    drink.position.x(), drink.position.y());
     return fail(std::move(r));
   }
   const world::builtins::ActionResult approach = world::builtins::moveArm(*world_, *q, rng_);
   if (!approach.done()) {
-    r.message = fmt::format("grasp(drink): approach: {}: {}", world::builtins::toString(approach.status), approach.detail);
+    r.message =
+        fmt::format("grasp(drink): approach: {}: {}", world::builtins::toString(approach.status), approach.detail);
     return fail(std::move(r));
   }
   // The drink's handle sticks out towards the fingers; the drink joins the hand where it stands.
@@ -316,7 +327,8 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
       const int spoke = static_cast<int>(world_->utterances().size()) - progress_.utterancesAtStart;
       const std::string verbosity = FeedingUser::perceivedVerbosity(spoke);
       const std::string signalGiven = progress_.signal.empty() ? "autoContinue" : progress_.signal;
-      step.feedback.push_back({"dipAnswer", {sim::Value::name(food_), sim::Value::name(progress_.dip), sim::Value::name(idealDip)}});
+      step.feedback.push_back(
+          {"dipAnswer", {sim::Value::name(food_), sim::Value::name(progress_.dip), sim::Value::name(idealDip)}});
       step.feedback.push_back({"signalAnswer", {sim::Value::name(signalGiven), sim::Value::name(user_->readySignal)}});
       step.feedback.push_back({"verbosityAnswer", {sim::Value::name(verbosity), sim::Value::name(user_->verbosity)}});
       const bool satisfied = !progress_.viewBlocked && progress_.dip == idealDip && signalGiven == user_->readySignal &&

@@ -30,9 +30,9 @@
 // request, the drink position). SimulatorOptions (preference shifts, unsatisfiable stock) do not apply.
 #pragma once
 
-#include "runtime/sim/DomainSimulator.h"
 #include "domains/feeding/FeedingUser.h"
 #include "robot/actions/RobotActions.h"
+#include "runtime/sim/DomainSimulator.h"
 
 #include "robot/world/WorldOperations.h"
 

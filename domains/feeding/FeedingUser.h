@@ -20,7 +20,7 @@ class FeedingUser {
   // wants brief talk.
   static FeedingUser paperDefault();
 
-  double occlusionThreshold = 0.05;                          // view blocked at score >= this, in [0, 1]
+  double occlusionThreshold = 0.05;                            // view blocked at score >= this, in [0, 1]
   std::map<std::string, std::vector<std::string>> dipRanking;  // food -> Dip entries, best first
   std::string readySignal = "button";
   std::string verbosity = "brief";

@@ -27,8 +27,8 @@ world::WorldState emptyRoom(const std::map<std::string, world::Pose3>& scenePose
 // duster's standard grasp or, for any other object, the book carry grasp (StandardGrasps.h).
 void holdAtHome(world::WorldState& state, const std::string& object);
 
-std::size_t uniformIndex(world::Rng& rng, std::size_t n);  // uniform in [0, n); n > 0
-double uniform01(world::Rng& rng);                         // uniform in [0, 1)
+std::size_t uniformIndex(world::Rng& rng, std::size_t n);                  // uniform in [0, n); n > 0
+double uniform01(world::Rng& rng);                                         // uniform in [0, 1)
 std::vector<std::size_t> shuffledIndices(world::Rng& rng, std::size_t n);  // a uniform permutation of 0..n-1
 
 }  // namespace cbtl::domains::home

@@ -25,8 +25,7 @@ std::shared_ptr<const world::Scene> homeScene() {
 }
 
 world::Pose3 parkedPose(std::size_t slot) {
-  return world::Pose3::fromPosition(
-      Eigen::Vector3d(kParkX + kParkSpacing * static_cast<double>(slot), kParkY, kParkZ));
+  return world::Pose3::fromPosition(Eigen::Vector3d(kParkX + kParkSpacing * static_cast<double>(slot), kParkY, kParkZ));
 }
 
 bool isParked(const world::Pose3& pose) { return pose.position.x() > kParkedBeyond; }

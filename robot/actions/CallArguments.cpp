@@ -6,10 +6,14 @@ namespace cbtl::actions {
 
 const char* kindName(sim::Value::Kind kind) {
   switch (kind) {
-    case sim::Value::Kind::Number: return "a number";
-    case sim::Value::Kind::Vector: return "a vector";
-    case sim::Value::Kind::Name: return "a name";
-    case sim::Value::Kind::Names: return "a set of names";
+    case sim::Value::Kind::Number:
+      return "a number";
+    case sim::Value::Kind::Vector:
+      return "a vector";
+    case sim::Value::Kind::Name:
+      return "a name";
+    case sim::Value::Kind::Names:
+      return "a set of names";
   }
   return "a value";
 }

@@ -7,8 +7,8 @@
 // nullopt so the caller can fail the action explicitly.
 #pragma once
 
-#include "runtime/sim/DomainSimulator.h"
 #include "robot/world/Pose.h"
+#include "runtime/sim/DomainSimulator.h"
 
 #include <cstddef>
 #include <initializer_list>

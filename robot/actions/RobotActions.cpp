@@ -83,9 +83,9 @@ ActionResult moveToolNear(world::World& w, const world::Pose3& target, world::Rn
 
 // The standard action names, sorted (names()).
 const std::vector<std::string> kNames = [] {
-  std::vector<std::string> n{"moveArm", "moveTool", "moveArmToNamed", "moveBase", "grasp", "closeGripper",
-                             "release", "place", "movePlate", "moveDrink", "handOver", "wipe", "say",
-                             "waitForUser", "wait"};
+  std::vector<std::string> n{
+      "moveArm",   "moveTool",  "moveArmToNamed", "moveBase", "grasp", "closeGripper", "release", "place",
+      "movePlate", "moveDrink", "handOver",       "wipe",     "say",   "waitForUser",  "wait"};
   std::sort(n.begin(), n.end());
   return n;
 }();
@@ -115,9 +115,7 @@ RobotActions::RobotActions(ActionConfigurations named) : named_(std::move(named)
 
 const std::vector<std::string>& RobotActions::names() { return kNames; }
 
-bool RobotActions::isStandard(std::string_view name) {
-  return std::binary_search(kNames.begin(), kNames.end(), name);
-}
+bool RobotActions::isStandard(std::string_view name) { return std::binary_search(kNames.begin(), kNames.end(), name); }
 
 std::optional<RobotActionResult> RobotActions::execute(world::World& w, const sim::ActionCall& call,
                                                        world::Rng& rng) const {
@@ -134,7 +132,8 @@ std::optional<RobotActionResult> RobotActions::execute(world::World& w, const si
   if (n == "moveTool") {
     if (auto e = checkArguments(call, {kSe3Arg}); !e.empty()) return illFormed(e);
     const auto tool = decodePose3(a[0].vector);
-    if (!tool) return failed(ActionStatus::InvalidArgument, "moveTool: the pose is not finite or its quaternion is zero");
+    if (!tool)
+      return failed(ActionStatus::InvalidArgument, "moveTool: the pose is not finite or its quaternion is zero");
     return from(moveToolNear(w, *tool, rng));
   }
   if (n == "moveArmToNamed") {
@@ -184,7 +183,8 @@ std::optional<RobotActionResult> RobotActions::execute(world::World& w, const si
   if (n == "movePlate" || n == "moveDrink") {
     if (auto e = checkArguments(call, {kVec2Arg}); !e.empty()) return illFormed(e);
     const double x = a[0].vector[0], y = a[0].vector[1];
-    if (!std::isfinite(x) || !std::isfinite(y)) return failed(ActionStatus::InvalidArgument, n + ": the position is not finite");
+    if (!std::isfinite(x) || !std::isfinite(y))
+      return failed(ActionStatus::InvalidArgument, n + ": the position is not finite");
     return from(n == "movePlate" ? world::builtins::movePlate(w, x, y) : world::builtins::moveDrink(w, x, y));
   }
   if (n == "handOver") {
@@ -274,14 +274,16 @@ RobotActionResult RobotActions::place(world::World& w, const std::string& surfac
   const auto face = surfaceFace(ws, surface);
   if (!face) return failed(ActionStatus::InvalidArgument, fmt::format("no box surface '{}'", surface));
   if (!restsOn(w, held.object, pose, surface)) {
-    return failed(ActionStatus::InvalidArgument, fmt::format("{} at the requested pose does not rest on {}", held.object, surface));
+    return failed(ActionStatus::InvalidArgument,
+                  fmt::format("{} at the requested pose does not rest on {}", held.object, surface));
   }
   const world::Pose3 settled = settledOn(*objectExtent(w, held.object, pose), pose, *face);
   world::PlacementOptions clear;
   clear.clearance = 0.0;
   const world::PlacementReport rep = w.clearance().checkPlacement(ws, held.object, settled, clear);
   if (!rep.ok()) {
-    return failed(ActionStatus::Blocked, fmt::format("{} would touch {} ({})", held.object, rep.other, world::toString(rep.status)));
+    return failed(ActionStatus::Blocked,
+                  fmt::format("{} would touch {} ({})", held.object, rep.other, world::toString(rep.status)));
   }
   Restore restore(w);
   RobotActionResult r;

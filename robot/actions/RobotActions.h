@@ -66,10 +66,10 @@ inline constexpr double kDropHeight = 0.03;  // metres a released body may fall 
 struct RobotActionResult {
   bool wellFormed = true;  // false: the call does not fit its declaration (detail says why)
   world::builtins::ActionStatus status = world::builtins::ActionStatus::Done;
-  std::string detail;      // why it failed, or what it did when that is worth saying
-  int steps = 1;           // simulator steps the action took (0 for an ill-formed call)
-  std::vector<world::ArmConfig> armPath;   // executed arm waypoints, when the arm moved
-  std::vector<world::Pose2> basePath;      // executed base waypoints, when the base moved
+  std::string detail;                     // why it failed, or what it did when that is worth saying
+  int steps = 1;                          // simulator steps the action took (0 for an ill-formed call)
+  std::vector<world::ArmConfig> armPath;  // executed arm waypoints, when the arm moved
+  std::vector<world::Pose2> basePath;     // executed base waypoints, when the base moved
 
   bool done() const { return wellFormed && status == world::builtins::ActionStatus::Done; }
   bool consumedStep() const { return steps > 0; }

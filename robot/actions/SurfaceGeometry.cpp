@@ -4,7 +4,6 @@
 
 namespace cbtl::actions {
 
-
 std::vector<std::string> restingSurfaces(const world::Scene& scene) {
   std::vector<std::string> out;
   const mjModel* m = scene.model();

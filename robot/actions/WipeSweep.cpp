@@ -72,7 +72,8 @@ ActionResult sweepSurface(world::World& w, const std::string& surface, const wor
   const world::Pose3 start = *ws.objectPose(held);
   const auto extent = objectExtent(w, held, start);
   const double gap = extent->bottom() - face->top();
-  if (gap < -kContactBelow || gap > kContactAbove || !face->containsXY(start.position.x(), start.position.y(), kContactReach)) {
+  if (gap < -kContactBelow || gap > kContactAbove ||
+      !face->containsXY(start.position.x(), start.position.y(), kContactReach)) {
     ws.setState(saved);
     return fail(ActionStatus::OutOfReach,
                 fmt::format("{} is not on {} (bottom {:+.3f} m from the face, at ({:.3f}, {:.3f}))", held, surface, gap,

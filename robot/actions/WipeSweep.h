@@ -18,21 +18,21 @@
 // collides: the detail names the geoms).
 #pragma once
 
-#include "robot/world/WorldOperations.h"
 #include "robot/world/PreWipe.h"
+#include "robot/world/WorldOperations.h"
 
 #include <optional>
 #include <string>
 
 namespace cbtl::actions {
 
-inline constexpr double kStrokeSpacing = 0.15;     // metres between strokes (the duster head's length)
-inline constexpr double kStrokeCoverage = 0.8;     // share of the face length a stroke covers
-inline constexpr double kSweepResolution = 0.01;   // metres between collision checks along the base path
-inline constexpr double kSweepPenetration = 0.005; // metres of contact tolerated during the sweep
-inline constexpr double kContactBelow = 0.01;      // the held object's bottom may be this far into the face...
-inline constexpr double kContactAbove = 0.03;      // ...or this far above it
-inline constexpr double kContactReach = 0.1;       // its origin may lie this far outside the face (x, y)
+inline constexpr double kStrokeSpacing = 0.15;      // metres between strokes (the duster head's length)
+inline constexpr double kStrokeCoverage = 0.8;      // share of the face length a stroke covers
+inline constexpr double kSweepResolution = 0.01;    // metres between collision checks along the base path
+inline constexpr double kSweepPenetration = 0.005;  // metres of contact tolerated during the sweep
+inline constexpr double kContactBelow = 0.01;       // the held object's bottom may be this far into the face...
+inline constexpr double kContactAbove = 0.03;       // ...or this far above it
+inline constexpr double kContactReach = 0.1;        // its origin may lie this far outside the face (x, y)
 
 // The pre-wipe pose lives in the world library (world/PreWipe.h), where std.collision's wipeStartPose reads it.
 using world::preWipeToolPose;

@@ -41,8 +41,13 @@ Pose3 readPose(const double* a) {
 void writePose(const Pose3& p, double* o) {
   Eigen::Quaterniond q = p.orientation.normalized();
   if (q.w() < 0) q.coeffs() = -q.coeffs();
-  o[0] = p.position.x(); o[1] = p.position.y(); o[2] = p.position.z();
-  o[3] = q.x(); o[4] = q.y(); o[5] = q.z(); o[6] = q.w();
+  o[0] = p.position.x();
+  o[1] = p.position.y();
+  o[2] = p.position.z();
+  o[3] = q.x();
+  o[4] = q.y();
+  o[5] = q.z();
+  o[6] = q.w();
 }
 void writeNaN(Out o) {
   for (double& x : o) x = kNaN;
@@ -83,7 +88,9 @@ void toolPoseAt(WorldHost& h, const Pose2& base, const double* q, Out o) {
   writePose(h.workspace().toolPose(), o.data());
 }
 void fToolPose(const rt::CallContext& cx, Args a, Widths, Out o) { toolPoseAt(host(cx), kOrigin, a.data(), o); }
-void fToolPoseFrom(const rt::CallContext& cx, Args a, Widths, Out o) { toolPoseAt(host(cx), readSe2(a.data()), a.data() + 3, o); }
+void fToolPoseFrom(const rt::CallContext& cx, Args a, Widths, Out o) {
+  toolPoseAt(host(cx), readSe2(a.data()), a.data() + 3, o);
+}
 void fWithinJointLimits(const rt::CallContext& cx, Args a, Widths, Out o) {
   o[0] = finite(a) && host(cx).scene().withinLimits(readConf(a.data())) ? 1 : 0;
 }
@@ -103,8 +110,8 @@ void fNamedConf(const rt::CallContext& cx, Args a, Widths, Out o) {
 }
 
 // IK for `tool` with the base at `base`, collision-free against the reference world (plus `held` when given).
-std::optional<ArmConfig> solveIk(WorldHost& h, const Pose2& base, const Pose3& tool, bool randomSeed,
-                                 world::Rng& rng, bool collisionFree, const std::string* held = nullptr) {
+std::optional<ArmConfig> solveIk(WorldHost& h, const Pose2& base, const Pose3& tool, bool randomSeed, world::Rng& rng,
+                                 bool collisionFree, const std::string* held = nullptr) {
   if (!h.pose(base, h.reference().arm, held)) return std::nullopt;
   world::IkOptions o = h.world().ik;
   o.maxAttempts = h.ikAttempts;
@@ -205,12 +212,16 @@ void fConfCollisionFreeHolding(const rt::CallContext& cx, Args a, Widths, Out o)
 }
 void fBaseCollisionFree(const rt::CallContext& cx, Args a, Widths, Out o) {
   WorldHost& h = host(cx);
-  o[0] = finite(a) && h.scene().hasMobileBase() && collisionFree(h, readSe2(a.data()), h.reference().arm.data()) ? 1 : 0;
+  o[0] =
+      finite(a) && h.scene().hasMobileBase() && collisionFree(h, readSe2(a.data()), h.reference().arm.data()) ? 1 : 0;
 }
 void fCollisionFreeIkExists(const rt::CallContext& cx, Args a, Widths, Out o) {
   world::Rng rng(kQuerySeed);
   const std::string held = text(cx, a[10]);
-  o[0] = finite(a.subspan(0, 10)) && solveIk(host(cx), readSe2(a.data()), readPose(a.data() + 3), false, rng, true, &held) ? 1 : 0;
+  o[0] =
+      finite(a.subspan(0, 10)) && solveIk(host(cx), readSe2(a.data()), readPose(a.data() + 3), false, rng, true, &held)
+          ? 1
+          : 0;
 }
 
 // ---- scene queries -----------------------------------------------------------------------------------
@@ -278,7 +289,10 @@ double bodyDistance(WorldHost& h, const std::string& a, const Pose3& pa, const s
   return d < 0 ? kNaN : d;
 }
 void fBodiesApart(const rt::CallContext& cx, Args a, Widths, Out o) {
-  o[0] = finite(a) && bodyDistance(host(cx), text(cx, a[0]), readPose(a.data() + 1), text(cx, a[8]), readPose(a.data() + 9)) > 0 ? 1 : 0;
+  o[0] = finite(a) && bodyDistance(host(cx), text(cx, a[0]), readPose(a.data() + 1), text(cx, a[8]),
+                                   readPose(a.data() + 9)) > 0
+             ? 1
+             : 0;
 }
 void fBodiesApartAtXY(const rt::CallContext& cx, Args a, Widths, Out o) {
   WorldHost& h = host(cx);

@@ -27,8 +27,8 @@ struct WorldState;
 namespace cbtl::bind {
 
 struct WorldBuiltinOptions {
-  int planIterations = 3000;   // RRTConnect iterations of motionPlanExists / basePathExists
-  int ikAttempts = 10;         // IK attempts (1 + restarts) of ikExists and the IK samplers
+  int planIterations = 3000;  // RRTConnect iterations of motionPlanExists / basePathExists
+  int ikAttempts = 10;        // IK attempts (1 + restarts) of ikExists and the IK samplers
 };
 
 // `builtins` plus the world built-ins over `scene`, with a new WorldHost as the registry's host.

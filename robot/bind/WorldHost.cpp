@@ -122,8 +122,10 @@ std::optional<WorldHost::Footprint> WorldHost::footprint(const std::string& obje
 std::string WorldHost::supportSurface(const std::string& object) {
   auto it = reference_.objects.find(object);
   std::optional<Pose3> p;
-  if (it != reference_.objects.end()) p = it->second;
-  else p = world_.workspace().objectPose(object);
+  if (it != reference_.objects.end())
+    p = it->second;
+  else
+    p = world_.workspace().objectPose(object);
   if (!p) return {};
   const auto fp = footprint(object, *p);
   if (!fp) return {};
@@ -136,7 +138,8 @@ std::string WorldHost::supportSurface(const std::string& object) {
     const auto top = surfaceTop(name);
     if (!top) continue;
     if (std::abs(fp->bottom - top->center.z()) > 0.01) continue;
-    if (std::abs(fp->centerX - top->center.x()) > top->halfX || std::abs(fp->centerY - top->center.y()) > top->halfY) continue;
+    if (std::abs(fp->centerX - top->center.x()) > top->halfX || std::abs(fp->centerY - top->center.y()) > top->halfY)
+      continue;
     return name;
   }
   return {};

@@ -12,9 +12,9 @@
 // metres, radians.
 #pragma once
 
-#include "runtime/core/Builtins.h"    // rt::BuiltinHost
-#include "robot/world/WorldOperations.h"   // world::World
 #include "robot/world/SurfaceFace.h"
+#include "robot/world/WorldOperations.h"  // world::World
+#include "runtime/core/Builtins.h"        // rt::BuiltinHost
 
 #include <map>
 #include <memory>

@@ -11,10 +11,14 @@ namespace cbtl::world {
 
 const char* toString(PlacementStatus s) {
   switch (s) {
-    case PlacementStatus::Ok: return "ok";
-    case PlacementStatus::UnknownObject: return "unknown object";
-    case PlacementStatus::Collides: return "collides";
-    case PlacementStatus::TooClose: return "too close to another object";
+    case PlacementStatus::Ok:
+      return "ok";
+    case PlacementStatus::UnknownObject:
+      return "unknown object";
+    case PlacementStatus::Collides:
+      return "collides";
+    case PlacementStatus::TooClose:
+      return "too close to another object";
   }
   return "unknown";
 }
@@ -66,13 +70,26 @@ ClearanceChecker::ClearanceChecker(std::shared_ptr<const Scene> scene) : impl_(s
     const mjtNum* s = m->geom_size + 3 * g;
     std::shared_ptr<fcl::CollisionGeometryd> shape;
     switch (m->geom_type[g]) {
-      case mjGEOM_BOX: shape = std::make_shared<fcl::Boxd>(2 * s[0], 2 * s[1], 2 * s[2]); break;
-      case mjGEOM_SPHERE: shape = std::make_shared<fcl::Sphered>(s[0]); break;
-      case mjGEOM_CAPSULE: shape = std::make_shared<fcl::Capsuled>(s[0], 2 * s[1]); break;
-      case mjGEOM_CYLINDER: shape = std::make_shared<fcl::Cylinderd>(s[0], 2 * s[1]); break;
-      case mjGEOM_ELLIPSOID: shape = std::make_shared<fcl::Ellipsoidd>(s[0], s[1], s[2]); break;
-      case mjGEOM_PLANE: shape = std::make_shared<fcl::Halfspaced>(Eigen::Vector3d::UnitZ(), 0.0); break;
-      default: break;  // meshes and height fields are not used by our scenes
+      case mjGEOM_BOX:
+        shape = std::make_shared<fcl::Boxd>(2 * s[0], 2 * s[1], 2 * s[2]);
+        break;
+      case mjGEOM_SPHERE:
+        shape = std::make_shared<fcl::Sphered>(s[0]);
+        break;
+      case mjGEOM_CAPSULE:
+        shape = std::make_shared<fcl::Capsuled>(s[0], 2 * s[1]);
+        break;
+      case mjGEOM_CYLINDER:
+        shape = std::make_shared<fcl::Cylinderd>(s[0], 2 * s[1]);
+        break;
+      case mjGEOM_ELLIPSOID:
+        shape = std::make_shared<fcl::Ellipsoidd>(s[0], s[1], s[2]);
+        break;
+      case mjGEOM_PLANE:
+        shape = std::make_shared<fcl::Halfspaced>(Eigen::Vector3d::UnitZ(), 0.0);
+        break;
+      default:
+        break;  // meshes and height fields are not used by our scenes
     }
     if (!shape) continue;
     shape->computeLocalAABB();
@@ -146,7 +163,8 @@ double ClearanceChecker::objectDistance(std::string_view a, const Pose3& poseA, 
   for (int ga : impl_->geomsOfObject(ia)) {
     const fcl::CollisionObjectd oa(impl_->shapes[static_cast<size_t>(ga)], ta * impl_->local[static_cast<size_t>(ga)]);
     for (int gb : impl_->geomsOfObject(ib)) {
-      const fcl::CollisionObjectd ob(impl_->shapes[static_cast<size_t>(gb)], tb * impl_->local[static_cast<size_t>(gb)]);
+      const fcl::CollisionObjectd ob(impl_->shapes[static_cast<size_t>(gb)],
+                                     tb * impl_->local[static_cast<size_t>(gb)]);
       best = std::min(best, pairDistance(oa, ob));
     }
   }

@@ -18,22 +18,22 @@ namespace cbtl::world {
 
 enum class PlacementStatus {
   Ok,
-  UnknownObject,   // the object (or the other object) is not a movable object of the scene
-  Collides,        // intersects scenery or another object even when lifted by the contact tolerance
-  TooClose,        // closer than the required clearance to another movable object
+  UnknownObject,  // the object (or the other object) is not a movable object of the scene
+  Collides,       // intersects scenery or another object even when lifted by the contact tolerance
+  TooClose,       // closer than the required clearance to another movable object
 };
 
 const char* toString(PlacementStatus s);
 
 struct PlacementReport {
   PlacementStatus status = PlacementStatus::Ok;
-  std::string other;       // the geom (Collides) or object (TooClose) responsible; empty when Ok
-  double distance = 0.0;   // its distance (TooClose) or penetration depth (Collides), metres
+  std::string other;      // the geom (Collides) or object (TooClose) responsible; empty when Ok
+  double distance = 0.0;  // its distance (TooClose) or penetration depth (Collides), metres
   bool ok() const { return status == PlacementStatus::Ok; }
 };
 
 struct PlacementOptions {
-  double clearance = 0.1;        // minimum distance to every other movable object
+  double clearance = 0.1;  // minimum distance to every other movable object
   // The object is tested against scenery and objects lifted by this much (m), so resting on a surface or
   // sinking into it by less than this is not a collision.
   double contactTolerance = 1e-3;

@@ -7,10 +7,14 @@ namespace cbtl::world {
 
 const char* toString(CollisionStatus s) {
   switch (s) {
-    case CollisionStatus::Free: return "free";
-    case CollisionStatus::RobotWorld: return "robot collides with the world";
-    case CollisionStatus::SelfCollision: return "self-collision";
-    case CollisionStatus::HeldObject: return "held object collides";
+    case CollisionStatus::Free:
+      return "free";
+    case CollisionStatus::RobotWorld:
+      return "robot collides with the world";
+    case CollisionStatus::SelfCollision:
+      return "self-collision";
+    case CollisionStatus::HeldObject:
+      return "held object collides";
   }
   return "unknown";
 }

@@ -14,17 +14,17 @@ namespace cbtl::world {
 
 enum class CollisionStatus {
   Free,
-  RobotWorld,      // an arm/base link touches scenery or a movable object
-  SelfCollision,   // two robot links touch
-  HeldObject,      // the held object touches scenery, another object or a non-gripper robot link
+  RobotWorld,     // an arm/base link touches scenery or a movable object
+  SelfCollision,  // two robot links touch
+  HeldObject,     // the held object touches scenery, another object or a non-gripper robot link
 };
 
 const char* toString(CollisionStatus s);
 
 struct CollisionReport {
   CollisionStatus status = CollisionStatus::Free;
-  std::string first, second;   // geom names of the first counted contact (empty when Free)
-  double depth = 0.0;          // its penetration depth, metres (positive)
+  std::string first, second;  // geom names of the first counted contact (empty when Free)
+  double depth = 0.0;         // its penetration depth, metres (positive)
   bool free() const { return status == CollisionStatus::Free; }
 };
 
@@ -38,7 +38,7 @@ enum class CollisionMethod {
 };
 
 struct CollisionOptions {
-  double tolerance = 1e-4;     // penetration depth below which contacts are ignored
+  double tolerance = 1e-4;  // penetration depth below which contacts are ignored
   CollisionMethod method = CollisionMethod::RobotPairs;
 };
 

@@ -10,9 +10,12 @@ namespace cbtl::world {
 
 const char* toString(IkStatus s) {
   switch (s) {
-    case IkStatus::Solved: return "solved";
-    case IkStatus::InCollision: return "only colliding solutions";
-    case IkStatus::NotConverged: return "not converged";
+    case IkStatus::Solved:
+      return "solved";
+    case IkStatus::InCollision:
+      return "only colliding solutions";
+    case IkStatus::NotConverged:
+      return "not converged";
   }
   return "unknown";
 }
@@ -125,8 +128,7 @@ IkResult solveIk(Workspace& ws, const Pose3& target, const ArmConfig& seed, Rng&
           if (sv(i) > 1e-6 * sv(0)) ++rank;
         Vec7 pull;
         for (int i = 0; i < kArmDof; ++i)
-          pull(i) = o.nullspaceGain *
-                    (s.armContinuous(i) ? angleDiff(o.rest[i], q[i]) : (o.rest[i] - q[i]));
+          pull(i) = o.nullspaceGain * (s.armContinuous(i) ? angleDiff(o.rest[i], q[i]) : (o.rest[i] - q[i]));
         // The null space is spanned by the right singular vectors beyond the rank.
         const auto Vn = V.rightCols(kArmDof - rank);
         dq += Vn * (Vn.transpose() * pull);

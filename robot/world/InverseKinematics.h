@@ -16,29 +16,29 @@
 namespace cbtl::world {
 
 enum class IkStatus {
-  Solved,          // within tolerance, in limits (and collision-free when requested)
-  InCollision,     // converged at least once, but every converged solution collided
-  NotConverged,    // the iteration budget ran out without reaching the tolerance
+  Solved,        // within tolerance, in limits (and collision-free when requested)
+  InCollision,   // converged at least once, but every converged solution collided
+  NotConverged,  // the iteration budget ran out without reaching the tolerance
 };
 
 const char* toString(IkStatus s);
 
 struct IkOptions {
-  int maxIterations = 150;     // per attempt
-  int maxAttempts = 20;        // 1 + restarts
-  double damping = 0.05;       // λ
-  double maxStep = 0.3;        // rad, largest joint change per iteration
-  double positionTolerance = 1e-3;   // m
-  double rotationTolerance = 1e-2;   // rad
-  double nullspaceGain = 0.05;       // k; 0 disables the posture term
+  int maxIterations = 150;             // per attempt
+  int maxAttempts = 20;                // 1 + restarts
+  double damping = 0.05;               // λ
+  double maxStep = 0.3;                // rad, largest joint change per iteration
+  double positionTolerance = 1e-3;     // m
+  double rotationTolerance = 1e-2;     // rad
+  double nullspaceGain = 0.05;         // k; 0 disables the posture term
   ArmConfig rest = configs::kRetract;  // posture the null-space term pulls toward
   bool requireCollisionFree = true;
-  int site = -1;               // -1: the tool_frame site
+  int site = -1;  // -1: the tool_frame site
 };
 
 struct IkResult {
   IkStatus status = IkStatus::NotConverged;
-  ArmConfig q{};               // the solution (or the best configuration seen)
+  ArmConfig q{};  // the solution (or the best configuration seen)
   int attempts = 0;
   int iterations = 0;          // total over attempts
   double positionError = 0.0;  // m, of q

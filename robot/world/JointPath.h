@@ -17,7 +17,7 @@ using Waypoint = std::vector<double>;
 using ValidityFn = std::function<bool(const Waypoint&)>;
 
 struct JointSpace {
-  std::vector<bool> circular;   // per coordinate
+  std::vector<bool> circular;  // per coordinate
   std::size_t size() const { return circular.size(); }
 };
 

@@ -26,11 +26,16 @@ namespace cbtl::world {
 
 const char* toString(PlanStatus s) {
   switch (s) {
-    case PlanStatus::Solved: return "solved";
-    case PlanStatus::InvalidStart: return "invalid start";
-    case PlanStatus::InvalidGoal: return "invalid goal";
-    case PlanStatus::BudgetExhausted: return "iteration budget exhausted";
-    case PlanStatus::NoMobileBase: return "scene has no mobile base";
+    case PlanStatus::Solved:
+      return "solved";
+    case PlanStatus::InvalidStart:
+      return "invalid start";
+    case PlanStatus::InvalidGoal:
+      return "invalid goal";
+    case PlanStatus::BudgetExhausted:
+      return "iteration budget exhausted";
+    case PlanStatus::NoMobileBase:
+      return "scene has no mobile base";
   }
   return "unknown";
 }
@@ -123,8 +128,12 @@ class FineMotionValidator : public ob::MotionValidator {
  public:
   FineMotionValidator(const ob::SpaceInformationPtr& si, std::vector<Dim> dims, JointSpace space, double resolution,
                       ValidityFn valid, long* checks)
-      : ob::MotionValidator(si), dims_(std::move(dims)), space_(std::move(space)), resolution_(resolution),
-        valid_fn_(std::move(valid)), checks_(checks) {}
+      : ob::MotionValidator(si),
+        dims_(std::move(dims)),
+        space_(std::move(space)),
+        resolution_(resolution),
+        valid_fn_(std::move(valid)),
+        checks_(checks) {}
 
   bool checkMotion(const ob::State* s1, const ob::State* s2) const override {
     const bool ok = segmentValid(space_, toWaypoint(dims_, s1), toWaypoint(dims_, s2), resolution_, valid_fn_, checks_);

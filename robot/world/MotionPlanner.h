@@ -33,11 +33,11 @@ enum class PlanStatus {
 const char* toString(PlanStatus s);
 
 struct PlanOptions {
-  int maxIterations = 20000;     // RRTConnect iterations
-  double resolution = 0.005;     // L∞ spacing of validity checks along every edge
-  int shortcutAttempts = 60;     // random shortcuts after planning (0: greedy vertex pruning only)
-  double range = 0.0;            // RRTConnect step (L1 over coordinates); 0: OMPL's default
-  bool tryDirectFirst = true;    // check the straight segment before running RRTConnect
+  int maxIterations = 20000;   // RRTConnect iterations
+  double resolution = 0.005;   // L∞ spacing of validity checks along every edge
+  int shortcutAttempts = 60;   // random shortcuts after planning (0: greedy vertex pruning only)
+  double range = 0.0;          // RRTConnect step (L1 over coordinates); 0: OMPL's default
+  bool tryDirectFirst = true;  // check the straight segment before running RRTConnect
   // Base planning bounds (x_lo, x_hi, y_lo, y_hi); if lo >= hi, the box spanning start and goal grown by
   // 0.5 m is used.
   double baseBounds[4] = {0, 0, 0, 0};
@@ -46,10 +46,10 @@ struct PlanOptions {
 
 struct ArmPlan {
   PlanStatus status = PlanStatus::BudgetExhausted;
-  std::vector<ArmConfig> path;   // start ... goal (vertices; consecutive ones connect by interpolation)
-  int iterations = 0;            // RRTConnect iterations (0 when the straight segment was free)
+  std::vector<ArmConfig> path;  // start ... goal (vertices; consecutive ones connect by interpolation)
+  int iterations = 0;           // RRTConnect iterations (0 when the straight segment was free)
   long validityChecks = 0;
-  double length = 0.0;           // sum of |Δq| over joints and segments, rad
+  double length = 0.0;  // sum of |Δq| over joints and segments, rad
   bool solved() const { return status == PlanStatus::Solved; }
 };
 
@@ -63,7 +63,8 @@ struct BasePlan {
 
 // Plans the arm from start to goal with the Workspace's base, objects and held object. The Workspace's arm
 // is left at `start`.
-ArmPlan planArm(Workspace& ws, const ArmConfig& start, const ArmConfig& goal, Rng& rng, const PlanOptions& options = {});
+ArmPlan planArm(Workspace& ws, const ArmConfig& start, const ArmConfig& goal, Rng& rng,
+                const PlanOptions& options = {});
 
 // Plans the mobile base from its pose in the Workspace to `goal`, arm fixed at its current joints. The base
 // is left at the start pose.

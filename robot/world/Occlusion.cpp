@@ -29,8 +29,9 @@ void candidateGeoms(const mjModel* m, const mjData* d, const OcclusionSpec& spec
     if (alpha == 0) continue;
     const double r = m->geom_rbound[g];
     if (r > 0) {
-      const Eigen::Vector3d c = R.transpose() * (Eigen::Vector3d(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1],
-                                                                  d->geom_xpos[3 * g + 2]) - origin);
+      const Eigen::Vector3d c =
+          R.transpose() *
+          (Eigen::Vector3d(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]) - origin);
       if (std::abs(c.x()) > halfWidth + r || std::abs(c.y()) > halfWidth + r || c.z() < -r ||
           c.z() > spec.maxRayLength + r)
         continue;
@@ -46,9 +47,14 @@ mjtNum castAmong(const mjModel* m, const mjData* d, const std::vector<int>& geom
   for (int g : geoms) {
     mjtNum x;
     switch (m->geom_type[g]) {
-      case mjGEOM_MESH: x = mj_rayMesh(m, d, g, pnt, vec); break;
-      case mjGEOM_HFIELD: x = mj_rayHfield(m, d, g, pnt, vec); break;
-      default: x = mju_rayGeom(d->geom_xpos + 3 * g, d->geom_xmat + 9 * g, m->geom_size + 3 * g, pnt, vec, m->geom_type[g]);
+      case mjGEOM_MESH:
+        x = mj_rayMesh(m, d, g, pnt, vec);
+        break;
+      case mjGEOM_HFIELD:
+        x = mj_rayHfield(m, d, g, pnt, vec);
+        break;
+      default:
+        x = mju_rayGeom(d->geom_xpos + 3 * g, d->geom_xmat + 9 * g, m->geom_size + 3 * g, pnt, vec, m->geom_type[g]);
     }
     if (x >= 0 && (best < 0 || x < best)) best = x;
   }

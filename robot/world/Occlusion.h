@@ -16,11 +16,11 @@
 namespace cbtl::world {
 
 struct OcclusionSpec {
-  int eyeSite = -1;           // site whose z axis is the gaze
-  int excludeBody = -1;       // body never hit by the rays (-1: none)
+  int eyeSite = -1;      // site whose z axis is the gaze
+  int excludeBody = -1;  // body never hit by the rays (-1: none)
   int gridSize = 5;
-  double gridSpacing = 0.1;   // m
-  double maxRayLength = 10.0; // m
+  double gridSpacing = 0.1;    // m
+  double maxRayLength = 10.0;  // m
   double alpha = 1.0;
 };
 

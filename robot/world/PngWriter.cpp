@@ -78,7 +78,8 @@ std::vector<std::uint8_t> encodePng(int width, int height, const std::vector<std
     z.push_back(static_cast<std::uint8_t>(len >> 8));
     z.push_back(static_cast<std::uint8_t>(~len & 0xFF));
     z.push_back(static_cast<std::uint8_t>((~len >> 8) & 0xFF));
-    z.insert(z.end(), raw.begin() + static_cast<std::ptrdiff_t>(pos), raw.begin() + static_cast<std::ptrdiff_t>(pos + len));
+    z.insert(z.end(), raw.begin() + static_cast<std::ptrdiff_t>(pos),
+             raw.begin() + static_cast<std::ptrdiff_t>(pos + len));
     pos += len;
   } while (pos < raw.size());
   put32(z, adler32(raw.data(), raw.size()));

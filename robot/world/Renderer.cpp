@@ -14,11 +14,16 @@ namespace cbtl::world {
 
 const char* toString(RenderStatus s) {
   switch (s) {
-    case RenderStatus::Ok: return "ok";
-    case RenderStatus::EglUnavailable: return "EGL unavailable";
-    case RenderStatus::ContextFailed: return "OpenGL context creation failed";
-    case RenderStatus::UnknownCamera: return "unknown camera";
-    case RenderStatus::TooLarge: return "image larger than the offscreen buffer";
+    case RenderStatus::Ok:
+      return "ok";
+    case RenderStatus::EglUnavailable:
+      return "EGL unavailable";
+    case RenderStatus::ContextFailed:
+      return "OpenGL context creation failed";
+    case RenderStatus::UnknownCamera:
+      return "unknown camera";
+    case RenderStatus::TooLarge:
+      return "image larger than the offscreen buffer";
   }
   return "unknown";
 }
@@ -62,8 +67,8 @@ EGLDisplay openDisplay() {
 
 }  // namespace
 
-std::unique_ptr<OffscreenRenderer> OffscreenRenderer::create(std::shared_ptr<const Scene> scene,
-                                                             RenderStatus& status, std::string& message) {
+std::unique_ptr<OffscreenRenderer> OffscreenRenderer::create(std::shared_ptr<const Scene> scene, RenderStatus& status,
+                                                             std::string& message) {
   installMujocoHandlers();
   std::unique_ptr<OffscreenRenderer> r(new OffscreenRenderer());
   r->impl_ = std::make_unique<Impl>();
@@ -76,9 +81,23 @@ std::unique_ptr<OffscreenRenderer> OffscreenRenderer::create(std::shared_ptr<con
     return nullptr;
   }
   // The surfaceless platform offers no configs unless pbuffer support is requested.
-  const EGLint attribs[] = {EGL_RED_SIZE,     8, EGL_GREEN_SIZE,      8,  EGL_BLUE_SIZE,       8,
-                            EGL_ALPHA_SIZE,   8, EGL_DEPTH_SIZE,      24, EGL_STENCIL_SIZE,    8,
-                            EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_NONE};
+  const EGLint attribs[] = {EGL_RED_SIZE,
+                            8,
+                            EGL_GREEN_SIZE,
+                            8,
+                            EGL_BLUE_SIZE,
+                            8,
+                            EGL_ALPHA_SIZE,
+                            8,
+                            EGL_DEPTH_SIZE,
+                            24,
+                            EGL_STENCIL_SIZE,
+                            8,
+                            EGL_RENDERABLE_TYPE,
+                            EGL_OPENGL_BIT,
+                            EGL_SURFACE_TYPE,
+                            EGL_PBUFFER_BIT,
+                            EGL_NONE};
   EGLConfig config = nullptr;
   EGLint count = 0;
   if (!eglChooseConfig(im.display, attribs, &config, 1, &count) || count < 1) {
@@ -92,8 +111,7 @@ std::unique_ptr<OffscreenRenderer> OffscreenRenderer::create(std::shared_ptr<con
     return nullptr;
   }
   im.context = eglCreateContext(im.display, config, EGL_NO_CONTEXT, nullptr);
-  if (im.context == EGL_NO_CONTEXT ||
-      !eglMakeCurrent(im.display, EGL_NO_SURFACE, EGL_NO_SURFACE, im.context)) {
+  if (im.context == EGL_NO_CONTEXT || !eglMakeCurrent(im.display, EGL_NO_SURFACE, EGL_NO_SURFACE, im.context)) {
     status = RenderStatus::ContextFailed;
     message = fmt::format("EGL context creation failed (error 0x{:x})", eglGetError());
     return nullptr;

@@ -20,10 +20,10 @@ namespace cbtl::world {
 
 enum class RenderStatus {
   Ok,
-  EglUnavailable,   // no EGL display could be initialised (no libEGL / driver): callers may skip
-  ContextFailed,    // EGL or MuJoCo could not create an OpenGL context
-  UnknownCamera,    // no camera with the requested name
-  TooLarge,         // the requested size exceeds the scene's offscreen buffer
+  EglUnavailable,  // no EGL display could be initialised (no libEGL / driver): callers may skip
+  ContextFailed,   // EGL or MuJoCo could not create an OpenGL context
+  UnknownCamera,   // no camera with the requested name
+  TooLarge,        // the requested size exceeds the scene's offscreen buffer
 };
 
 const char* toString(RenderStatus s);
@@ -31,15 +31,15 @@ const char* toString(RenderStatus s);
 struct Image {
   int width = 0;
   int height = 0;
-  std::vector<std::uint8_t> rgb;   // width * height * 3, rows top to bottom
+  std::vector<std::uint8_t> rgb;  // width * height * 3, rows top to bottom
 };
 
 struct CameraSpec {
-  std::string name;                      // a fixed camera of the scene; empty: free camera
+  std::string name;  // a fixed camera of the scene; empty: free camera
   std::optional<Eigen::Vector3d> lookat;
-  std::optional<double> distance;        // m
-  double azimuth = 150.0;                // degrees
-  double elevation = -25.0;              // degrees
+  std::optional<double> distance;  // m
+  double azimuth = 150.0;          // degrees
+  double elevation = -25.0;        // degrees
 };
 
 class OffscreenRenderer {

@@ -15,10 +15,14 @@ namespace cbtl::world {
 
 const char* toString(LoadStatus s) {
   switch (s) {
-    case LoadStatus::Ok: return "ok";
-    case LoadStatus::FileNotFound: return "file not found";
-    case LoadStatus::ParseError: return "parse error";
-    case LoadStatus::NotARobotScene: return "not a robot scene";
+    case LoadStatus::Ok:
+      return "ok";
+    case LoadStatus::FileNotFound:
+      return "file not found";
+    case LoadStatus::ParseError:
+      return "parse error";
+    case LoadStatus::NotARobotScene:
+      return "not a robot scene";
   }
   return "unknown";
 }
@@ -164,9 +168,7 @@ bool Scene::mujocoWouldCollide(int g1, int g2) const {
 void Scene::buildPairs() {
   const mjModel* m = model_;
   objectPairs_.assign(objects_.size(), {});
-  auto ordered = [m](int a, int b) {
-    return m->geom_type[a] <= m->geom_type[b] ? GeomPair{a, b} : GeomPair{b, a};
-  };
+  auto ordered = [m](int a, int b) { return m->geom_type[a] <= m->geom_type[b] ? GeomPair{a, b} : GeomPair{b, a}; };
   auto robotGeom = [&](int g) {
     const BodyKind k = kinds_[static_cast<size_t>(m->geom_bodyid[g])];
     return k == BodyKind::Robot || k == BodyKind::Gripper;
@@ -199,8 +201,7 @@ bool Scene::withinLimits(const ArmConfig& q) const {
 
 ArmConfig Scene::normalize(const ArmConfig& q) const {
   ArmConfig r = q;
-  for (int i = 0; i < kArmDof; ++i)
-    r[i] = continuous_[i] ? wrapAngle(q[i]) : std::clamp(q[i], lower_[i], upper_[i]);
+  for (int i = 0; i < kArmDof; ++i) r[i] = continuous_[i] ? wrapAngle(q[i]) : std::clamp(q[i], lower_[i], upper_[i]);
   return r;
 }
 

@@ -22,9 +22,9 @@ namespace cbtl::world {
 
 enum class LoadStatus {
   Ok,
-  FileNotFound,     // the path does not name a readable file
-  ParseError,       // MuJoCo rejected the XML (message has MuJoCo's text with line numbers)
-  NotARobotScene,   // the model compiled but lacks the Gen3 arm names listed above
+  FileNotFound,    // the path does not name a readable file
+  ParseError,      // MuJoCo rejected the XML (message has MuJoCo's text with line numbers)
+  NotARobotScene,  // the model compiled but lacks the Gen3 arm names listed above
 };
 
 const char* toString(LoadStatus s);
@@ -33,8 +33,8 @@ class Scene;
 
 struct SceneLoadResult {
   LoadStatus status = LoadStatus::ParseError;
-  std::string message;                  // empty when status == Ok; always names the file otherwise
-  std::shared_ptr<const Scene> scene;   // non-null iff status == Ok
+  std::string message;                 // empty when status == Ok; always names the file otherwise
+  std::shared_ptr<const Scene> scene;  // non-null iff status == Ok
 };
 
 // What a body is, for collision classification.
@@ -46,9 +46,9 @@ enum class BodyKind : unsigned char {
 };
 
 struct ObjectInfo {
-  std::string name;   // the body name
-  int body = -1;      // MuJoCo body id
-  int qposAdr = -1;   // first of the free joint's 7 qpos entries (x y z qw qx qy qz)
+  std::string name;  // the body name
+  int body = -1;     // MuJoCo body id
+  int qposAdr = -1;  // first of the free joint's 7 qpos entries (x y z qw qx qy qz)
 };
 
 class Scene {
@@ -70,8 +70,8 @@ class Scene {
   int armQposAdr(int i) const { return armQpos_[i]; }
   int armDofAdr(int i) const { return armDof_[i]; }
   bool armContinuous(int i) const { return continuous_[i]; }
-  double armLower(int i) const { return lower_[i]; }   // -pi for continuous joints
-  double armUpper(int i) const { return upper_[i]; }   //  pi for continuous joints
+  double armLower(int i) const { return lower_[i]; }  // -pi for continuous joints
+  double armUpper(int i) const { return upper_[i]; }  //  pi for continuous joints
   double armVelocityLimit(int i) const { return velocity_[i]; }
   // True when every limited joint of q lies within its range (continuous joints are always fine).
   bool withinLimits(const ArmConfig& q) const;
@@ -79,9 +79,9 @@ class Scene {
   ArmConfig normalize(const ArmConfig& q) const;
 
   bool hasMobileBase() const { return baseQpos_[0] >= 0; }
-  int baseQposAdr(int i) const { return baseQpos_[i]; }  // x, y, yaw; -1 without a mobile base
+  int baseQposAdr(int i) const { return baseQpos_[i]; }      // x, y, yaw; -1 without a mobile base
   int fingerQposAdr(int i) const { return fingerQpos_[i]; }  // left, right; -1 if absent
-  double fingerTravel() const { return fingerTravel_; }       // metres from open to closed
+  double fingerTravel() const { return fingerTravel_; }      // metres from open to closed
 
   int toolSite() const { return toolSite_; }
   int siteId(std::string_view name) const;  // -1 if absent

@@ -47,7 +47,8 @@ Pose3 parsePose(const json& j, const std::string& field) {
     if (key == "position") {
       p.position = vec3(value, field + ".position");
     } else if (key == "quaternion") {
-      if (!value.is_array() || value.size() != 4) throw BadValue{fmt::format("'{}.quaternion' must be [w, x, y, z]", field)};
+      if (!value.is_array() || value.size() != 4)
+        throw BadValue{fmt::format("'{}.quaternion' must be [w, x, y, z]", field)};
       p.orientation = Eigen::Quaterniond(number(value[0], field), number(value[1], field), number(value[2], field),
                                          number(value[3], field));
       if (p.orientation.norm() < 1e-9) throw BadValue{fmt::format("'{}.quaternion' is zero", field)};
@@ -90,13 +91,15 @@ StateJsonResult applyStateJson(Workspace& ws, const std::string& text, const std
       } else if (key == "objects") {
         if (!value.is_object()) throw BadValue{"'objects' must map object names to poses"};
         for (const auto& [name, pose] : value.items()) {
-          if (ws.scene().objectIndex(name) < 0) throw BadValue{fmt::format("'objects': the scene has no movable object '{}'", name)};
+          if (ws.scene().objectIndex(name) < 0)
+            throw BadValue{fmt::format("'objects': the scene has no movable object '{}'", name)};
           st.objects[name] = parsePose(pose, "objects." + name);
         }
       } else if (key == "held") {
         if (!value.is_string()) throw BadValue{"'held' must be an object name"};
         held = value.get<std::string>();
-        if (ws.scene().objectIndex(*held) < 0) throw BadValue{fmt::format("'held': the scene has no movable object '{}'", *held)};
+        if (ws.scene().objectIndex(*held) < 0)
+          throw BadValue{fmt::format("'held': the scene has no movable object '{}'", *held)};
       } else {
         throw BadValue{fmt::format("unknown key '{}' (arm, base, gripper, objects, held)", key)};
       }

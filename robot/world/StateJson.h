@@ -21,13 +21,13 @@ namespace cbtl::world {
 enum class StateJsonStatus {
   Ok,
   FileNotFound,
-  BadJson,    // not valid JSON
-  BadValue,   // valid JSON with a wrong field, type, object name or joint value
+  BadJson,   // not valid JSON
+  BadValue,  // valid JSON with a wrong field, type, object name or joint value
 };
 
 struct StateJsonResult {
   StateJsonStatus status = StateJsonStatus::Ok;
-  std::string message;   // names the file (or "<string>") and the offending field when not Ok
+  std::string message;  // names the file (or "<string>") and the offending field when not Ok
 };
 
 // Parses `text` and applies it to `ws`; on failure `ws` is unchanged.

@@ -17,7 +17,8 @@ std::optional<SurfaceFace> surfaceFace(const Workspace& ws, std::string_view geo
   // Half-extent of the rotated box along world axis `row`: sum over its own axes of |R(row, axis)| * size.
   double h[3];
   for (int row = 0; row < 3; ++row) {
-    h[row] = std::abs(rot[3 * row]) * size[0] + std::abs(rot[3 * row + 1]) * size[1] + std::abs(rot[3 * row + 2]) * size[2];
+    h[row] =
+        std::abs(rot[3 * row]) * size[0] + std::abs(rot[3 * row + 1]) * size[1] + std::abs(rot[3 * row + 2]) * size[2];
   }
   return SurfaceFace{Eigen::Vector3d(pos[0], pos[1], pos[2] + h[2]), h[0], h[1]};
 }

@@ -9,9 +9,12 @@ namespace cbtl::world {
 
 const char* toString(StateStatus s) {
   switch (s) {
-    case StateStatus::Ok: return "ok";
-    case StateStatus::UnknownObject: return "unknown object";
-    case StateStatus::OutOfLimits: return "arm joint out of limits";
+    case StateStatus::Ok:
+      return "ok";
+    case StateStatus::UnknownObject:
+      return "unknown object";
+    case StateStatus::OutOfLimits:
+      return "arm joint out of limits";
   }
   return "unknown";
 }
@@ -53,7 +56,8 @@ StateStatus Workspace::setState(const WorldState& state) {
   const double closed = std::clamp(1.0 - state.gripper, 0.0, 1.0) * s.fingerTravel();
   for (int i = 0; i < 2; ++i)
     if (s.fingerQposAdr(i) >= 0) data_->qpos[s.fingerQposAdr(i)] = closed;
-  for (size_t i = 0; i < s.objects().size(); ++i) writeObject(static_cast<int>(i), state_.objects.at(s.objects()[i].name));
+  for (size_t i = 0; i < s.objects().size(); ++i)
+    writeObject(static_cast<int>(i), state_.objects.at(s.objects()[i].name));
   recompute();
   return StateStatus::Ok;
 }
@@ -102,8 +106,13 @@ StateStatus Workspace::setObjectPose(std::string_view object, const Pose3& pose)
 void Workspace::writeObject(int index, const Pose3& pose) {
   mjtNum* q = data_->qpos + scene_->objects()[static_cast<size_t>(index)].qposAdr;
   const Eigen::Quaterniond o = pose.orientation.normalized();
-  q[0] = pose.position.x(); q[1] = pose.position.y(); q[2] = pose.position.z();
-  q[3] = o.w(); q[4] = o.x(); q[5] = o.y(); q[6] = o.z();
+  q[0] = pose.position.x();
+  q[1] = pose.position.y();
+  q[2] = pose.position.z();
+  q[3] = o.w();
+  q[4] = o.x();
+  q[5] = o.y();
+  q[6] = o.z();
 }
 
 void Workspace::recompute() {

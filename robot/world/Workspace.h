@@ -18,8 +18,8 @@ namespace cbtl::world {
 
 enum class StateStatus {
   Ok,
-  UnknownObject,   // an object name in the state is not a movable object of the scene
-  OutOfLimits,     // an arm joint lies outside its range, or a value is not finite
+  UnknownObject,  // an object name in the state is not a movable object of the scene
+  OutOfLimits,    // an arm joint lies outside its range, or a value is not finite
 };
 
 const char* toString(StateStatus s);

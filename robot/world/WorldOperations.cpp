@@ -16,14 +16,22 @@ namespace builtins {
 
 const char* toString(ActionStatus s) {
   switch (s) {
-    case ActionStatus::Done: return "done";
-    case ActionStatus::InvalidArgument: return "invalid argument";
-    case ActionStatus::NoPath: return "no collision-free path";
-    case ActionStatus::NoIk: return "no collision-free IK solution";
-    case ActionStatus::OutOfReach: return "object out of reach";
-    case ActionStatus::NotHolding: return "not holding anything";
-    case ActionStatus::AlreadyHolding: return "already holding an object";
-    case ActionStatus::Blocked: return "placement blocked";
+    case ActionStatus::Done:
+      return "done";
+    case ActionStatus::InvalidArgument:
+      return "invalid argument";
+    case ActionStatus::NoPath:
+      return "no collision-free path";
+    case ActionStatus::NoIk:
+      return "no collision-free IK solution";
+    case ActionStatus::OutOfReach:
+      return "object out of reach";
+    case ActionStatus::NotHolding:
+      return "not holding anything";
+    case ActionStatus::AlreadyHolding:
+      return "already holding an object";
+    case ActionStatus::Blocked:
+      return "placement blocked";
   }
   return "unknown";
 }
@@ -139,8 +147,8 @@ std::optional<ArmConfig> sampleIk(World& w, const Pose3& tool, Rng& rng) {
   return r.q;
 }
 
-std::optional<Pose3> samplePlacement(World& w, const std::string& object, const std::string& surface,
-                                     double clearance, Rng& rng, int tries) {
+std::optional<Pose3> samplePlacement(World& w, const std::string& object, const std::string& surface, double clearance,
+                                     Rng& rng, int tries) {
   const auto face = surfaceFace(w.workspace(), surface);
   const auto box = w.clearance().objectBox(object);
   if (!face || !box) return std::nullopt;
@@ -296,7 +304,8 @@ ActionResult wipe(World& w, const std::string& surface, Rng& rng, double toolHei
       const ArmConfig current = ws.state().arm;
       const IkResult ik = solveIk(ws, Pose3{p, kToolDown}, current, rng, w.ik);
       ws.setArm(current);
-      if (!ik.solved()) return fail(ActionStatus::NoIk, fmt::format("pass {} of {}: {}", k + 1, passes, toString(ik.status)));
+      if (!ik.solved())
+        return fail(ActionStatus::NoIk, fmt::format("pass {} of {}: {}", k + 1, passes, toString(ik.status)));
       if (!moveArmInternal(w, ik.q, rng, r.armPath, r.detail)) return fail(ActionStatus::NoPath, r.detail);
     }
   }

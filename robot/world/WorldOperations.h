@@ -32,8 +32,8 @@ class World {
   // Everything the robot said, in order (the `say` action).
   std::vector<std::string>& utterances() { return utterances_; }
 
-  IkOptions ik;         // used by the IK built-ins
-  PlanOptions planning; // used by the planning built-ins and actions
+  IkOptions ik;          // used by the IK built-ins
+  PlanOptions planning;  // used by the planning built-ins and actions
 
  private:
   Workspace ws_;
@@ -82,8 +82,8 @@ std::optional<ArmConfig> sampleIk(World& w, const Pose3& tool, Rng& rng);
 // A pose for `object` resting on the top face of the box geom `surface`: uniform position over the face
 // (inset so the object's footprint stays on it), uniform yaw, upright; the first of `tries` candidates that
 // is placementClear with `clearance`, or nullopt.
-std::optional<Pose3> samplePlacement(World& w, const std::string& object, const std::string& surface,
-                                     double clearance, Rng& rng, int tries = 100);
+std::optional<Pose3> samplePlacement(World& w, const std::string& object, const std::string& surface, double clearance,
+                                     Rng& rng, int tries = 100);
 
 // ---- perception ------------------------------------------------------------------------------------------
 // Occlusion score (Occlusion.h) of the user's view with the arm at q; 0 in scenes without user_eyes.
@@ -96,13 +96,13 @@ bool motionFeasible(World& w, const ArmConfig& from, const ArmConfig& to, Rng& r
 // ---- actions ---------------------------------------------------------------------------------------------
 enum class ActionStatus {
   Done,
-  InvalidArgument,   // unknown object or surface, or a value out of range
-  NoPath,            // motion planning failed (details in ActionResult::detail)
-  NoIk,              // no collision-free IK solution for the requested pose
-  OutOfReach,        // the object is too far from the gripper to grasp
-  NotHolding,        // the action needs a held object
-  AlreadyHolding,    // grasp while holding something
-  Blocked,           // the requested object placement collides
+  InvalidArgument,  // unknown object or surface, or a value out of range
+  NoPath,           // motion planning failed (details in ActionResult::detail)
+  NoIk,             // no collision-free IK solution for the requested pose
+  OutOfReach,       // the object is too far from the gripper to grasp
+  NotHolding,       // the action needs a held object
+  AlreadyHolding,   // grasp while holding something
+  Blocked,          // the requested object placement collides
 };
 
 const char* toString(ActionStatus s);
@@ -110,8 +110,8 @@ const char* toString(ActionStatus s);
 struct ActionResult {
   ActionStatus status = ActionStatus::Done;
   std::string detail;
-  std::vector<ArmConfig> armPath;   // executed arm waypoints, if the action moved the arm
-  std::vector<Pose2> basePath;      // executed base waypoints, if the action moved the base
+  std::vector<ArmConfig> armPath;  // executed arm waypoints, if the action moved the arm
+  std::vector<Pose2> basePath;     // executed base waypoints, if the action moved the base
   bool done() const { return status == ActionStatus::Done; }
 };
 

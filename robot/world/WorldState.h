@@ -15,15 +15,15 @@
 namespace cbtl::world {
 
 struct Grasp {
-  std::string object;   // name of a movable object of the scene
-  Pose3 toolToObject;   // the object's body frame in the tool_frame site's frame
+  std::string object;  // name of a movable object of the scene
+  Pose3 toolToObject;  // the object's body frame in the tool_frame site's frame
 };
 
 struct WorldState {
-  ArmConfig arm{};                        // q1..q7
-  Pose2 base;                             // mobile base pose
-  double gripper = 1.0;                   // opening, 1 = open
-  std::map<std::string, Pose3> objects;   // movable-object poses; objects not listed keep their current pose
+  ArmConfig arm{};                       // q1..q7
+  Pose2 base;                            // mobile base pose
+  double gripper = 1.0;                  // opening, 1 = open
+  std::map<std::string, Pose3> objects;  // movable-object poses; objects not listed keep their current pose
   std::optional<Grasp> held;
 };
 

@@ -5,8 +5,8 @@
 // The calls are computed once per solution: the policy is open loop, as in the paper.
 #pragma once
 
-#include "runtime/sim/DomainSimulator.h"
 #include "runtime/core/Program.h"
+#include "runtime/sim/DomainSimulator.h"
 
 #include <optional>
 #include <vector>
@@ -19,8 +19,8 @@ struct CompiledAction {
   std::vector<std::uint32_t> args;
   std::vector<rt::ValueType> argTypes;
   std::uint32_t binderSlot = 0;
-  std::uint32_t memberCount = 0;          // for over an enum / item set
-  std::optional<std::uint32_t> lo, hi;    // for over an integer range
+  std::uint32_t memberCount = 0;        // for over an enum / item set
+  std::optional<std::uint32_t> lo, hi;  // for over an integer range
   std::optional<std::uint32_t> condition;
   std::vector<CompiledAction> body, elseBody;
 };

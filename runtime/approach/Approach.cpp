@@ -4,11 +4,16 @@ namespace cbtl::approach {
 
 const char* toString(ApproachKind k) {
   switch (k) {
-    case ApproachKind::Cbtl: return "cbtl";
-    case ApproachKind::NoPersonalization: return "no-personalization";
-    case ApproachKind::FreeExplore: return "free-explore";
-    case ApproachKind::ExploitOnly: return "exploit-only";
-    case ApproachKind::EpsilonGreedy: return "epsilon-greedy";
+    case ApproachKind::Cbtl:
+      return "cbtl";
+    case ApproachKind::NoPersonalization:
+      return "no-personalization";
+    case ApproachKind::FreeExplore:
+      return "free-explore";
+    case ApproachKind::ExploitOnly:
+      return "exploit-only";
+    case ApproachKind::EpsilonGreedy:
+      return "epsilon-greedy";
   }
   return "?";
 }
@@ -31,10 +36,13 @@ CspChoice trainingChoice(const ApproachConfig& config, rt::Rng& rng) {
   using solver::CostKind;
   using solver::PersonalMode;
   switch (config.kind) {
-    case ApproachKind::Cbtl: return {PersonalMode::Exclude, CostKind::Entropy};
+    case ApproachKind::Cbtl:
+      return {PersonalMode::Exclude, CostKind::Entropy};
     case ApproachKind::NoPersonalization:
-    case ApproachKind::FreeExplore: return {PersonalMode::Exclude, CostKind::Declared};
-    case ApproachKind::ExploitOnly: return {PersonalMode::Include, CostKind::Declared};
+    case ApproachKind::FreeExplore:
+      return {PersonalMode::Exclude, CostKind::Declared};
+    case ApproachKind::ExploitOnly:
+      return {PersonalMode::Include, CostKind::Declared};
     case ApproachKind::EpsilonGreedy:
       if (rng.uniform() < config.epsilon) return {PersonalMode::Exclude, CostKind::Declared};
       return {PersonalMode::Include, CostKind::Declared};

@@ -14,8 +14,8 @@
 // on every call, so in Cooking its coin always came up "exploit"; see docs/runtime.md).
 #pragma once
 
-#include "runtime/solver/Csp.h"
 #include "runtime/core/Rng.h"
+#include "runtime/solver/Csp.h"
 
 #include <optional>
 #include <string>

@@ -34,14 +34,17 @@ double numFrom(const json& j) {
 
 json toJson(const sim::Value& v) {
   switch (v.kind) {
-    case sim::Value::Kind::Number: return {{"n", num(v.number)}};
+    case sim::Value::Kind::Number:
+      return {{"n", num(v.number)}};
     case sim::Value::Kind::Vector: {
       json a = json::array();
       for (double x : v.vector) a.push_back(num(x));
       return {{"v", a}};
     }
-    case sim::Value::Kind::Name: return {{"t", v.text}};
-    case sim::Value::Kind::Names: return {{"m", v.members}};
+    case sim::Value::Kind::Name:
+      return {{"t", v.text}};
+    case sim::Value::Kind::Names:
+      return {{"m", v.members}};
   }
   return {};
 }
@@ -59,8 +62,12 @@ sim::Value valueFromJson(const json& j) {
 
 // What a replayed call must reproduce.
 json digest(const sim::StepResult& r) {
-  return {{"status", static_cast<int>(r.status)}, {"step", r.consumedStep}, {"done", r.taskDone}, {"failed", r.taskFailed},
-          {"sat", r.hasSatisfaction ? num(r.satisfaction) : json(nullptr)}, {"feedback", r.feedback.size()},
+  return {{"status", static_cast<int>(r.status)},
+          {"step", r.consumedStep},
+          {"done", r.taskDone},
+          {"failed", r.taskFailed},
+          {"sat", r.hasSatisfaction ? num(r.satisfaction) : json(nullptr)},
+          {"feedback", r.feedback.size()},
           {"shift", r.preferencesChanged}};
 }
 
@@ -114,14 +121,25 @@ json toJson(const ExperimentResult& r) {
   for (const auto& e : r.evals) {
     json sat = json::array();
     for (double s : e.satisfaction) sat.push_back(num(s));
-    evals.push_back({{"step", e.step}, {"satisfaction", sat}, {"mean", num(e.mean)}, {"task_success_rate", num(e.taskSuccessRate)},
-                     {"preferences_met_rate", num(e.preferencesMetRate)}, {"replans", e.replans}});
+    evals.push_back({{"step", e.step},
+                     {"satisfaction", sat},
+                     {"mean", num(e.mean)},
+                     {"task_success_rate", num(e.taskSuccessRate)},
+                     {"preferences_met_rate", num(e.preferencesMetRate)},
+                     {"replans", e.replans}});
   }
-  return {{"evals", evals}, {"meals_served", r.mealsServed}, {"train_satisfaction", num(r.trainSatisfaction)},
-          {"train_solves", r.trainSolves}, {"train_solve_failures", r.trainSolveFailures}, {"train_replans", r.trainReplans},
-          {"solver_iterations", r.solverIterations}, {"text_model_errors", r.textModelErrors},
-          {"first_text_model_error", r.firstTextModelError}, {"rechecks", r.rechecks},
-          {"recheck_violations", r.recheckViolations}, {"first_recheck_violation", r.firstRecheckViolation},
+  return {{"evals", evals},
+          {"meals_served", r.mealsServed},
+          {"train_satisfaction", num(r.trainSatisfaction)},
+          {"train_solves", r.trainSolves},
+          {"train_solve_failures", r.trainSolveFailures},
+          {"train_replans", r.trainReplans},
+          {"solver_iterations", r.solverIterations},
+          {"text_model_errors", r.textModelErrors},
+          {"first_text_model_error", r.firstTextModelError},
+          {"rechecks", r.rechecks},
+          {"recheck_violations", r.recheckViolations},
+          {"first_recheck_violation", r.firstRecheckViolation},
           // Written for people reading complete.json; not read back (a resumed process counts its own faults).
           {"llm_faults", r.llmFaults.toJson()}};
 }
@@ -157,9 +175,12 @@ std::vector<std::string> differingKeys(const json& now, const json& saved) {
   flattenInto(now, "", a);
   flattenInto(saved, "", b);
   std::vector<std::string> out;
-  auto show = [](const std::map<std::string, json>& m, const std::string& k) { return m.count(k) ? m.at(k).dump() : "absent"; };
+  auto show = [](const std::map<std::string, json>& m, const std::string& k) {
+    return m.count(k) ? m.at(k).dump() : "absent";
+  };
   for (const auto& [k, v] : a) {
-    if (!b.count(k) || b.at(k) != v) out.push_back(fmt::format("{} (this command: {}, the run: {})", k, v.dump(), show(b, k)));
+    if (!b.count(k) || b.at(k) != v)
+      out.push_back(fmt::format("{} (this command: {}, the run: {})", k, v.dump(), show(b, k)));
   }
   for (const auto& [k, v] : b) {
     if (!a.count(k)) out.push_back(fmt::format("{} (this command: absent, the run: {})", k, v.dump()));
@@ -170,12 +191,21 @@ std::vector<std::string> differingKeys(const json& now, const json& saved) {
 json Checkpoint::toJson() const {
   json calls = json::array();
   for (const auto& c : pending) calls.push_back(approach::toJson(c));
-  return {{"format", "cbtl-checkpoint"}, {"version", kVersion}, {"step", step},
+  return {{"format", "cbtl-checkpoint"},
+          {"version", kVersion},
+          {"step", step},
           {"files", {{"train.csv", trainCsvBytes}, {"eval.csv", evalCsvBytes}, {"world-calls.jsonl", worldLogBytes}}},
-          {"world_calls", worldCalls}, {"train_solver", trainSolver}, {"eval_solver", evalSolver},
-          {"approach_rng", approachRng}, {"strings", strings}, {"profile", profile},
-          {"plan", {{"calls", calls}, {"next", next}, {"assignment", numbers(planWorld.assignment)},
-                    {"observation", numbers(planWorld.observation)}}},
+          {"world_calls", worldCalls},
+          {"train_solver", trainSolver},
+          {"eval_solver", evalSolver},
+          {"approach_rng", approachRng},
+          {"strings", strings},
+          {"profile", profile},
+          {"plan",
+           {{"calls", calls},
+            {"next", next},
+            {"assignment", numbers(planWorld.assignment)},
+            {"observation", numbers(planWorld.observation)}}},
           {"result", approach::toJson(result)}};
 }
 
@@ -199,7 +229,8 @@ Checkpoint Checkpoint::fromJson(const json& j, const std::string& source) {
     cp.next = j.at("plan").at("next").get<std::size_t>();
     for (const auto& v : j.at("plan").at("assignment")) cp.planWorld.assignment.push_back(numFrom(v));
     for (const auto& v : j.at("plan").at("observation")) cp.planWorld.observation.push_back(numFrom(v));
-    if (cp.next > cp.pending.size()) throw RunDirectoryError(fmt::format("'{}': the plan cursor is past its calls", source));
+    if (cp.next > cp.pending.size())
+      throw RunDirectoryError(fmt::format("'{}': the plan cursor is past its calls", source));
     cp.result = experimentResultFromJson(j.at("result"));
     return cp;
   } catch (const json::exception& e) {
@@ -254,9 +285,10 @@ void RecordingSimulator::replay(const std::string& lines, const std::string& sou
       } else {
         const sim::StepResult r = e.contains("act") ? inner_->act(actionCallFromJson(e.at("act"))) : inner_->idle();
         if (digest(r) != e.at("r")) {
-          throw RunDirectoryError(fmt::format("{}:{}: replaying the training world gave another result than the logged one "
-                                              "(the simulator is not deterministic from its seed); the run cannot be resumed",
-                                              source, n));
+          throw RunDirectoryError(
+              fmt::format("{}:{}: replaying the training world gave another result than the logged one "
+                          "(the simulator is not deterministic from its seed); the run cannot be resumed",
+                          source, n));
         }
       }
     } catch (const json::exception& e) {
@@ -360,8 +392,11 @@ void RunOutput::finish(const std::string& profileJson, const ExperimentResult& r
   world_.close();
   writeFileAtomic(path("profile.json"), profileJson);
   if (hook) hook("finish", result.evals.empty() ? 0 : result.evals.back().step);
-  const json marker = {{"format", "cbtl-run-complete"}, {"version", kVersion}, {"mean_eval", num(result.meanEval())},
-                       {"checkpoints", result.evals.size()}, {"result", approach::toJson(result)}};
+  const json marker = {{"format", "cbtl-run-complete"},
+                       {"version", kVersion},
+                       {"mean_eval", num(result.meanEval())},
+                       {"checkpoints", result.evals.size()},
+                       {"result", approach::toJson(result)}};
   writeFileAtomic(path("complete.json"), marker.dump(2) + "\n");
   // The run is complete: its resume state is no longer needed (a kill here leaves it, which is harmless).
   std::error_code ec;

@@ -18,10 +18,10 @@
 // uninterrupted run with the same options (tests/unit/runtime/ResumeTest.cpp).
 #pragma once
 
-#include "runtime/sim/DomainSimulator.h"
 #include "runtime/approach/Experiment.h"
 #include "runtime/approach/Learner.h"
 #include "runtime/approach/RunDirectory.h"
+#include "runtime/sim/DomainSimulator.h"
 
 #include <nlohmann/json.hpp>
 

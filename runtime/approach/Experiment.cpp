@@ -1,9 +1,9 @@
 #include "runtime/approach/Experiment.h"
 
 #include "runtime/approach/Checkpoint.h"
-#include "runtime/core/InternalError.h"
 #include "runtime/approach/Planner.h"
 #include "runtime/approach/ValueBridge.h"
+#include "runtime/core/InternalError.h"
 
 #include "runtime/textpref/RunReport.h"
 
@@ -24,9 +24,12 @@ namespace fs = std::filesystem;
 
 const char* toString(Adaptation a) {
   switch (a) {
-    case Adaptation::NoAdapt: return "no-adapt";
-    case Adaptation::UserReset: return "user-reset";
-    case Adaptation::PeriodicReset: return "periodic-reset";
+    case Adaptation::NoAdapt:
+      return "no-adapt";
+    case Adaptation::UserReset:
+      return "user-reset";
+    case Adaptation::PeriodicReset:
+      return "periodic-reset";
   }
   return "?";
 }
@@ -90,15 +93,17 @@ sim::StepResult executeStep(sim::DomainSimulator& world, const std::vector<sim::
 
 class Progress {
  public:
-  Progress(bool enabled, std::int64_t total) : enabled_(enabled && isatty(2)), total_(std::max<std::int64_t>(total, 1)) {}
+  Progress(bool enabled, std::int64_t total)
+      : enabled_(enabled && isatty(2)), total_(std::max<std::int64_t>(total, 1)) {}
   void update(std::int64_t done, double lastEval) {
     if (!enabled_) return;
     const int pct = static_cast<int>(100 * done / total_);
     if (pct == last_) return;
     last_ = pct;
     const int bar = pct / 4;
-    std::fprintf(stderr, "\r[%-25s] %3d%%  step %lld/%lld  eval %+.2f", std::string(static_cast<std::size_t>(bar), '=').c_str(), pct,
-                 static_cast<long long>(done), static_cast<long long>(total_), lastEval);
+    std::fprintf(stderr, "\r[%-25s] %3d%%  step %lld/%lld  eval %+.2f",
+                 std::string(static_cast<std::size_t>(bar), '=').c_str(), pct, static_cast<long long>(done),
+                 static_cast<long long>(total_), lastEval);
     std::fflush(stderr);
   }
   ~Progress() {
@@ -115,24 +120,38 @@ class Progress {
 
 namespace {
 
-nlohmann::json configJson(const PreparedProgram& lp, const ExperimentConfig& config, const sim::SimulatorOptions& simOptions, int task) {
-  return {{"file", lp.path()}, {"domain", lp.graph().domain}, {"task", lp.graph().tasks[static_cast<std::size_t>(task)].name},
-          {"approach", toString(config.approach.kind)}, {"epsilon", config.approach.epsilon},
-          {"replan", config.approach.replan}, {"seed", config.seed}, {"steps", config.steps},
-          {"eval_every", config.evalEvery}, {"eval_tasks", config.evalTasks},
-          {"max_eval_episode_steps", config.maxEvalEpisodeSteps}, {"dt", config.dt},
-          {"nonstationary", config.nonstationary}, {"adaptation", toString(config.adaptation)},
-          {"shift_every", simOptions.shiftEvery}, {"unsatisfiable_stock_probability", simOptions.unsatisfiableStockProbability},
-          {"initial_profile", config.initialProfile}, {"periodic_reset_every", config.periodicResetEvery},
-          {"solver", {{"max_iters", config.solverOptions.maxIters}, {"num_improvements", config.solverOptions.numImprovements},
-                      {"max_improvement_attempts", config.solverOptions.maxImprovementAttempts},
-                      {"memory_size", config.solverOptions.memorySize},
-                      {"memory", config.solverOptions.memoryPolicy == solver::MemoryPolicy::Solutions ? "solutions" : "checks"}}},
+nlohmann::json configJson(const PreparedProgram& lp, const ExperimentConfig& config,
+                          const sim::SimulatorOptions& simOptions, int task) {
+  return {{"file", lp.path()},
+          {"domain", lp.graph().domain},
+          {"task", lp.graph().tasks[static_cast<std::size_t>(task)].name},
+          {"approach", toString(config.approach.kind)},
+          {"epsilon", config.approach.epsilon},
+          {"replan", config.approach.replan},
+          {"seed", config.seed},
+          {"steps", config.steps},
+          {"eval_every", config.evalEvery},
+          {"eval_tasks", config.evalTasks},
+          {"max_eval_episode_steps", config.maxEvalEpisodeSteps},
+          {"dt", config.dt},
+          {"nonstationary", config.nonstationary},
+          {"adaptation", toString(config.adaptation)},
+          {"shift_every", simOptions.shiftEvery},
+          {"unsatisfiable_stock_probability", simOptions.unsatisfiableStockProbability},
+          {"initial_profile", config.initialProfile},
+          {"periodic_reset_every", config.periodicResetEvery},
+          {"solver",
+           {{"max_iters", config.solverOptions.maxIters},
+            {"num_improvements", config.solverOptions.numImprovements},
+            {"max_improvement_attempts", config.solverOptions.maxImprovementAttempts},
+            {"memory_size", config.solverOptions.memorySize},
+            {"memory", config.solverOptions.memoryPolicy == solver::MemoryPolicy::Solutions ? "solutions" : "checks"}}},
           {"text_backend", textpref::textBackendJson(config.textBackend.get())}};
 }
 
 std::string trainHeader() {
-  return "step,execution_time,user_satisfaction,env_video_should_pause,solve_outcome,solver_iterations,replanned,labels_learned\n";
+  return "step,execution_time,user_satisfaction,env_video_should_pause,solve_outcome,solver_iterations,replanned,"
+         "labels_learned\n";
 }
 
 std::string evalHeader(int evalTasks) {
@@ -143,12 +162,19 @@ std::string evalHeader(int evalTasks) {
 
 // Everything one trial carries from step to step; a checkpoint saves exactly this (Checkpoint.h).
 struct Trial {
-  Trial(const PreparedProgram& lp_, const ExperimentConfig& config_, RunOutput& out_, std::unique_ptr<sim::DomainSimulator> world,
-        std::size_t task)
-      : lp(lp_), config(config_), out(out_), taskIdx(task), trainWorld(std::move(world)),
-        user(lp_.graph(), config_.textBackend), trainSolver(config_.solverOptions, deriveSeed(config_.seed, 1)),
-        evalSolver(config_.solverOptions, deriveSeed(config_.seed + 100000, 1)), approachRng(deriveSeed(config_.seed, 2)),
-        learning(learns(config_.approach)), fallback(fallsBack(config_.approach)) {}
+  Trial(const PreparedProgram& lp_, const ExperimentConfig& config_, RunOutput& out_,
+        std::unique_ptr<sim::DomainSimulator> world, std::size_t task)
+      : lp(lp_),
+        config(config_),
+        out(out_),
+        taskIdx(task),
+        trainWorld(std::move(world)),
+        user(lp_.graph(), config_.textBackend),
+        trainSolver(config_.solverOptions, deriveSeed(config_.seed, 1)),
+        evalSolver(config_.solverOptions, deriveSeed(config_.seed + 100000, 1)),
+        approachRng(deriveSeed(config_.seed, 2)),
+        learning(learns(config_.approach)),
+        fallback(fallsBack(config_.approach)) {}
 
   const PreparedProgram& lp;
   const ExperimentConfig& config;
@@ -189,7 +215,8 @@ void evaluate(Trial& tr, std::int64_t step) {
     while (!done && steps < config.maxEvalEpisodeSteps) {
       lp.syncWorld(*tr.evalWorld);
       const auto obs = observationVector(lp.program(), tr.evalWorld->observe());
-      Plan plan = makePlan(lp, lp.taskFor(*tr.evalWorld, tr.taskIdx), obs, evaluationChoice(), tr.fallback, tr.evalSolver, evalUser);
+      Plan plan = makePlan(lp, lp.taskFor(*tr.evalWorld, tr.taskIdx), obs, evaluationChoice(), tr.fallback,
+                           tr.evalSolver, evalUser);
       countRecheck(tr.result, plan);
       if (plan.replanned) ++point.replans;
       if (!plan.ok || plan.calls.empty()) break;  // the robot cannot do this task: the episode fails
@@ -214,7 +241,8 @@ void evaluate(Trial& tr, std::int64_t step) {
   if (tr.out.enabled()) {
     std::string row = fmt::format("{},{:.6g}", step, static_cast<double>(step) * config.dt);
     for (double s : point.satisfaction) row += fmt::format(",{:.6g}", s);
-    row += fmt::format(",{:.6g},{:.6g},{:.6g},{}\n", point.mean, point.taskSuccessRate, point.preferencesMetRate, point.replans);
+    row += fmt::format(",{:.6g},{:.6g},{:.6g},{}\n", point.mean, point.taskSuccessRate, point.preferencesMetRate,
+                       point.replans);
     tr.out.evalRow(row);
     tr.out.writeModel(step, tr.user.toJson());
     if (config.testHook) config.testHook("model", step);
@@ -226,7 +254,8 @@ void trainStep(Trial& tr, std::int64_t t) {
   const ExperimentConfig& config = tr.config;
   const PreparedProgram& lp = tr.lp;
   ExperimentResult& result = tr.result;
-  if (config.nonstationary && config.adaptation == Adaptation::PeriodicReset && t > 0 && t % config.periodicResetEvery == 0) {
+  if (config.nonstationary && config.adaptation == Adaptation::PeriodicReset && t > 0 &&
+      t % config.periodicResetEvery == 0) {
     tr.user.reset();
   }
   std::string outcome;
@@ -235,8 +264,8 @@ void trainStep(Trial& tr, std::int64_t t) {
   if (tr.next >= tr.calls.size()) {
     lp.syncWorld(tr.trainWorld);
     const auto obs = observationVector(lp.program(), tr.trainWorld.observe());
-    Plan plan = makePlan(lp, lp.taskFor(tr.trainWorld, tr.taskIdx), obs, trainingChoice(config.approach, tr.approachRng), tr.fallback,
-                         tr.trainSolver, tr.user);
+    Plan plan = makePlan(lp, lp.taskFor(tr.trainWorld, tr.taskIdx), obs,
+                         trainingChoice(config.approach, tr.approachRng), tr.fallback, tr.trainSolver, tr.user);
     countRecheck(result, plan);
     ++result.trainSolves;
     iterations = plan.solve.iterations + (plan.failedFull ? plan.failedFull->iterations : 0);
@@ -254,8 +283,10 @@ void trainStep(Trial& tr, std::int64_t t) {
   if (tr.learning && !r.feedback.empty()) {
     const LearnReport report = lp.learner().learn(r.feedback, tr.user, tr.planWorld);
     labels = report.labels;
-    if (!report.problems.empty()) throw std::runtime_error("feedback does not fit its declaration: " + report.problems.front());
-    if (!report.modelErrors.empty() && result.textModelErrors == 0) result.firstTextModelError = report.modelErrors.front();
+    if (!report.problems.empty())
+      throw std::runtime_error("feedback does not fit its declaration: " + report.problems.front());
+    if (!report.modelErrors.empty() && result.textModelErrors == 0)
+      result.firstTextModelError = report.modelErrors.front();
     result.textModelErrors += static_cast<std::int64_t>(report.modelErrors.size());
   }
   if (r.preferencesChanged && config.nonstationary && config.adaptation == Adaptation::UserReset) tr.user.reset();
@@ -268,8 +299,8 @@ void trainStep(Trial& tr, std::int64_t t) {
   if (r.hasSatisfaction) result.trainSatisfaction += r.satisfaction;
   if (tr.out.enabled()) {
     tr.out.trainRow(fmt::format("{},{:.6g},{},False,{},{},{},{}\n", t, static_cast<double>(t) * config.dt,
-                                r.hasSatisfaction ? fmt::format("{}", r.satisfaction) : std::string("nan"), outcome, iterations,
-                                replanned ? 1 : 0, labels));
+                                r.hasSatisfaction ? fmt::format("{}", r.satisfaction) : std::string("nan"), outcome,
+                                iterations, replanned ? 1 : 0, labels));
   }
   if (config.testHook) config.testHook("step", t);
 }
@@ -302,7 +333,8 @@ void restoreCheckpoint(Trial& tr, const Checkpoint& cp) {
   tr.trainSolver.restoreState(cp.trainSolver);
   tr.evalSolver.restoreState(cp.evalSolver);
   tr.user.fromJson(cp.profile.dump(), tr.out.dir() + "/checkpoint.json");
-  if (!tr.approachRng.restoreState(cp.approachRng)) throw RunDirectoryError("the checkpoint's approach RNG state is malformed");
+  if (!tr.approachRng.restoreState(cp.approachRng))
+    throw RunDirectoryError("the checkpoint's approach RNG state is malformed");
   rt::StringTable& strings = tr.lp.program().strings();
   for (std::uint32_t i = 0; i < cp.strings.size(); ++i) {
     if (strings.intern(cp.strings[i]) != i) throw RunDirectoryError("the checkpoint's texts do not fit this program");
@@ -315,9 +347,12 @@ void restoreCheckpoint(Trial& tr, const Checkpoint& cp) {
 
 }  // namespace
 
-ExperimentResult runExperiment(const PreparedProgram& lp, const SimulatorFactory& factory, const ExperimentConfig& config) {
+ExperimentResult runExperiment(const PreparedProgram& lp, const SimulatorFactory& factory,
+                               const ExperimentConfig& config) {
   const int task = lp.taskIndex(config.task);
-  if (task < 0) throw std::runtime_error(config.task.empty() ? "the program has no task" : fmt::format("no task named '{}'", config.task));
+  if (task < 0)
+    throw std::runtime_error(config.task.empty() ? "the program has no task"
+                                                 : fmt::format("no task named '{}'", config.task));
   if (config.evalEvery <= 0) throw std::runtime_error("--eval-every must be positive");
   if (config.steps < 0) throw std::runtime_error("--steps must not be negative");
   if (config.nonstationary && config.adaptation == Adaptation::PeriodicReset && config.periodicResetEvery <= 0)
@@ -326,7 +361,8 @@ ExperimentResult runExperiment(const PreparedProgram& lp, const SimulatorFactory
   sim::SimulatorOptions simOptions = config.simulator;
   if (config.nonstationary && config.adaptation == Adaptation::UserReset) simOptions.announceShifts = true;
   textpref::beginRunFaults(config.textBackend.get());
-  RunOutput out(config.outDir, config.runMode, configJson(lp, config, simOptions, task), trainHeader(), evalHeader(config.evalTasks));
+  RunOutput out(config.outDir, config.runMode, configJson(lp, config, simOptions, task), trainHeader(),
+                evalHeader(config.evalTasks));
   out.hook = config.testHook;
   if (out.completed()) return *out.completed();  // --resume of a complete run
   auto world = factory(simOptions, config.seed);
@@ -344,7 +380,8 @@ ExperimentResult runExperiment(const PreparedProgram& lp, const SimulatorFactory
   Progress progress(config.progress, config.steps);
   for (std::int64_t t = start; t <= config.steps; ++t) {
     const bool checkpointHere = t % config.evalEvery == 0 || t == config.steps;
-    if (checkpointHere && !(out.resumeFrom() && t == start)) {  // a resumed run starts after its checkpoint's evaluation
+    if (checkpointHere &&
+        !(out.resumeFrom() && t == start)) {  // a resumed run starts after its checkpoint's evaluation
       evaluate(tr, t);
       saveCheckpoint(tr, t);
     }

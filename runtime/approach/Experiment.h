@@ -18,9 +18,9 @@
 #pragma once
 
 #include "runtime/approach/Approach.h"
-#include "runtime/sim/DomainSimulator.h"
 #include "runtime/approach/PreparedProgram.h"
 #include "runtime/approach/RunDirectory.h"
+#include "runtime/sim/DomainSimulator.h"
 #include "runtime/solver/Solver.h"
 
 #include "runtime/textpref/FaultStats.h"
@@ -74,15 +74,15 @@ struct EvalPoint {
   std::int64_t step = 0;
   std::vector<double> satisfaction;  // per episode
   double mean = 0;
-  double taskSuccessRate = 0;        // episodes that completed their task
-  double preferencesMetRate = 0;     // episodes whose user was satisfied
-  int replans = 0;                   // episodes that had to drop the personalized constraints
+  double taskSuccessRate = 0;     // episodes that completed their task
+  double preferencesMetRate = 0;  // episodes whose user was satisfied
+  int replans = 0;                // episodes that had to drop the personalized constraints
 };
 
 struct ExperimentResult {
   std::vector<EvalPoint> evals;
-  std::int64_t mealsServed = 0;      // tasks completed in training
-  double trainSatisfaction = 0;      // sum over training
+  std::int64_t mealsServed = 0;  // tasks completed in training
+  double trainSatisfaction = 0;  // sum over training
   std::int64_t trainSolves = 0, trainSolveFailures = 0, trainReplans = 0;
   std::uint64_t solverIterations = 0;
   // Learning steps whose text model kept its old theta (e.g. a language-model server failed), and the first one.
@@ -97,11 +97,13 @@ struct ExperimentResult {
   double meanEval() const;
 };
 
-using SimulatorFactory = std::function<std::unique_ptr<sim::DomainSimulator>(const sim::SimulatorOptions&, std::uint64_t)>;
+using SimulatorFactory =
+    std::function<std::unique_ptr<sim::DomainSimulator>(const sim::SimulatorOptions&, std::uint64_t)>;
 
 // Runs one trial. Throws rt::RuntimeError / model::ProfileError / std::runtime_error for bad input or a
 // simulator that breaks the contract; never hangs (every loop is bounded by the configured budgets).
-ExperimentResult runExperiment(const PreparedProgram& lp, const SimulatorFactory& factory, const ExperimentConfig& config);
+ExperimentResult runExperiment(const PreparedProgram& lp, const SimulatorFactory& factory,
+                               const ExperimentConfig& config);
 
 // The world seed of held-out evaluation task `task` of run `seed`.
 std::uint64_t evaluationTaskSeed(std::uint64_t seed, int task);

@@ -21,8 +21,8 @@ Learner::Learner(const rt::Program& program) : program_(program) {
         }
         if (found == SIZE_MAX) {
           throw rt::RuntimeError(rt::Program::where(r.source->span),
-                                 fmt::format("learning rule '{}' does not bind '{}', a 'per' key of '{}'", r.source->event, key,
-                                             g.source->name));
+                                 fmt::format("learning rule '{}' does not bind '{}', a 'per' key of '{}'",
+                                             r.source->event, key, g.source->name));
         }
         binders.push_back(found);
       }
@@ -32,7 +32,8 @@ Learner::Learner(const rt::Program& program) : program_(program) {
   }
 }
 
-LearnReport Learner::learn(const std::vector<sim::FeedbackEvent>& events, model::UserModel& user, const StepWorld& world) const {
+LearnReport Learner::learn(const std::vector<sim::FeedbackEvent>& events, model::UserModel& user,
+                           const StepWorld& world) const {
   LearnReport report;
   const auto& pool = program_.pool();
   std::vector<double> assignment = world.assignment, observation = world.observation;
@@ -46,8 +47,8 @@ LearnReport Learner::learn(const std::vector<sim::FeedbackEvent>& events, model:
         const auto& r = g.rules[ri];
         if (r.source->event != ev.name) continue;
         if (ev.args.size() != r.binderTypes.size()) {
-          report.problems.push_back(fmt::format("event '{}' has {} arguments, its declaration {}", ev.name, ev.args.size(),
-                                                r.binderTypes.size()));
+          report.problems.push_back(fmt::format("event '{}' has {} arguments, its declaration {}", ev.name,
+                                                ev.args.size(), r.binderTypes.size()));
           continue;
         }
         frame.assign(std::max<std::size_t>(r.frameWidth, program_.frameSize()) + 1, 0.0);
@@ -92,8 +93,9 @@ LearnReport Learner::learn(const std::vector<sim::FeedbackEvent>& events, model:
               subject = textpref::Item{program_.render(type, &value), {}};
             }
             if (!subject) {
-              report.problems.push_back(fmt::format("event '{}': the subject of '{}' ({} value {}) is not a value of its type",
-                                                    ev.name, g.source->name, type.typeName, value));
+              report.problems.push_back(
+                  fmt::format("event '{}': the subject of '{}' ({} value {}) is not a value of its type", ev.name,
+                              g.source->name, type.typeName, value));
               continue;
             }
             if (const textpref::Status s = f.observe(*subject, holds); !s.ok()) {

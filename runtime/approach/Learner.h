@@ -11,9 +11,9 @@
 // reported apart from malformed events because the feedback itself was fine.
 #pragma once
 
-#include "runtime/sim/DomainSimulator.h"
 #include "runtime/core/Program.h"
 #include "runtime/model/UserModel.h"
+#include "runtime/sim/DomainSimulator.h"
 
 #include <string>
 #include <vector>
@@ -29,16 +29,17 @@ struct StepWorld {
 };
 
 struct LearnReport {
-  std::size_t labels = 0;                 // labelled examples added
-  std::vector<std::string> problems;      // events that did not fit their declaration
-  std::vector<std::string> modelErrors;   // text models that kept their old theta (the record was kept)
+  std::size_t labels = 0;                // labelled examples added
+  std::vector<std::string> problems;     // events that did not fit their declaration
+  std::vector<std::string> modelErrors;  // text models that kept their old theta (the record was kept)
 };
 
 class Learner {
  public:
   // Throws rt::RuntimeError when a rule does not bind a `per` key of its generator.
   explicit Learner(const rt::Program& program);
-  LearnReport learn(const std::vector<sim::FeedbackEvent>& events, model::UserModel& user, const StepWorld& world = {}) const;
+  LearnReport learn(const std::vector<sim::FeedbackEvent>& events, model::UserModel& user,
+                    const StepWorld& world = {}) const;
 
  private:
   const rt::Program& program_;

@@ -11,7 +11,8 @@ Plan makePlan(const PreparedProgram& lp, std::size_t task, const std::vector<dou
   if (!plan.solve.solved() && fallback && choice.personal == solver::PersonalMode::Include) {
     plan.failedFull = std::move(plan.solve);
     plan.csp = solver::makeCsp(lp.program(), static_cast<std::uint32_t>(task), lp.instances(task), user, observation,
-                               solver::PersonalMode::Exclude, choice.cost == solver::CostKind::Entropy ? solver::CostKind::None : choice.cost);
+                               solver::PersonalMode::Exclude,
+                               choice.cost == solver::CostKind::Entropy ? solver::CostKind::None : choice.cost);
     plan.solve = solver.solve(plan.csp);
     plan.replanned = true;
   }

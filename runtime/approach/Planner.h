@@ -14,10 +14,10 @@ namespace cbtl::approach {
 
 struct Plan {
   bool ok = false;
-  bool replanned = false;                        // the full CSP failed; solved without personal constraints
-  solver::Csp csp;                               // the CSP that was solved last
-  solver::SolveResult solve;                     // its result
-  std::optional<solver::SolveResult> failedFull; // the failed full solve, when replanned
+  bool replanned = false;                         // the full CSP failed; solved without personal constraints
+  solver::Csp csp;                                // the CSP that was solved last
+  solver::SolveResult solve;                      // its result
+  std::optional<solver::SolveResult> failedFull;  // the failed full solve, when replanned
   std::vector<sim::ActionCall> calls;
   // The independent re-check of the solution (Recheck.h), run on every Solved result. A solution that fails it
   // is refused: `ok` is false and `calls` is empty.

@@ -42,7 +42,9 @@ std::size_t PreparedProgram::taskFor(const sim::DomainSimulator& simulator, std:
   const std::string name = simulator.requestedTask();
   if (name.empty()) return configured;
   const int t = taskIndex(name);
-  if (t < 0) throw rt::RuntimeError("", fmt::format("the simulator asks for task '{}', which '{}' does not declare", name, path_));
+  if (t < 0)
+    throw rt::RuntimeError("",
+                           fmt::format("the simulator asks for task '{}', which '{}' does not declare", name, path_));
   return static_cast<std::size_t>(t);
 }
 

@@ -21,8 +21,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* const kTopFiles[] = {"config.json", "train.csv", "eval.csv", "world-calls.jsonl", "checkpoint.json", "profile.json",
-                                 "llm.json", "complete.json"};
+const char* const kTopFiles[] = {"config.json",     "train.csv",    "eval.csv", "world-calls.jsonl",
+                                 "checkpoint.json", "profile.json", "llm.json", "complete.json"};
 
 bool allDigits(const std::string& s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
@@ -78,7 +78,8 @@ bool isRunFileName(const std::string& relative) {
   }
   if (name.rfind("models/", 0) == 0) {
     const std::string file = name.substr(7);
-    return file.size() > 5 && file.compare(file.size() - 5, 5, ".json") == 0 && allDigits(file.substr(0, file.size() - 5));
+    return file.size() > 5 && file.compare(file.size() - 5, 5, ".json") == 0 &&
+           allDigits(file.substr(0, file.size() - 5));
   }
   return false;
 }
@@ -103,7 +104,8 @@ void removeRunFiles(const std::string& dir) {
   for (const auto& rel : runFilesIn(dir)) {
     std::error_code ec;
     fs::remove(fs::path(dir) / rel, ec);
-    if (ec) throw RunDirectoryError(fmt::format("cannot remove '{}': {}", (fs::path(dir) / rel).string(), ec.message()));
+    if (ec)
+      throw RunDirectoryError(fmt::format("cannot remove '{}': {}", (fs::path(dir) / rel).string(), ec.message()));
   }
   std::error_code ec;
   const fs::path models = fs::path(dir) / "models";
@@ -115,7 +117,8 @@ void removeTemporaries(const std::string& dir) {
     if (withoutTempSuffix(fs::path(rel).filename().string()) == fs::path(rel).filename().string()) continue;
     std::error_code ec;
     fs::remove(fs::path(dir) / rel, ec);
-    if (ec) throw RunDirectoryError(fmt::format("cannot remove '{}': {}", (fs::path(dir) / rel).string(), ec.message()));
+    if (ec)
+      throw RunDirectoryError(fmt::format("cannot remove '{}': {}", (fs::path(dir) / rel).string(), ec.message()));
   }
 }
 
@@ -136,7 +139,8 @@ DirectoryLock::DirectoryLock(const std::string& dir) {
     ::close(fd_);
     fd_ = -1;
     if (e == EWOULDBLOCK) {
-      throw RunDirectoryError(fmt::format("'{}' is in use by another cbtl process (it holds '{}'); wait for it or use another --out", dir, path));
+      throw RunDirectoryError(fmt::format(
+          "'{}' is in use by another cbtl process (it holds '{}'); wait for it or use another --out", dir, path));
     }
     throw RunDirectoryError(fmt::format("cannot lock '{}': {}", path, errnoText(e)));
   }
@@ -172,11 +176,12 @@ void AppendFile::open(const std::string& path, std::uint64_t keepBytes) {
   if (fd_ < 0) throw RunDirectoryError(fmt::format("cannot write '{}': {}", path, errnoText(errno)));
   struct stat st {};
   if (::fstat(fd_, &st) != 0 || static_cast<std::uint64_t>(st.st_size) < keepBytes) {
-    throw RunDirectoryError(fmt::format("'{}' is shorter than its checkpoint says ({} bytes expected); the run cannot be resumed",
-                                        path, keepBytes));
+    throw RunDirectoryError(fmt::format(
+        "'{}' is shorter than its checkpoint says ({} bytes expected); the run cannot be resumed", path, keepBytes));
   }
   if (!S_ISREG(st.st_mode)) return;  // a device (e.g. /dev/full in tests): nothing to truncate
-  if (::ftruncate(fd_, static_cast<off_t>(keepBytes)) != 0 || ::lseek(fd_, static_cast<off_t>(keepBytes), SEEK_SET) < 0) {
+  if (::ftruncate(fd_, static_cast<off_t>(keepBytes)) != 0 ||
+      ::lseek(fd_, static_cast<off_t>(keepBytes), SEEK_SET) < 0) {
     throw RunDirectoryError(fmt::format("cannot truncate '{}': {}", path, errnoText(errno)));
   }
 }
@@ -196,7 +201,8 @@ void AppendFile::flush() {
 
 void AppendFile::sync() {
   flush();
-  if (fd_ >= 0 && ::fsync(fd_) != 0) throw RunDirectoryError(fmt::format("cannot write '{}': {}", path_, errnoText(errno)));
+  if (fd_ >= 0 && ::fsync(fd_) != 0)
+    throw RunDirectoryError(fmt::format("cannot write '{}': {}", path_, errnoText(errno)));
 }
 
 void AppendFile::close() {

@@ -8,9 +8,14 @@ using rt::ValueKind;
 
 sim::Value toSimValue(const rt::Program& program, const rt::ValueType& type, const double* v) {
   switch (type.kind) {
-    case ValueKind::Enum: case ValueKind::Item: case ValueKind::Text:
+    case ValueKind::Enum:
+    case ValueKind::Item:
+    case ValueKind::Text:
       return sim::Value::name(program.render(type, v));
-    case ValueKind::Vec: case ValueKind::SE2: case ValueKind::SE3: case ValueKind::Conf:
+    case ValueKind::Vec:
+    case ValueKind::SE2:
+    case ValueKind::SE3:
+    case ValueKind::Conf:
       return sim::Value::vec(std::vector<double>(v, v + type.width));
     default:
       return sim::Value::num(v[0]);
@@ -20,7 +25,9 @@ sim::Value toSimValue(const rt::Program& program, const rt::ValueType& type, con
 bool fromSimValue(const rt::Program& program, const rt::ValueType& type, const sim::Value& value, double* out,
                   std::string& error) {
   switch (type.kind) {
-    case ValueKind::Enum: case ValueKind::Item: case ValueKind::Text:
+    case ValueKind::Enum:
+    case ValueKind::Item:
+    case ValueKind::Text:
       if (value.kind != sim::Value::Kind::Name) {
         error = fmt::format("expected a name of {}", type.typeName.empty() ? "text" : type.typeName);
         return false;
@@ -30,7 +37,10 @@ bool fromSimValue(const rt::Program& program, const rt::ValueType& type, const s
         return false;
       }
       return true;
-    case ValueKind::Vec: case ValueKind::SE2: case ValueKind::SE3: case ValueKind::Conf:
+    case ValueKind::Vec:
+    case ValueKind::SE2:
+    case ValueKind::SE3:
+    case ValueKind::Conf:
       if (value.kind != sim::Value::Kind::Vector || value.vector.size() != type.width) {
         error = fmt::format("expected {} numbers", type.width);
         return false;

@@ -2,8 +2,8 @@
 // (sim::Value: numbers, vectors, and enum members / items / texts by name).
 #pragma once
 
-#include "runtime/sim/DomainSimulator.h"
 #include "runtime/core/Program.h"
+#include "runtime/sim/DomainSimulator.h"
 
 #include <string>
 #include <vector>

@@ -13,10 +13,16 @@ using Args = std::span<const double>;
 using Widths = std::span<const std::uint16_t>;
 using Out = std::span<double>;
 
-#define CBTL_UNARY(NAME, EXPR) \
-  void NAME(const CallContext&, Args a, Widths, Out o) { const double x = a[0]; o[0] = (EXPR); }
-#define CBTL_BINARY(NAME, EXPR) \
-  void NAME(const CallContext&, Args a, Widths, Out o) { const double x = a[0], y = a[1]; o[0] = (EXPR); }
+#define CBTL_UNARY(NAME, EXPR)                           \
+  void NAME(const CallContext&, Args a, Widths, Out o) { \
+    const double x = a[0];                               \
+    o[0] = (EXPR);                                       \
+  }
+#define CBTL_BINARY(NAME, EXPR)                          \
+  void NAME(const CallContext&, Args a, Widths, Out o) { \
+    const double x = a[0], y = a[1];                     \
+    o[0] = (EXPR);                                       \
+  }
 
 CBTL_UNARY(fAbs, std::fabs(x))
 CBTL_UNARY(fSign, x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0))
@@ -38,9 +44,18 @@ CBTL_BINARY(fAtan2, std::atan2(x, y))
 #undef CBTL_UNARY
 #undef CBTL_BINARY
 
-void fClamp(const CallContext&, Args a, Widths, Out o) { o[0] = std::clamp(a[0], std::min(a[1], a[2]), std::max(a[1], a[2])); }
-void fVec2(const CallContext&, Args a, Widths, Out o) { o[0] = a[0]; o[1] = a[1]; }
-void fVec3(const CallContext&, Args a, Widths, Out o) { o[0] = a[0]; o[1] = a[1]; o[2] = a[2]; }
+void fClamp(const CallContext&, Args a, Widths, Out o) {
+  o[0] = std::clamp(a[0], std::min(a[1], a[2]), std::max(a[1], a[2]));
+}
+void fVec2(const CallContext&, Args a, Widths, Out o) {
+  o[0] = a[0];
+  o[1] = a[1];
+}
+void fVec3(const CallContext&, Args a, Widths, Out o) {
+  o[0] = a[0];
+  o[1] = a[1];
+  o[2] = a[2];
+}
 void fNorm(const CallContext&, Args a, Widths, Out o) {
   double s = 0;
   for (double x : a) s += x * x;
@@ -70,8 +85,15 @@ void fNormalize(const CallContext&, Args a, Widths, Out o) {
 void fGen3Conf(const CallContext&, Args a, Widths, Out o) {
   for (std::size_t i = 0; i < 7; ++i) o[i] = a[i];
 }
-void fXy(const CallContext&, Args a, Widths, Out o) { o[0] = a[0]; o[1] = a[1]; }
-void fSe2(const CallContext&, Args a, Widths, Out o) { o[0] = a[0]; o[1] = a[1]; o[2] = a[2]; }
+void fXy(const CallContext&, Args a, Widths, Out o) {
+  o[0] = a[0];
+  o[1] = a[1];
+}
+void fSe2(const CallContext&, Args a, Widths, Out o) {
+  o[0] = a[0];
+  o[1] = a[1];
+  o[2] = a[2];
+}
 
 bool sUniformInt(const CallContext&, Args a, Widths, Rng& rng, Out o) {
   const auto lo = static_cast<std::int64_t>(std::ceil(a[0])), hi = static_cast<std::int64_t>(std::floor(a[1]));

@@ -38,8 +38,8 @@ struct CallContext {
   BuiltinHost* host = nullptr;
 };
 
-using FunctionImpl = void (*)(const CallContext& cx, std::span<const double> args, std::span<const std::uint16_t> widths,
-                              std::span<double> out);
+using FunctionImpl = void (*)(const CallContext& cx, std::span<const double> args,
+                              std::span<const std::uint16_t> widths, std::span<double> out);
 using SamplerImpl = bool (*)(const CallContext& cx, std::span<const double> args, std::span<const std::uint16_t> widths,
                              Rng& rng, std::span<double> out);
 

@@ -32,13 +32,32 @@ inline std::uint32_t tableIndex(double idx, std::uint32_t count) {
 // Whether evalScalar computes this node itself (rather than falling back to eval, which would loop).
 bool ExprPool::scalarPath(const PackedNode& n) const {
   switch (n.op) {
-    case Op::ReadVar: case Op::ReadObs: case Op::ReadFrame: case Op::TableVar: case Op::TableObs: case Op::TableConst:
-    case Op::Not: case Op::Neg: case Op::Lt: case Op::Le: case Op::Gt: case Op::Ge: case Op::And: case Op::Or:
-    case Op::Implies: case Op::Iff: case Op::InRange: case Op::If:
+    case Op::ReadVar:
+    case Op::ReadObs:
+    case Op::ReadFrame:
+    case Op::TableVar:
+    case Op::TableObs:
+    case Op::TableConst:
+    case Op::Not:
+    case Op::Neg:
+    case Op::Lt:
+    case Op::Le:
+    case Op::Gt:
+    case Op::Ge:
+    case Op::And:
+    case Op::Or:
+    case Op::Implies:
+    case Op::Iff:
+    case Op::InRange:
+    case Op::If:
       return true;
-    case Op::Add: case Op::Sub: case Op::Mul:
+    case Op::Add:
+    case Op::Sub:
+    case Op::Mul:
       return nodes_[kid(n, 0)].width == 1 && nodes_[kid(n, 1)].width == 1;
-    case Op::Eq: case Op::Ne: case Op::InSet:
+    case Op::Eq:
+    case Op::Ne:
+    case Op::InSet:
       return nodes_[kid(n, 0)].width == 1;
     case Op::Member: {
       const Op base = nodes_[kid(n, 0)].op;
@@ -67,39 +86,63 @@ double ExprPool::evalScalar(std::uint32_t root, const EvalContext& ctx) const {
   };
   auto scalarKids = [&]() { return nodes_[kid(n, 0)].width == 1 && nodes_[kid(n, 1)].width == 1; };
   switch (n.op) {
-    case Op::Const: return constants_[n.a];
-    case Op::ReadVar: return ctx.assignment[n.a];
-    case Op::ReadObs: return ctx.observation[n.a];
-    case Op::ReadFrame: return ctx.frame[n.a];
-    case Op::TableVar: case Op::TableObs: case Op::TableConst: {
+    case Op::Const:
+      return constants_[n.a];
+    case Op::ReadVar:
+      return ctx.assignment[n.a];
+    case Op::ReadObs:
+      return ctx.observation[n.a];
+    case Op::ReadFrame:
+      return ctx.frame[n.a];
+    case Op::TableVar:
+    case Op::TableObs:
+    case Op::TableConst: {
       const std::uint32_t i = tableIndex(S(0), n.count);
       const std::uint32_t at = tables_[n.a + i];
       return n.op == Op::TableVar ? ctx.assignment[at] : n.op == Op::TableObs ? ctx.observation[at] : constants_[at];
     }
-    case Op::Not: return S(0) != 0 ? 0 : 1;
-    case Op::Neg: return -S(0);
-    case Op::Add: if (scalarKids()) return S(0) + S(1); break;
-    case Op::Sub: if (scalarKids()) return S(0) - S(1); break;
-    case Op::Mul: if (scalarKids()) return S(0) * S(1); break;
-    case Op::Eq: case Op::Ne:
+    case Op::Not:
+      return S(0) != 0 ? 0 : 1;
+    case Op::Neg:
+      return -S(0);
+    case Op::Add:
+      if (scalarKids()) return S(0) + S(1);
+      break;
+    case Op::Sub:
+      if (scalarKids()) return S(0) - S(1);
+      break;
+    case Op::Mul:
+      if (scalarKids()) return S(0) * S(1);
+      break;
+    case Op::Eq:
+    case Op::Ne:
       if (nodes_[kid(n, 0)].width == 1) {
         const bool eq = S(0) == S(1);
         return eq == (n.op == Op::Eq) ? 1 : 0;
       }
       break;
-    case Op::Lt: return S(0) < S(1) ? 1 : 0;
-    case Op::Le: return S(0) <= S(1) ? 1 : 0;
-    case Op::Gt: return S(0) > S(1) ? 1 : 0;
-    case Op::Ge: return S(0) >= S(1) ? 1 : 0;
-    case Op::And: return (S(0) != 0 && S(1) != 0) ? 1 : 0;
-    case Op::Or: return (S(0) != 0 || S(1) != 0) ? 1 : 0;
-    case Op::Implies: return (S(0) == 0 || S(1) != 0) ? 1 : 0;
-    case Op::Iff: return ((S(0) != 0) == (S(1) != 0)) ? 1 : 0;
+    case Op::Lt:
+      return S(0) < S(1) ? 1 : 0;
+    case Op::Le:
+      return S(0) <= S(1) ? 1 : 0;
+    case Op::Gt:
+      return S(0) > S(1) ? 1 : 0;
+    case Op::Ge:
+      return S(0) >= S(1) ? 1 : 0;
+    case Op::And:
+      return (S(0) != 0 && S(1) != 0) ? 1 : 0;
+    case Op::Or:
+      return (S(0) != 0 || S(1) != 0) ? 1 : 0;
+    case Op::Implies:
+      return (S(0) == 0 || S(1) != 0) ? 1 : 0;
+    case Op::Iff:
+      return ((S(0) != 0) == (S(1) != 0)) ? 1 : 0;
     case Op::InRange: {
       const double x = S(0);
       return (x >= S(1) && x <= S(2)) ? 1 : 0;
     }
-    case Op::If: return evalScalar(S(0) != 0 ? kid(n, 1) : kid(n, 2), ctx);
+    case Op::If:
+      return evalScalar(S(0) != 0 ? kid(n, 1) : kid(n, 2), ctx);
     case Op::InSet:
       if (nodes_[kid(n, 0)].width == 1) {
         const double x = S(0);
@@ -111,11 +154,16 @@ double ExprPool::evalScalar(std::uint32_t root, const EvalContext& ctx) const {
       if (n.width == 1) {
         const PackedNode& base = nodes_[kid(n, 0)];
         switch (base.op) {
-          case Op::ReadVar: return ctx.assignment[base.a + n.a];
-          case Op::ReadObs: return ctx.observation[base.a + n.a];
-          case Op::ReadFrame: return ctx.frame[base.a + n.a];
-          case Op::Const: return constants_[base.a + n.a];
-          default: break;
+          case Op::ReadVar:
+            return ctx.assignment[base.a + n.a];
+          case Op::ReadObs:
+            return ctx.observation[base.a + n.a];
+          case Op::ReadFrame:
+            return ctx.frame[base.a + n.a];
+          case Op::Const:
+            return constants_[base.a + n.a];
+          default:
+            break;
         }
       }
       break;
@@ -133,12 +181,13 @@ double ExprPool::evalScalar(std::uint32_t root, const EvalContext& ctx) const {
           }
         }
         double out = 0;
-        n.fn(ctx.call != nullptr ? *ctx.call : kNoCall, std::span<const double>(args, at), std::span<const std::uint16_t>(kidWidths_.data() + n.kidWidths, n.kidCount),
-             std::span<double>(&out, 1));
+        n.fn(ctx.call != nullptr ? *ctx.call : kNoCall, std::span<const double>(args, at),
+             std::span<const std::uint16_t>(kidWidths_.data() + n.kidWidths, n.kidCount), std::span<double>(&out, 1));
         return out;
       }
       break;
-    default: break;
+    default:
+      break;
   }
   double v[kMaxWidth];
   eval(root, ctx, v);
@@ -164,10 +213,14 @@ void ExprPool::eval(std::uint32_t root, const EvalContext& ctx, double* out) con
     case Op::ReadFrame:
       copySmall(ctx.frame + n.a, n.width, out);
       return;
-    case Op::TableVar: case Op::TableObs: case Op::TableConst: {
+    case Op::TableVar:
+    case Op::TableObs:
+    case Op::TableConst: {
       const std::uint32_t i = tableIndex(evalScalar(kid(n, 0), ctx), n.count);
       const std::uint32_t at = tables_[n.a + i];
-      const double* base = n.op == Op::TableVar ? ctx.assignment : n.op == Op::TableObs ? ctx.observation : constants_.data();
+      const double* base = n.op == Op::TableVar   ? ctx.assignment
+                           : n.op == Op::TableObs ? ctx.observation
+                                                  : constants_.data();
       copySmall(base + at, n.width, out);
       return;
     }
@@ -185,7 +238,12 @@ void ExprPool::eval(std::uint32_t root, const EvalContext& ctx, double* out) con
     case Op::Not:
       out[0] = evalBool(kid(n, 0), ctx) ? 0 : 1;
       return;
-    case Op::Add: case Op::Sub: case Op::Mul: case Op::Div: case Op::Mod: case Op::Pow: {
+    case Op::Add:
+    case Op::Sub:
+    case Op::Mul:
+    case Op::Div:
+    case Op::Mod:
+    case Op::Pow: {
       double x[kMaxWidth], y[kMaxWidth];
       eval(kid(n, 0), ctx, x);
       eval(kid(n, 1), ctx, y);
@@ -193,17 +251,30 @@ void ExprPool::eval(std::uint32_t root, const EvalContext& ctx, double* out) con
       for (std::size_t i = 0; i < n.width; ++i) {
         const double p = x[wx == 1 ? 0 : i], q = y[wy == 1 ? 0 : i];
         switch (n.op) {
-          case Op::Add: out[i] = p + q; break;
-          case Op::Sub: out[i] = p - q; break;
-          case Op::Mul: out[i] = p * q; break;
-          case Op::Div: out[i] = n.b ? (q == 0 ? 0 : std::trunc(p / q)) : p / q; break;  // b: integer division
-          case Op::Mod: out[i] = q == 0 ? 0 : std::fmod(p, q); break;
-          default: out[i] = std::pow(p, q); break;
+          case Op::Add:
+            out[i] = p + q;
+            break;
+          case Op::Sub:
+            out[i] = p - q;
+            break;
+          case Op::Mul:
+            out[i] = p * q;
+            break;
+          case Op::Div:
+            out[i] = n.b ? (q == 0 ? 0 : std::trunc(p / q)) : p / q;
+            break;  // b: integer division
+          case Op::Mod:
+            out[i] = q == 0 ? 0 : std::fmod(p, q);
+            break;
+          default:
+            out[i] = std::pow(p, q);
+            break;
         }
       }
       return;
     }
-    case Op::Eq: case Op::Ne: {
+    case Op::Eq:
+    case Op::Ne: {
       double x[kMaxWidth], y[kMaxWidth];
       eval(kid(n, 0), ctx, x);
       eval(kid(n, 1), ctx, y);
@@ -212,7 +283,10 @@ void ExprPool::eval(std::uint32_t root, const EvalContext& ctx, double* out) con
       out[0] = (eq == (n.op == Op::Eq)) ? 1 : 0;
       return;
     }
-    case Op::Lt: case Op::Le: case Op::Gt: case Op::Ge: {
+    case Op::Lt:
+    case Op::Le:
+    case Op::Gt:
+    case Op::Ge: {
       const double x = evalScalar(kid(n, 0), ctx), y = evalScalar(kid(n, 1), ctx);
       const bool r = n.op == Op::Lt ? x < y : n.op == Op::Le ? x <= y : n.op == Op::Gt ? x > y : x >= y;
       out[0] = r ? 1 : 0;
@@ -252,11 +326,13 @@ void ExprPool::eval(std::uint32_t root, const EvalContext& ctx, double* out) con
         eval(k, ctx, args + at);
         at += nodes_[k].width;
       }
-      n.fn(ctx.call != nullptr ? *ctx.call : kNoCall, std::span<const double>(args, at), std::span<const std::uint16_t>(kidWidths_.data() + n.kidWidths, n.kidCount),
+      n.fn(ctx.call != nullptr ? *ctx.call : kNoCall, std::span<const double>(args, at),
+           std::span<const std::uint16_t>(kidWidths_.data() + n.kidWidths, n.kidCount),
            std::span<double>(out, n.width));
       return;
     }
-    case Op::Forall: case Op::Exists: {
+    case Op::Forall:
+    case Op::Exists: {
       // kids: [lo, hi] for ranges (count == 0), then where, body. Enum/item sets: members 0 .. count-1.
       const bool isForall = n.op == Op::Forall;
       double lo = 0, hi = static_cast<double>(n.count) - 1;
@@ -278,8 +354,14 @@ void ExprPool::eval(std::uint32_t root, const EvalContext& ctx, double* out) con
         ctx.frame[n.a] = v;
         if (!evalBool(where, ctx)) continue;
         const bool b = evalBool(body, ctx);
-        if (isForall && !b) { result = false; break; }
-        if (!isForall && b) { result = true; break; }
+        if (isForall && !b) {
+          result = false;
+          break;
+        }
+        if (!isForall && b) {
+          result = true;
+          break;
+        }
       }
       out[0] = result ? 1 : 0;
       return;

@@ -26,24 +26,39 @@ inline constexpr std::size_t kMaxCallArgsWidth = 4 * kMaxValueWidth;
 inline constexpr std::size_t kMaxQuantifierRange = std::size_t{1} << 20;
 
 enum class Op : std::uint8_t {
-  Const,        // pool constants [a, a + width)
-  ReadVar,      // assignment[a .. a + width)
-  ReadObs,      // observation[a .. a + width)
-  ReadFrame,    // frame[a .. a + width)
-  TableVar,     // assignment[table[a + idx]]: child 0 = index (0-based member index)
-  TableObs,     // observation[table[a + idx]]
-  TableConst,   // constants[table[a + idx]]
-  Member,       // child 0's component a .. a + width
-  Neg, Not,
-  Add, Sub, Mul, Div, Mod, Pow,  // component-wise; a scalar operand broadcasts
-  Eq, Ne, Lt, Le, Gt, Ge,
-  And, Or, Implies, Iff,
-  InRange,      // child 0 in [child 1, child 2]
-  InSet,        // child 0 (scalar) in constants[a .. a + b)
-  If,           // child 0 ? child 1 : child 2
-  Call,         // fn(children...)
-  Forall, Exists,  // binder frame slot a; members: constants[b .. b + count) or range children; see eval
-  Concat,       // children laid end to end (vec literals of tuples)
+  Const,       // pool constants [a, a + width)
+  ReadVar,     // assignment[a .. a + width)
+  ReadObs,     // observation[a .. a + width)
+  ReadFrame,   // frame[a .. a + width)
+  TableVar,    // assignment[table[a + idx]]: child 0 = index (0-based member index)
+  TableObs,    // observation[table[a + idx]]
+  TableConst,  // constants[table[a + idx]]
+  Member,      // child 0's component a .. a + width
+  Neg,
+  Not,
+  Add,
+  Sub,
+  Mul,
+  Div,
+  Mod,
+  Pow,  // component-wise; a scalar operand broadcasts
+  Eq,
+  Ne,
+  Lt,
+  Le,
+  Gt,
+  Ge,
+  And,
+  Or,
+  Implies,
+  Iff,
+  InRange,  // child 0 in [child 1, child 2]
+  InSet,    // child 0 (scalar) in constants[a .. a + b)
+  If,       // child 0 ? child 1 : child 2
+  Call,     // fn(children...)
+  Forall,
+  Exists,  // binder frame slot a; members: constants[b .. b + count) or range children; see eval
+  Concat,  // children laid end to end (vec literals of tuples)
 };
 
 struct Node {
@@ -62,8 +77,8 @@ struct PackedNode {
   std::uint16_t width = 1;
   std::uint16_t kidCount = 0;
   std::uint32_t a = 0, b = 0, count = 0;
-  std::uint32_t kids = 0;        // first child in ExprPool's child array
-  std::uint32_t kidWidths = 0;   // Call: first argument width in ExprPool's width array
+  std::uint32_t kids = 0;       // first child in ExprPool's child array
+  std::uint32_t kidWidths = 0;  // Call: first argument width in ExprPool's width array
   FunctionImpl fn = nullptr;
 };
 

@@ -66,7 +66,9 @@ std::vector<PersonalInstance> personalize(Program& program, const ir::Task& task
         return;
       }
       for (ir::VarId v : candidates[i]) {
-        if (std::find(chosen.begin(), chosen.begin() + static_cast<long>(i), v) != chosen.begin() + static_cast<long>(i)) continue;
+        if (std::find(chosen.begin(), chosen.begin() + static_cast<long>(i), v) !=
+            chosen.begin() + static_cast<long>(i))
+          continue;
         const std::string& name = graph.variables.at(v).name;
         auto saved = bindings;
         bool ok = true;
@@ -117,7 +119,9 @@ std::vector<PersonalInstance> personalize(Program& program, const ir::Task& task
           found = true;
         }
       }
-      if (!found) throw RuntimeError(Program::where(g.span), fmt::format("'per {}' names neither a parameter nor a capture", keyName));
+      if (!found)
+        throw RuntimeError(Program::where(g.span),
+                           fmt::format("'per {}' names neither a parameter nor a capture", keyName));
       inst.key.push_back(std::move(part));
     }
   }

@@ -32,8 +32,13 @@ Pose readPose(const double* a) {
 void writePose(const Pose& x, double* o) {
   Eigen::Quaterniond q = x.q.normalized();
   if (q.w() < 0) q.coeffs() = -q.coeffs();
-  o[0] = x.p.x(); o[1] = x.p.y(); o[2] = x.p.z();
-  o[3] = q.x(); o[4] = q.y(); o[5] = q.z(); o[6] = q.w();
+  o[0] = x.p.x();
+  o[1] = x.p.y();
+  o[2] = x.p.z();
+  o[3] = q.x();
+  o[4] = q.y();
+  o[5] = q.z();
+  o[6] = q.w();
 }
 
 Pose compose(const Pose& a, const Pose& b) { return {a.p + a.q * b.p, a.q * b.q}; }
@@ -87,7 +92,9 @@ void fRelativePose(const CallContext&, Args a, Widths, Out o) {
 void fTransformPoint(const CallContext&, Args a, Widths, Out o) {
   const Pose f = readPose(a.data());
   const Eigen::Vector3d r = f.p + f.q * Eigen::Vector3d(a[7], a[8], a[9]);
-  o[0] = r.x(); o[1] = r.y(); o[2] = r.z();
+  o[0] = r.x();
+  o[1] = r.y();
+  o[2] = r.z();
 }
 void fPoseAbove(const CallContext&, Args a, Widths, Out o) {
   Pose p = readPose(a.data());

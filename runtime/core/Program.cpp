@@ -12,8 +12,8 @@ namespace {
 
 const std::map<std::string, Op>& binaryOps() {
   static const std::map<std::string, Op> ops = {
-      {"+", Op::Add}, {"-", Op::Sub}, {"*", Op::Mul}, {"/", Op::Div}, {"%", Op::Mod}, {"^", Op::Pow},
-      {"==", Op::Eq}, {"!=", Op::Ne}, {"<", Op::Lt}, {"<=", Op::Le}, {">", Op::Gt}, {">=", Op::Ge},
+      {"+", Op::Add},   {"-", Op::Sub}, {"*", Op::Mul},      {"/", Op::Div},  {"%", Op::Mod}, {"^", Op::Pow},
+      {"==", Op::Eq},   {"!=", Op::Ne}, {"<", Op::Lt},       {"<=", Op::Le},  {">", Op::Gt},  {">=", Op::Ge},
       {"and", Op::And}, {"or", Op::Or}, {"=>", Op::Implies}, {"<=>", Op::Iff}};
   return ops;
 }
@@ -111,18 +111,21 @@ std::vector<double> Program::setMembers(const ir::Expr& set, ValueType& elem, Sc
     }
     return out;
   }
-  throw RuntimeError(currentSpan_ ? where(*currentSpan_) : "",
-                     fmt::format("a set given by '{}' is not supported at run time (use an enum, item set or constant list)", set.op));
+  throw RuntimeError(
+      currentSpan_ ? where(*currentSpan_) : "",
+      fmt::format("a set given by '{}' is not supported at run time (use an enum, item set or constant list)", set.op));
 }
 
 std::uint32_t Program::compileConstRef(const ir::Expr& e, Scope& scope) {
   auto it = constants_.find(e.text);
-  if (it == constants_.end()) throw RuntimeError(currentSpan_ ? where(*currentSpan_) : "", fmt::format("unknown constant '{}'", e.text));
+  if (it == constants_.end())
+    throw RuntimeError(currentSpan_ ? where(*currentSpan_) : "", fmt::format("unknown constant '{}'", e.text));
   const ir::Constant& c = *it->second;
   const ValueType t = typeOf(e.type);
   if (e.children.empty()) return constNode(constantValue(c.value), t.width);
   // A constant family indexed at run time: one table entry per member of the index set.
-  if (c.value.op != "list") throw RuntimeError(where(c.span), fmt::format("constant family '{}' must be a list", c.name));
+  if (c.value.op != "list")
+    throw RuntimeError(where(c.span), fmt::format("constant family '{}' must be a list", c.name));
   std::vector<std::uint32_t> offsets;
   for (const auto& elemExpr : c.value.children) {
     auto v = constantValue(elemExpr);
@@ -158,7 +161,8 @@ std::uint32_t Program::compileCall(const ir::Expr& e, Scope& scope) {
     throw RuntimeError(at, fmt::format("'{}' is a {} and cannot be called inside an expression", e.text, f->kind));
   }
   FunctionImpl impl = builtins_.function(e.text);
-  if (impl == nullptr) throw RuntimeError(at, fmt::format("built-in function '{}' has no implementation in this runtime", e.text));
+  if (impl == nullptr)
+    throw RuntimeError(at, fmt::format("built-in function '{}' has no implementation in this runtime", e.text));
   Node n;
   n.op = Op::Call;
   n.fn = impl;
@@ -170,8 +174,8 @@ std::uint32_t Program::compileCall(const ir::Expr& e, Scope& scope) {
     argsWidth += pool_.width(a);
   }
   if (argsWidth > kMaxCallArgsWidth) {
-    throw RuntimeError(at, fmt::format("the arguments of '{}' take {} doubles, more than the runtime's limit of {}", e.text,
-                                       argsWidth, kMaxCallArgsWidth));
+    throw RuntimeError(at, fmt::format("the arguments of '{}' take {} doubles, more than the runtime's limit of {}",
+                                       e.text, argsWidth, kMaxCallArgsWidth));
   }
   return pool_.add(std::move(n));
 }
@@ -224,7 +228,8 @@ std::uint32_t Program::compileQuantifier(const ir::Expr& e, Scope& scope, std::s
     ValueType elem;
     n.count = static_cast<std::uint32_t>(setMembers(set, elem, scope).size());
   } else {
-    throw RuntimeError(currentSpan_ ? where(*currentSpan_) : "", "a quantifier at run time must range over an enum, an item set or an integer range");
+    throw RuntimeError(currentSpan_ ? where(*currentSpan_) : "",
+                       "a quantifier at run time must range over an enum, an item set or an integer range");
   }
   const bool last = binder + 1 == e.names.size();
   if (last) {
@@ -234,8 +239,10 @@ std::uint32_t Program::compileQuantifier(const ir::Expr& e, Scope& scope, std::s
     n.kids.push_back(constNode({1.0}, 1));
     n.kids.push_back(compileQuantifier(e, scope, binder + 1));
   }
-  if (saved) scope.locals[name] = *saved;
-  else scope.locals.erase(name);
+  if (saved)
+    scope.locals[name] = *saved;
+  else
+    scope.locals.erase(name);
   return pool_.add(std::move(n));
 }
 
@@ -262,14 +269,18 @@ std::uint32_t Program::compileExpr(const ir::Expr& e, Scope& scope) {
   if (op == "str") return constNode({static_cast<double>(strings_.intern(e.text))}, 1);
   if (op == "enum" || op == "item") return constNode({memberIndex(e.extra, e.text)}, 1);
   if (op == "var") {
-    if (e.id < 0 || static_cast<std::size_t>(e.id) >= slots_.size()) throw RuntimeError(at, fmt::format("unknown variable '{}'", e.text));
+    if (e.id < 0 || static_cast<std::size_t>(e.id) >= slots_.size())
+      throw RuntimeError(at, fmt::format("unknown variable '{}'", e.text));
     const VarSlot& s = slots_[static_cast<std::size_t>(e.id)];
     return pool_.add(Node{Op::ReadVar, s.type.width, s.offset, 0, 0, nullptr, {}, {}});
   }
   if (op == "param") {
-    if (e.id < 0 || static_cast<std::size_t>(e.id) >= scope.params.size() || scope.params[static_cast<std::size_t>(e.id)] == UINT32_MAX) {
+    if (e.id < 0 || static_cast<std::size_t>(e.id) >= scope.params.size() ||
+        scope.params[static_cast<std::size_t>(e.id)] == UINT32_MAX) {
       // A learning rule's labels and condition see only the parameters its event binds.
-      throw RuntimeError(at, fmt::format("parameter '{}' is not bound here (a learning rule must bind every parameter it reads)", e.text));
+      throw RuntimeError(
+          at,
+          fmt::format("parameter '{}' is not bound here (a learning rule must bind every parameter it reads)", e.text));
     }
     return scope.params[static_cast<std::size_t>(e.id)];
   }
@@ -289,7 +300,8 @@ std::uint32_t Program::compileExpr(const ir::Expr& e, Scope& scope) {
     for (const auto& o : graph_.observations) {
       if (o.name == e.text) decl = &o;
     }
-    if (decl == nullptr || !decl->indexSet) throw RuntimeError(at, fmt::format("'{}' is not an observation family", e.text));
+    if (decl == nullptr || !decl->indexSet)
+      throw RuntimeError(at, fmt::format("'{}' is not an observation family", e.text));
     ValueType elem;
     Scope none;
     std::uint32_t top = 0;
@@ -300,7 +312,8 @@ std::uint32_t Program::compileExpr(const ir::Expr& e, Scope& scope) {
       const std::string key = e.text + "[" + render(elem, &m) + "]";
       offsets.push_back(obsSlots_.at(key).offset);
     }
-    Node n{Op::TableObs, t.width, pool_.addTable(offsets), 0, static_cast<std::uint32_t>(offsets.size()), nullptr, {}, {}};
+    Node n{Op::TableObs, t.width, pool_.addTable(offsets), 0, static_cast<std::uint32_t>(offsets.size()), nullptr,
+           {},           {}};
     n.kids.push_back(compile(e.children[0], scope));
     return pool_.add(std::move(n));
   }
@@ -312,22 +325,26 @@ std::uint32_t Program::compileExpr(const ir::Expr& e, Scope& scope) {
     for (ir::VarId v : e.vars) {
       const auto& var = graph_.variables.at(v);
       double idx = 0;
-      if (it.kind == ValueKind::Int) idx = std::stod(var.indexText);
-      else idx = memberIndex(it.typeName, var.indexText);
+      if (it.kind == ValueKind::Int)
+        idx = std::stod(var.indexText);
+      else
+        idx = memberIndex(it.typeName, var.indexText);
       byIndex.emplace_back(idx, v);
     }
     std::sort(byIndex.begin(), byIndex.end());
     std::vector<std::uint32_t> offsets;
     double first = byIndex.empty() ? 0 : byIndex.front().first;
     for (std::size_t i = 0; i < byIndex.size(); ++i) {
-      if (byIndex[i].first != first + static_cast<double>(i)) throw RuntimeError(at, fmt::format("family '{}' has gaps in its index", e.text));
+      if (byIndex[i].first != first + static_cast<double>(i))
+        throw RuntimeError(at, fmt::format("family '{}' has gaps in its index", e.text));
       offsets.push_back(slots_[byIndex[i].second].offset);
     }
     std::uint32_t idxNode = compile(index, scope);
     if (first != 0) {
       idxNode = pool_.add(Node{Op::Sub, 1, 0, 0, 0, nullptr, {idxNode, constNode({first}, 1)}, {}});
     }
-    Node n{Op::TableVar, t.width, pool_.addTable(offsets), 0, static_cast<std::uint32_t>(offsets.size()), nullptr, {idxNode}, {}};
+    Node n{Op::TableVar, t.width, pool_.addTable(offsets), 0, static_cast<std::uint32_t>(offsets.size()), nullptr,
+           {idxNode},    {}};
     return pool_.add(std::move(n));
   }
   if (op == "member") {
@@ -348,21 +365,36 @@ std::uint32_t Program::compileExpr(const ir::Expr& e, Scope& scope) {
         v.resize(width, 0.0);
         offsets.push_back(pool_.addConstants(v));
       }
-      Node n{Op::TableConst, width, pool_.addTable(offsets), 0, static_cast<std::uint32_t>(offsets.size()), nullptr, {baseNode}, {}};
+      Node n{Op::TableConst, width, pool_.addTable(offsets), 0, static_cast<std::uint32_t>(offsets.size()), nullptr,
+             {baseNode},     {}};
       return pool_.add(std::move(n));
     }
     const std::string& m = e.text;
-    if (bt.kind == ValueKind::SE3 && m == "position") offset = 0;
-    else if (bt.kind == ValueKind::SE3 && m == "orientation") offset = 3;
-    else if (m == "x") offset = 0;
-    else if (m == "y") offset = 1;
-    else if (m == "z" || (bt.kind == ValueKind::SE2 && m == "yaw")) offset = 2;
-    else if (m == "w") offset = 3;
-    else throw RuntimeError(at, fmt::format("member '{}' of {} is not supported at run time", m, toString(bt.kind)));
+    if (bt.kind == ValueKind::SE3 && m == "position")
+      offset = 0;
+    else if (bt.kind == ValueKind::SE3 && m == "orientation")
+      offset = 3;
+    else if (m == "x")
+      offset = 0;
+    else if (m == "y")
+      offset = 1;
+    else if (m == "z" || (bt.kind == ValueKind::SE2 && m == "yaw"))
+      offset = 2;
+    else if (m == "w")
+      offset = 3;
+    else
+      throw RuntimeError(at, fmt::format("member '{}' of {} is not supported at run time", m, toString(bt.kind)));
     return pool_.add(Node{Op::Member, width, offset, 0, 0, nullptr, {baseNode}, {}});
   }
   if (op == "neg" || op == "not") {
-    Node n{op == "neg" ? Op::Neg : Op::Not, std::max<std::uint16_t>(t.width, 1), 0, 0, 0, nullptr, {compile(e.children[0], scope)}, {}};
+    Node n{op == "neg" ? Op::Neg : Op::Not,
+           std::max<std::uint16_t>(t.width, 1),
+           0,
+           0,
+           0,
+           nullptr,
+           {compile(e.children[0], scope)},
+           {}};
     return pool_.add(std::move(n));
   }
   if (op == "+" && t.kind == ValueKind::Text) {
@@ -393,7 +425,8 @@ std::uint32_t Program::compileExpr(const ir::Expr& e, Scope& scope) {
       n.kids.push_back(compile(c, scope));
       width += pool_.width(n.kids.back());
       if (width > kMaxValueWidth) {
-        throw RuntimeError(at, fmt::format("a tuple of more than {} doubles is wider than the runtime's limit", kMaxValueWidth));
+        throw RuntimeError(
+            at, fmt::format("a tuple of more than {} doubles is wider than the runtime's limit", kMaxValueWidth));
       }
     }
     n.width = static_cast<std::uint16_t>(width);
@@ -461,22 +494,27 @@ void Program::compileSamplers() {
           plan.kind = UniformPlan::Kind::Choice;
           ir::Expr set;
           set.op = t.kind == ValueKind::Enum ? "enumset" : "itemset";
-          set.text = t.kind == ValueKind::Enum ? t.typeName : (findItemSetOfType(t.typeName) ? findItemSetOfType(t.typeName)->name : t.typeName);
+          set.text = t.kind == ValueKind::Enum
+                         ? t.typeName
+                         : (findItemSetOfType(t.typeName) ? findItemSetOfType(t.typeName)->name : t.typeName);
           ValueType elem;
           plan.choices = setMembers(set, elem, scope);
         } else if (t.kind == ValueKind::Real || t.kind == ValueKind::Int || t.kind == ValueKind::Vec ||
                    t.kind == ValueKind::SE2 || t.kind == ValueKind::SE3 || t.kind == ValueKind::Conf) {
           plan.kind = t.kind == ValueKind::Int ? UniformPlan::Kind::Int : UniformPlan::Kind::Real;
           if (var.domain.bounds.size() != t.width) {
-            throw RuntimeError(where(s.span), fmt::format("'uniform' needs bounds on every component of '{}'", var.name));
+            throw RuntimeError(where(s.span),
+                               fmt::format("'uniform' needs bounds on every component of '{}'", var.name));
           }
           for (const auto& b : var.domain.bounds) {
-            if (!b.lo || !b.hi) throw RuntimeError(where(s.span), fmt::format("'uniform' needs '{}' to be bounded", var.name));
+            if (!b.lo || !b.hi)
+              throw RuntimeError(where(s.span), fmt::format("'uniform' needs '{}' to be bounded", var.name));
             plan.lo.push_back(compile(*b.lo, scope));
             plan.hi.push_back(compile(*b.hi, scope));
           }
         } else {
-          throw RuntimeError(where(s.span), fmt::format("'uniform' cannot draw '{}' of type {}", var.name, var.type.spelling));
+          throw RuntimeError(where(s.span),
+                             fmt::format("'uniform' cannot draw '{}' of type {}", var.name, var.type.spelling));
         }
         if (plan.kind == UniformPlan::Kind::Choice && plan.choices.empty()) {
           throw RuntimeError(where(s.span), fmt::format("'{}' has an empty domain", var.name));
@@ -485,7 +523,9 @@ void Program::compileSamplers() {
       }
     } else {
       cs.impl = builtins_.sampler(s.sampler);
-      if (cs.impl == nullptr) throw RuntimeError(where(s.span), fmt::format("built-in sampler '{}' has no implementation in this runtime", s.sampler));
+      if (cs.impl == nullptr)
+        throw RuntimeError(where(s.span),
+                           fmt::format("built-in sampler '{}' has no implementation in this runtime", s.sampler));
       for (const auto& a : s.args) {
         cs.args.push_back(compile(a, scope));
         cs.argWidths.push_back(pool_.width(cs.args.back()));
@@ -517,7 +557,10 @@ void Program::compileGenerators() {
       cr.source = &r;
       bool found = false;
       for (std::size_t i = 0; i < graph_.feedback.size(); ++i) {
-        if (graph_.feedback[i].name == r.event) { cr.eventIndex = static_cast<std::uint32_t>(i); found = true; }
+        if (graph_.feedback[i].name == r.event) {
+          cr.eventIndex = static_cast<std::uint32_t>(i);
+          found = true;
+        }
       }
       if (!found) throw RuntimeError(where(r.span), fmt::format("unknown feedback event '{}'", r.event));
       const auto& ev = graph_.feedback[cr.eventIndex];
@@ -532,7 +575,8 @@ void Program::compileGenerators() {
         if (r.binders[i] != "_") scope.locals[r.binders[i]] = top;
         for (std::size_t p = 0; p < g.params.size(); ++p) {
           if (i < r.binds.size() && r.binds[i] == g.params[p].name) {
-            scope.params[p] = pool_.add(Node{Op::ReadFrame, std::max<std::uint16_t>(bt.width, 1), top, 0, 0, nullptr, {}, {}});
+            scope.params[p] =
+                pool_.add(Node{Op::ReadFrame, std::max<std::uint16_t>(bt.width, 1), top, 0, 0, nullptr, {}, {}});
           }
         }
         top += std::max<std::uint16_t>(bt.width, 1);
@@ -549,8 +593,10 @@ void Program::compileGenerators() {
           for (const auto& pn : f.params) {
             for (std::size_t p = 0; p < g.params.size(); ++p) {
               if (g.params[p].name == pn && scope.params[p] == UINT32_MAX) {
-                throw RuntimeError(where(r.span), fmt::format("learning rule '{}' does not bind parameter '{}', which factor '{}' reads",
-                                                              r.event, pn, f.label));
+                throw RuntimeError(
+                    where(r.span),
+                    fmt::format("learning rule '{}' does not bind parameter '{}', which factor '{}' reads", r.event, pn,
+                                f.label));
               }
             }
           }

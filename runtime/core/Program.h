@@ -36,12 +36,12 @@ struct UniformPlan {
 struct CompiledSampler {
   const ir::Sampler* source = nullptr;
   std::vector<ir::VarId> writes;
-  SamplerImpl impl = nullptr;         // extern sampler; null for `uniform`
-  std::vector<std::uint32_t> args;    // argument nodes
+  SamplerImpl impl = nullptr;       // extern sampler; null for `uniform`
+  std::vector<std::uint32_t> args;  // argument nodes
   std::vector<std::uint16_t> argWidths;
-  std::vector<UniformPlan> uniform;   // per written variable, for `uniform`
-  std::size_t outWidth = 0;           // doubles it writes: the widths of `writes`, added up
-  std::size_t argsWidth = 0;          // doubles its arguments take
+  std::vector<UniformPlan> uniform;  // per written variable, for `uniform`
+  std::size_t outWidth = 0;          // doubles it writes: the widths of `writes`, added up
+  std::size_t argsWidth = 0;         // doubles its arguments take
 };
 
 // A variable's declared domain compiled for the independent re-check of solutions (solver/Recheck.h): per
@@ -65,11 +65,11 @@ struct CompiledFactor {
 // and the generator parameters they bind read from there.
 struct CompiledLearnRule {
   const ir::LearnRule* source = nullptr;
-  std::uint32_t eventIndex = 0;                        // into graph.feedback
-  std::vector<std::uint32_t> binderFrame;              // frame offset of each event argument
+  std::uint32_t eventIndex = 0;            // into graph.feedback
+  std::vector<std::uint32_t> binderFrame;  // frame offset of each event argument
   std::vector<ValueType> binderTypes;
-  std::vector<std::pair<int, std::uint32_t>> labels;   // (factor index, label node)
-  std::vector<std::uint32_t> features;                 // per label: the factor's feature node, or UINT32_MAX
+  std::vector<std::pair<int, std::uint32_t>> labels;  // (factor index, label node)
+  std::vector<std::uint32_t> features;                // per label: the factor's feature node, or UINT32_MAX
   std::optional<std::uint32_t> condition;
   std::uint32_t frameWidth = 0;
 };

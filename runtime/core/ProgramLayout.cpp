@@ -11,19 +11,32 @@ namespace cbtl::rt {
 
 const char* toString(ValueKind k) {
   switch (k) {
-    case ValueKind::Real: return "real";
-    case ValueKind::Int: return "int";
-    case ValueKind::Bool: return "bool";
-    case ValueKind::Enum: return "enum";
-    case ValueKind::Item: return "item";
-    case ValueKind::Text: return "text";
-    case ValueKind::Vec: return "vec";
-    case ValueKind::SE2: return "SE2";
-    case ValueKind::SE3: return "SE3";
-    case ValueKind::Conf: return "Conf";
-    case ValueKind::Set: return "set";
-    case ValueKind::Range: return "range";
-    case ValueKind::Void: return "void";
+    case ValueKind::Real:
+      return "real";
+    case ValueKind::Int:
+      return "int";
+    case ValueKind::Bool:
+      return "bool";
+    case ValueKind::Enum:
+      return "enum";
+    case ValueKind::Item:
+      return "item";
+    case ValueKind::Text:
+      return "text";
+    case ValueKind::Vec:
+      return "vec";
+    case ValueKind::SE2:
+      return "SE2";
+    case ValueKind::SE3:
+      return "SE3";
+    case ValueKind::Conf:
+      return "Conf";
+    case ValueKind::Set:
+      return "set";
+    case ValueKind::Range:
+      return "range";
+    case ValueKind::Void:
+      return "void";
   }
   return "?";
 }
@@ -84,28 +97,48 @@ const ir::Task* Program::findTask(const std::string& name) const {
 ValueType Program::typeOf(const ir::TypeDesc& t) const {
   ValueType v;
   const std::string& k = t.kind;
-  if (k == "real") v.kind = ValueKind::Real;
-  else if (k == "int") v.kind = ValueKind::Int;
-  else if (k == "bool") v.kind = ValueKind::Bool;
-  else if (k == "text") v.kind = ValueKind::Text;
-  else if (k == "enum") { v.kind = ValueKind::Enum; v.typeName = t.spelling; }
-  else if (k == "item") { v.kind = ValueKind::Item; v.typeName = t.spelling; }
-  else if (k == "vec") {
+  if (k == "real")
+    v.kind = ValueKind::Real;
+  else if (k == "int")
+    v.kind = ValueKind::Int;
+  else if (k == "bool")
+    v.kind = ValueKind::Bool;
+  else if (k == "text")
+    v.kind = ValueKind::Text;
+  else if (k == "enum") {
+    v.kind = ValueKind::Enum;
+    v.typeName = t.spelling;
+  } else if (k == "item") {
+    v.kind = ValueKind::Item;
+    v.typeName = t.spelling;
+  } else if (k == "vec") {
     v.kind = ValueKind::Vec;
     const int n = angleParam(t.spelling);
     v.width = static_cast<std::uint16_t>(n > 0 ? n : 1);
-  } else if (k == "SE2") { v.kind = ValueKind::SE2; v.width = 3; }
-  else if (k == "SE3") { v.kind = ValueKind::SE3; v.width = 7; }
-  else if (k == "Conf") {
+  } else if (k == "SE2") {
+    v.kind = ValueKind::SE2;
+    v.width = 3;
+  } else if (k == "SE3") {
+    v.kind = ValueKind::SE3;
+    v.width = 7;
+  } else if (k == "Conf") {
     v.kind = ValueKind::Conf;
     v.typeName = innerName(t.spelling);
     v.width = 7;
     for (const auto& r : graph_.robots) {
       if (r.name == v.typeName) v.width = static_cast<std::uint16_t>(r.dof);
     }
-  } else if (k == "set") { v.kind = ValueKind::Set; v.width = 0; v.typeName = innerName(t.spelling); }
-  else if (k == "range") { v.kind = ValueKind::Range; v.width = 0; }
-  else { v.kind = ValueKind::Void; v.width = 0; }
+  } else if (k == "set") {
+    v.kind = ValueKind::Set;
+    v.width = 0;
+    v.typeName = innerName(t.spelling);
+  } else if (k == "range") {
+    v.kind = ValueKind::Range;
+    v.width = 0;
+  } else {
+    v.kind = ValueKind::Void;
+    v.width = 0;
+  }
   return v;
 }
 
@@ -122,7 +155,8 @@ double Program::memberIndex(const std::string& typeName, const std::string& memb
       if (s->entries[i].name == member) return static_cast<double>(i);
     }
   }
-  throw RuntimeError(currentSpan_ ? where(*currentSpan_) : "", fmt::format("'{}' is not a member of '{}'", member, typeName));
+  throw RuntimeError(currentSpan_ ? where(*currentSpan_) : "",
+                     fmt::format("'{}' is not a member of '{}'", member, typeName));
 }
 
 bool Program::parseName(const ValueType& t, const std::string& name, double& out) const {
@@ -140,9 +174,12 @@ bool Program::parseName(const ValueType& t, const std::string& name, double& out
 
 std::string Program::render(const ValueType& t, const double* v) const {
   switch (t.kind) {
-    case ValueKind::Bool: return v[0] != 0 ? "true" : "false";
-    case ValueKind::Int: return fmt::format("{}", static_cast<long long>(std::llround(v[0])));
-    case ValueKind::Real: return fmt::format("{:.6g}", v[0]);
+    case ValueKind::Bool:
+      return v[0] != 0 ? "true" : "false";
+    case ValueKind::Int:
+      return fmt::format("{}", static_cast<long long>(std::llround(v[0])));
+    case ValueKind::Real:
+      return fmt::format("{:.6g}", v[0]);
     case ValueKind::Text: {
       const auto id = static_cast<std::uint32_t>(v[0]);
       return id < strings_.size() ? strings_.name(id) : "?";
@@ -214,7 +251,8 @@ std::vector<double> Program::initialAssignment(const std::vector<double>& observ
       if (d.hi[c] != UINT32_MAX) at[c] = std::min(at[c], pool_.evalScalar(d.hi[c], ctx));
       if (slots_[v.id].type.kind == ValueKind::Int) at[c] = std::ceil(at[c]);
     }
-    if (d.members && !d.members->empty() && std::find(d.members->begin(), d.members->end(), at[0]) == d.members->end()) {
+    if (d.members && !d.members->empty() &&
+        std::find(d.members->begin(), d.members->end(), at[0]) == d.members->end()) {
       at[0] = d.members->front();
     }
   }
@@ -244,7 +282,9 @@ void Program::layoutObservations() {
     if (t.kind == ValueKind::Set) {
       const std::size_t n = setElementCount(t);
       if (n == 0 || o.indexSet) {
-        throw RuntimeError(where(o.span), fmt::format("observation '{}': only a set of enum members or items can be observed", o.name));
+        throw RuntimeError(
+            where(o.span),
+            fmt::format("observation '{}': only a set of enum members or items can be observed", o.name));
       }
       t.width = static_cast<std::uint16_t>(n);
     }
@@ -260,7 +300,8 @@ void Program::layoutObservations() {
     if (items != nullptr) {
       for (const auto& en : items->entries) members.push_back(en.name);
     }
-    if (members.empty()) throw RuntimeError(where(o.span), fmt::format("observation family '{}' needs an enum or item index set", o.name));
+    if (members.empty())
+      throw RuntimeError(where(o.span), fmt::format("observation family '{}' needs an enum or item index set", o.name));
     for (const auto& m : members) {
       obsSlots_[o.name + "[" + m + "]"] = VarSlot{static_cast<std::uint32_t>(obsWidth_), t};
       obsWidth_ += t.width;

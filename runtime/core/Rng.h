@@ -31,7 +31,9 @@ class Rng {
     // Rejection keeps the draw exactly uniform.
     const std::uint64_t limit = UINT64_MAX - UINT64_MAX % span;
     std::uint64_t r;
-    do { r = engine_(); } while (r >= limit);
+    do {
+      r = engine_();
+    } while (r >= limit);
     return static_cast<std::int64_t>(static_cast<std::uint64_t>(lo) + r % span);
   }
   // Index in [0, n); precondition n > 0.

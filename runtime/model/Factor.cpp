@@ -35,12 +35,15 @@ double Factor::probability(const textpref::Item& subject, std::span<const textpr
 }
 
 void Factor::observe(double feature, bool holds) {
-  if (auto* i = std::get_if<IntervalModel>(&model_)) i->observe(feature, holds);
-  else if (auto* t = std::get_if<ThresholdModel>(&model_)) t->observe(feature, holds);
+  if (auto* i = std::get_if<IntervalModel>(&model_))
+    i->observe(feature, holds);
+  else if (auto* t = std::get_if<ThresholdModel>(&model_))
+    t->observe(feature, holds);
 }
 
 void Factor::observeAll(std::span<const std::pair<double, bool>> points) {
-  if (auto* i = std::get_if<IntervalModel>(&model_)) i->observeAll(points);
+  if (auto* i = std::get_if<IntervalModel>(&model_))
+    i->observeAll(points);
   else if (auto* t = std::get_if<ThresholdModel>(&model_)) {
     for (const auto& [x, holds] : points) t->observe(x, holds);  // already constant time per point
   }

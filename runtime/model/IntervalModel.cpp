@@ -42,20 +42,28 @@ void IntervalModel::refit() {
   x4_ = hi_;
   for (const auto& [x, y] : data_) {
     if (y) continue;
-    if (x < x2_) x1_ = std::max(x1_, x);
-    else if (x > x3_) x4_ = std::min(x4_, x);
+    if (x < x2_)
+      x1_ = std::max(x1_, x);
+    else if (x > x3_)
+      x4_ = std::min(x4_, x);
   }
 }
 
 double IntervalModel::probability(double x) const {
   double pa;  // P(a <= x), a ~ U[x1, x2]
-  if (x >= x2_) pa = 1;
-  else if (x < x1_) pa = 0;
-  else pa = (x - x1_) / (x2_ - x1_);
+  if (x >= x2_)
+    pa = 1;
+  else if (x < x1_)
+    pa = 0;
+  else
+    pa = (x - x1_) / (x2_ - x1_);
   double pb;  // P(b >= x), b ~ U[x3, x4]
-  if (x <= x3_) pb = 1;
-  else if (x > x4_) pb = 0;
-  else pb = (x4_ - x) / (x4_ - x3_);
+  if (x <= x3_)
+    pb = 1;
+  else if (x > x4_)
+    pb = 0;
+  else
+    pb = (x4_ - x) / (x4_ - x3_);
   return std::clamp(pa * pb, 0.0, 1.0);
 }
 

@@ -13,7 +13,8 @@ std::shared_ptr<const textpref::TextBackend> defaultTextBackend() {
   return backend;
 }
 
-TextFactor::TextFactor(const ir::ModelFactor& spec, double fallback, std::shared_ptr<const textpref::TextBackend> backend)
+TextFactor::TextFactor(const ir::ModelFactor& spec, double fallback,
+                       std::shared_ptr<const textpref::TextBackend> backend)
     : backend_(backend ? std::move(backend) : defaultTextBackend()),
       prompts_(textpref::generatorPrompts(spec.prompt, spec.learning)),
       rating_(spec.rating == "options" ? textpref::RatingScale::NumberedOptions : textpref::RatingScale::Digits),

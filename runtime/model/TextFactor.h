@@ -97,7 +97,7 @@ class TextFactor {
 
   // Caches, valid until the model learns (see the contracts above).
   mutable std::unordered_map<std::string, double> cache_;  // subject name -> absolute probability
-  mutable const textpref::Item* bestOf_ = nullptr;          // the domain `best_` was computed over
+  mutable const textpref::Item* bestOf_ = nullptr;         // the domain `best_` was computed over
   mutable std::size_t bestSize_ = 0;
   mutable double best_ = 0.0;
   mutable std::size_t fallbacks_ = 0;

@@ -16,7 +16,8 @@ namespace cbtl::model {
 
 using nlohmann::json;
 
-GeneratorState::GeneratorState(const ir::Generator& spec, const std::shared_ptr<const textpref::TextBackend>& textBackend)
+GeneratorState::GeneratorState(const ir::Generator& spec,
+                               const std::shared_ptr<const textpref::TextBackend>& textBackend)
     : spec_(&spec) {
   for (const auto& f : spec.factors) prior_.push_back(Factor::fromSpec(f, spec.fallback, textBackend));
 }
@@ -51,10 +52,14 @@ std::size_t UserModel::dataCount() const {
   for (const auto& g : generators_) {
     for (const auto& [key, factors] : g.keys()) {
       for (const auto& f : factors) {
-        if (const auto* i = std::get_if<IntervalModel>(&f.model())) n += i->data().size();
-        else if (const auto* t = std::get_if<ThresholdModel>(&f.model())) n += t->data().size();
-        else if (const auto* tb = std::get_if<TableModel>(&f.model())) n += tb->entries().size();
-        else if (const auto* tx = std::get_if<TextFactor>(&f.model())) n += tx->historySize();
+        if (const auto* i = std::get_if<IntervalModel>(&f.model()))
+          n += i->data().size();
+        else if (const auto* t = std::get_if<ThresholdModel>(&f.model()))
+          n += t->data().size();
+        else if (const auto* tb = std::get_if<TableModel>(&f.model()))
+          n += tb->entries().size();
+        else if (const auto* tx = std::get_if<TextFactor>(&f.model()))
+          n += tx->historySize();
       }
     }
   }
@@ -70,10 +75,16 @@ std::string UserModel::toJson() const {
       for (const auto& f : factors) {
         json j;
         if (const auto* i = std::get_if<IntervalModel>(&f.model())) {
-          j = {{"kind", "interval"}, {"lo", i->lo()}, {"hi", i->hi()}, {"data", i->data()},
+          j = {{"kind", "interval"},
+               {"lo", i->lo()},
+               {"hi", i->hi()},
+               {"data", i->data()},
                {"trapezoid", {i->x1(), i->x2(), i->x3(), i->x4()}}};
         } else if (const auto* t = std::get_if<ThresholdModel>(&f.model())) {
-          j = {{"kind", "threshold"}, {"lo", t->lo()}, {"hi", t->hi()}, {"data", t->data()},
+          j = {{"kind", "threshold"},
+               {"lo", t->lo()},
+               {"hi", t->hi()},
+               {"data", t->data()},
                {"direction", t->direction() == ThresholdModel::Direction::Above ? "above" : "below"}};
         } else if (const auto* tb = std::get_if<TableModel>(&f.model())) {
           j = {{"kind", "table"}, {"entries", tb->entries()}};
@@ -97,22 +108,26 @@ namespace {
 }
 
 // Loads the saved data of one factor whose kind the program declares as `spec.kind`.
-void loadFactor(Factor& f, const ir::ModelFactor& spec, const json& j, const std::string& source, const std::string& fpath) {
+void loadFactor(Factor& f, const ir::ModelFactor& spec, const json& j, const std::string& source,
+                const std::string& fpath) {
   auto fail = [&](const std::string& path, const std::string& what) { failAt(source, path, what); };
   if (!j.is_object()) fail(fpath, "expected an object");
   if (!j.contains("kind") || !j["kind"].is_string() || j["kind"].get<std::string>() != spec.kind) {
     const std::string saved = j.contains("kind") ? j["kind"].dump() : std::string("nothing");
-    fail(fpath + ".kind", fmt::format("expected \"{}\" (the program declares a {} model), the profile has {}", spec.kind,
-                                      spec.kind, saved));
+    fail(fpath + ".kind", fmt::format("expected \"{}\" (the program declares a {} model), the profile has {}",
+                                      spec.kind, spec.kind, saved));
   }
   if (auto* textFactor = std::get_if<TextFactor>(&f.model())) {
     if (!j.contains("backend") || !j["backend"].is_string()) fail(fpath + ".backend", "expected the text backend's id");
     const std::string backend = j["backend"].get<std::string>();
     if (backend != textFactor->backendId()) {
-      fail(fpath + ".backend", fmt::format("saved by the '{}' text backend, this run uses '{}'", backend, textFactor->backendId()));
+      fail(fpath + ".backend",
+           fmt::format("saved by the '{}' text backend, this run uses '{}'", backend, textFactor->backendId()));
     }
-    if (!j.contains("state") || !j["state"].is_object()) fail(fpath + ".state", "expected the text model's state object");
-    if (const textpref::Status st = textFactor->loadState(j["state"]); !st.ok()) fail(fpath + ".state", st.error().message);
+    if (!j.contains("state") || !j["state"].is_object())
+      fail(fpath + ".state", "expected the text model's state object");
+    if (const textpref::Status st = textFactor->loadState(j["state"]); !st.ok())
+      fail(fpath + ".state", st.error().message);
     return;
   }
   if (f.isTable()) {
@@ -148,8 +163,8 @@ const ir::Enum* findEnum(const ir::ConstraintGraph& graph, const std::string& na
 // A model key is the generator's `per` parts joined by '|' (Personalization.cpp, Learner.cpp): as many parts as
 // `per` names (more only when a free-text part may itself hold '|'), a bool part true|false, an int part an
 // integer, an enum part one of the enum's members.
-void checkKey(const ir::ConstraintGraph& graph, const ir::Generator& g, const std::string& key, const std::string& source,
-              const std::string& kpath) {
+void checkKey(const ir::ConstraintGraph& graph, const ir::Generator& g, const std::string& key,
+              const std::string& source, const std::string& kpath) {
   std::vector<std::string> parts;
   if (!g.perKeys.empty()) {
     std::size_t from = 0;
@@ -172,8 +187,9 @@ void checkKey(const ir::ConstraintGraph& graph, const ir::Generator& g, const st
     types.push_back(type);
   }
   if (parts.size() < g.perKeys.size() || (parts.size() > g.perKeys.size() && !freeText)) {
-    failAt(source, kpath, fmt::format("expected {} '|'-separated part{} (per {}), found {}", g.perKeys.size(),
-                                      g.perKeys.size() == 1 ? "" : "s", fmt::join(g.perKeys, ", "), parts.size()));
+    failAt(source, kpath,
+           fmt::format("expected {} '|'-separated part{} (per {}), found {}", g.perKeys.size(),
+                       g.perKeys.size() == 1 ? "" : "s", fmt::join(g.perKeys, ", "), parts.size()));
   }
   if (parts.size() != g.perKeys.size()) return;  // a free-text part holds a '|': the parts cannot be told apart
   for (std::size_t i = 0; i < parts.size(); ++i) {
@@ -182,7 +198,8 @@ void checkKey(const ir::ConstraintGraph& graph, const ir::Generator& g, const st
     const std::string& part = parts[i];
     std::string problem;
     if (kind == "bool" && part != "true" && part != "false") problem = "true or false";
-    if (kind == "int" && (part.empty() || part.find_first_not_of("-0123456789") != std::string::npos)) problem = "an integer";
+    if (kind == "int" && (part.empty() || part.find_first_not_of("-0123456789") != std::string::npos))
+      problem = "an integer";
     if (kind == "enum") {
       const ir::Enum* e = findEnum(graph, types[i]->spelling);
       if (e != nullptr && std::find(e->members.begin(), e->members.end(), part) == e->members.end())

@@ -76,7 +76,8 @@ class UserModel {
 
  private:
   std::string domain_;
-  const ir::ConstraintGraph* graph_;  // the program the profile must fit (outlives the model, like the generators' specs)
+  const ir::ConstraintGraph*
+      graph_;  // the program the profile must fit (outlives the model, like the generators' specs)
   std::vector<GeneratorState> generators_;
 };
 

@@ -44,13 +44,13 @@ struct Value {
 };
 
 struct ActionCall {
-  std::string name;           // the extern action's name in the .cbtl file
-  std::vector<Value> args;    // in declaration order
+  std::string name;         // the extern action's name in the .cbtl file
+  std::vector<Value> args;  // in declaration order
 };
 
 struct FeedbackEvent {
-  std::string name;           // a declared `feedback` event
-  std::vector<Value> args;    // in declaration order
+  std::string name;         // a declared `feedback` event
+  std::vector<Value> args;  // in declaration order
 };
 
 enum class ActionStatus {
@@ -61,14 +61,14 @@ enum class ActionStatus {
 
 struct StepResult {
   ActionStatus status = ActionStatus::Applied;
-  bool consumedStep = false;              // did the world's clock advance by one step?
-  bool taskDone = false;                  // the episode's task ended (e.g. the meal was served)
-  bool taskFailed = false;                // with taskDone: it ended because the world could not carry out the plan
-  bool hasSatisfaction = false;           // the user scored the outcome on this step
-  double satisfaction = 0;                // +1 / -1 when hasSatisfaction
-  bool preferencesChanged = false;        // the user announced that their preferences changed
-  std::vector<FeedbackEvent> feedback;    // what the user said on this step
-  std::string message;                    // human-readable detail (why an action was ignored, ...)
+  bool consumedStep = false;            // did the world's clock advance by one step?
+  bool taskDone = false;                // the episode's task ended (e.g. the meal was served)
+  bool taskFailed = false;              // with taskDone: it ended because the world could not carry out the plan
+  bool hasSatisfaction = false;         // the user scored the outcome on this step
+  double satisfaction = 0;              // +1 / -1 when hasSatisfaction
+  bool preferencesChanged = false;      // the user announced that their preferences changed
+  std::vector<FeedbackEvent> feedback;  // what the user said on this step
+  std::string message;                  // human-readable detail (why an action was ignored, ...)
 };
 
 // Observations by the name declared with `observe`; families by "name[member]" (e.g. "stock[salt]").

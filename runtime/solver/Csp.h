@@ -36,9 +36,9 @@ struct Csp {
   std::vector<double> observation;
   std::vector<double> initial;
 
-  std::vector<ConstraintRef> constraints;       // checked in this order (personalized first)
-  std::vector<std::uint32_t> entropyTerms;      // instance indices entering the entropy cost
-  std::vector<std::uint32_t> samplers;          // program sampler indices
+  std::vector<ConstraintRef> constraints;   // checked in this order (personalized first)
+  std::vector<std::uint32_t> entropyTerms;  // instance indices entering the entropy cost
+  std::vector<std::uint32_t> samplers;      // program sampler indices
   CostKind cost = CostKind::None;
 };
 

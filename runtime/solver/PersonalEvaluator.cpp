@@ -33,7 +33,8 @@ double PersonalEvaluator::textProbability(const rt::PersonalInstance& inst, std:
   } else if (inst.featureTypes[factor].kind == rt::ValueKind::Text) {
     if (!(value == subject.last)) {
       const bool interned = value >= 0 && value < static_cast<double>(program_.strings().size());
-      subject.owned = textpref::Item{interned ? program_.strings().name(static_cast<std::uint32_t>(value)) : std::string(), {}};
+      subject.owned =
+          textpref::Item{interned ? program_.strings().name(static_cast<std::uint32_t>(value)) : std::string(), {}};
       subject.last = value;
     }
     item = &subject.owned;

@@ -43,7 +43,7 @@ class PersonalEvaluator {
  private:
   // Where a text factor's subject items come from, per instance and factor.
   struct TextSubject {
-    const std::vector<textpref::Item>* domain = nullptr;  // item / enum subjects: the item of every value
+    const std::vector<textpref::Item>* domain = nullptr;     // item / enum subjects: the item of every value
     double last = std::numeric_limits<double>::quiet_NaN();  // text subjects: the text id `owned` holds
     textpref::Item owned;
   };

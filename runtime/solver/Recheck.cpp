@@ -22,18 +22,24 @@ std::string typeViolation(const rt::Program& program, const rt::ValueType& t, co
       return v[0] == 0 || v[0] == 1 ? "" : fmt::format("{} is not a boolean", v[0]);
     case rt::ValueKind::Int:
       return isInteger(v[0]) ? "" : fmt::format("{} is not an integer", v[0]);
-    case rt::ValueKind::Enum: case rt::ValueKind::Item: {
+    case rt::ValueKind::Enum:
+    case rt::ValueKind::Item: {
       const std::size_t count = program.setElementCount(rt::ValueType{rt::ValueKind::Set, 0, t.typeName});
-      return isInteger(v[0]) && v[0] >= 0 && v[0] < static_cast<double>(count) ? "" : fmt::format("{} is not a member index of {}", v[0], t.typeName);
+      return isInteger(v[0]) && v[0] >= 0 && v[0] < static_cast<double>(count)
+                 ? ""
+                 : fmt::format("{} is not a member index of {}", v[0], t.typeName);
     }
     case rt::ValueKind::Text:
-      return isInteger(v[0]) && v[0] >= 0 && v[0] < static_cast<double>(program.strings().size()) ? "" : "not an interned text";
+      return isInteger(v[0]) && v[0] >= 0 && v[0] < static_cast<double>(program.strings().size())
+                 ? ""
+                 : "not an interned text";
     default:
       return "";
   }
 }
 
-std::string domainViolation(const rt::Program& program, const rt::DomainCheck& d, const double* v, const rt::EvalContext& ctx) {
+std::string domainViolation(const rt::Program& program, const rt::DomainCheck& d, const double* v,
+                            const rt::EvalContext& ctx) {
   const auto& pool = program.pool();
   for (std::size_t c = 0; c < d.lo.size(); ++c) {
     if (d.lo[c] != UINT32_MAX && !(v[c] >= pool.evalScalar(d.lo[c], ctx))) {
@@ -56,7 +62,8 @@ RecheckResult recheck(const Csp& csp, const std::vector<double>& assignment) {
   const rt::Program& program = *csp.program;
   const auto& graph = program.graph();
   if (assignment.size() != program.assignmentWidth()) {
-    r.violations.push_back(fmt::format("the assignment has {} values, the program {}", assignment.size(), program.assignmentWidth()));
+    r.violations.push_back(
+        fmt::format("the assignment has {} values, the program {}", assignment.size(), program.assignmentWidth()));
     return r;
   }
   std::vector<double> x = assignment, obs = csp.observation;
@@ -71,7 +78,8 @@ RecheckResult recheck(const Csp& csp, const std::vector<double>& assignment) {
     std::string why = typeViolation(program, slot.type, x.data() + slot.offset);
     if (why.empty()) why = domainViolation(program, program.domainCheck(v), x.data() + slot.offset, ctx);
     if (!why.empty()) {
-      r.violations.push_back(fmt::format("variable '{}' ({}): {}", graph.variables[v].name, rt::Program::where(graph.variables[v].span), why));
+      r.violations.push_back(fmt::format("variable '{}' ({}): {}", graph.variables[v].name,
+                                         rt::Program::where(graph.variables[v].span), why));
     }
   }
   for (std::uint32_t c : csp.task->constraints) {
@@ -81,7 +89,8 @@ RecheckResult recheck(const Csp& csp, const std::vector<double>& assignment) {
                                          rt::Program::where(graph.constraints[c].span)));
     }
   }
-  const bool personal = std::any_of(csp.constraints.begin(), csp.constraints.end(), [](const ConstraintRef& c) { return c.personal; });
+  const bool personal =
+      std::any_of(csp.constraints.begin(), csp.constraints.end(), [](const ConstraintRef& c) { return c.personal; });
   if (personal) {
     PersonalEvaluator fresh(program, *csp.instances, *csp.user);  // a new evaluator: nothing cached
     for (std::uint32_t i = 0; i < csp.instances->size(); ++i) {

@@ -11,10 +11,14 @@ namespace cbtl::solver {
 
 const char* toString(SolveOutcome o) {
   switch (o) {
-    case SolveOutcome::Solved: return "Solved";
-    case SolveOutcome::InfeasibleWithinBudget: return "InfeasibleWithinBudget";
-    case SolveOutcome::SamplersStuck: return "SamplersStuck";
-    case SolveOutcome::NoSamplers: return "NoSamplers";
+    case SolveOutcome::Solved:
+      return "Solved";
+    case SolveOutcome::InfeasibleWithinBudget:
+      return "InfeasibleWithinBudget";
+    case SolveOutcome::SamplersStuck:
+      return "SamplersStuck";
+    case SolveOutcome::NoSamplers:
+      return "NoSamplers";
   }
   return "?";
 }
@@ -197,8 +201,8 @@ SolveResult Solver::solve(const Csp& csp) {
         pool.eval(a, ctx, args + at);
         at += pool.width(a);
       }
-      if (!cs.impl(*program.callContext(), std::span<const double>(args, at), std::span<const std::uint16_t>(cs.argWidths), rng_,
-                   std::span<double>(scratch, cs.outWidth))) {
+      if (!cs.impl(*program.callContext(), std::span<const double>(args, at),
+                   std::span<const std::uint16_t>(cs.argWidths), rng_, std::span<double>(scratch, cs.outWidth))) {
         return false;
       }
       writeDrawn(cs.writes);
@@ -211,14 +215,19 @@ SolveResult Solver::solve(const Csp& csp) {
       const auto& slot = program.slot(cs.writes[k]);
       for (std::size_t c = 0; c < slot.type.width; ++c, ++at) {
         switch (plan.kind) {
-          case rt::UniformPlan::Kind::Bool: scratch[at] = rng_.coin() ? 1 : 0; break;
-          case rt::UniformPlan::Kind::Choice: scratch[at] = plan.choices[rng_.index(plan.choices.size())]; break;
+          case rt::UniformPlan::Kind::Bool:
+            scratch[at] = rng_.coin() ? 1 : 0;
+            break;
+          case rt::UniformPlan::Kind::Choice:
+            scratch[at] = plan.choices[rng_.index(plan.choices.size())];
+            break;
           case rt::UniformPlan::Kind::Int: {
             // Bounds are clamped to the integers a double holds exactly (and int64 can convert).
             const double lo = std::max(std::ceil(pool.evalScalar(plan.lo[c], ctx)), -kMaxExactInt);
             const double hi = std::min(std::floor(pool.evalScalar(plan.hi[c], ctx)), kMaxExactInt);
             if (!(lo <= hi)) return false;
-            scratch[at] = static_cast<double>(rng_.uniformInt(static_cast<std::int64_t>(lo), static_cast<std::int64_t>(hi)));
+            scratch[at] =
+                static_cast<double>(rng_.uniformInt(static_cast<std::int64_t>(lo), static_cast<std::int64_t>(hi)));
             break;
           }
           case rt::UniformPlan::Kind::Real: {
@@ -248,7 +257,8 @@ SolveResult Solver::solve(const Csp& csp) {
   std::vector<double> best;
   std::uint64_t attempts = 0;
   for (std::uint64_t iter = 0; iter < options_.maxIters; ++iter) {
-    if (found && (attempts >= options_.maxImprovementAttempts || result.improvements >= options_.numImprovements)) break;
+    if (found && (attempts >= options_.maxImprovementAttempts || result.improvements >= options_.numImprovements))
+      break;
     if (found) ++attempts;
     ++result.iterations;
     bool prune = false;

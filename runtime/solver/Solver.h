@@ -20,9 +20,9 @@
 // Budgets are iteration counts; the same seed gives the same result.
 #pragma once
 
+#include "runtime/core/Rng.h"
 #include "runtime/solver/Csp.h"
 #include "runtime/solver/PersonalEvaluator.h"
-#include "runtime/core/Rng.h"
 
 #include <nlohmann/json_fwd.hpp>
 

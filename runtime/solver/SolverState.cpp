@@ -35,9 +35,12 @@ std::vector<double> hexToDoubles(const std::string& text) {
     for (std::size_t k = 0; k < 16; ++k) {
       const char c = text[i * 16 + k];
       int d;
-      if (c >= '0' && c <= '9') d = c - '0';
-      else if (c >= 'a' && c <= 'f') d = c - 'a' + 10;
-      else throw std::runtime_error("solver state: a memory ring holds a character that is not a hex digit");
+      if (c >= '0' && c <= '9')
+        d = c - '0';
+      else if (c >= 'a' && c <= 'f')
+        d = c - 'a' + 10;
+      else
+        throw std::runtime_error("solver state: a memory ring holds a character that is not a hex digit");
       bits = (bits << 4) | static_cast<std::uint64_t>(d);
     }
     std::memcpy(&out[i], &bits, sizeof bits);
@@ -50,8 +53,13 @@ std::vector<double> hexToDoubles(const std::string& text) {
 nlohmann::json Solver::saveState() const {
   nlohmann::json memory = nlohmann::json::array();
   for (const auto& [identity, m] : memory_) {
-    memory.push_back({{"identity", std::to_string(identity)}, {"width", m.width}, {"capacity", m.capacity}, {"count", m.count},
-                      {"head", m.head}, {"last", m.last}, {"ring", doublesToHex(m.ring)}});
+    memory.push_back({{"identity", std::to_string(identity)},
+                      {"width", m.width},
+                      {"capacity", m.capacity},
+                      {"count", m.count},
+                      {"head", m.head},
+                      {"last", m.last},
+                      {"ring", doublesToHex(m.ring)}});
   }
   return {{"rng", rng_.saveState()}, {"memory_size", options_.memorySize}, {"memory", memory}};
 }
@@ -62,7 +70,8 @@ void Solver::restoreState(const nlohmann::json& state) {
       throw std::runtime_error("solver state: saved with another memory size");
     }
     rt::Rng rng;
-    if (!rng.restoreState(state.at("rng").get<std::string>())) throw std::runtime_error("solver state: the RNG state is malformed");
+    if (!rng.restoreState(state.at("rng").get<std::string>()))
+      throw std::runtime_error("solver state: the RNG state is malformed");
     std::map<std::uint64_t, Memory> memory;
     for (const auto& j : state.at("memory")) {
       Memory m;
@@ -72,7 +81,8 @@ void Solver::restoreState(const nlohmann::json& state) {
       m.head = j.at("head").get<std::size_t>();
       m.last = j.at("last").get<std::size_t>();
       m.ring = hexToDoubles(j.at("ring").get<std::string>());
-      if (m.ring.size() != m.width * m.capacity || m.count > m.capacity || (m.capacity > 0 && (m.head >= m.capacity || m.last >= m.capacity))) {
+      if (m.ring.size() != m.width * m.capacity || m.count > m.capacity ||
+          (m.capacity > 0 && (m.head >= m.capacity || m.last >= m.capacity))) {
         throw std::runtime_error("solver state: a memory ring does not fit its sizes");
       }
       memory[std::stoull(j.at("identity").get<std::string>())] = std::move(m);

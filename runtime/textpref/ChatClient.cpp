@@ -38,7 +38,8 @@ Result<ChatResponse> parseChatResponse(const nlohmann::json& body, const std::st
     return malformed("choices[0] has no message");
   ChatResponse out;
   const auto& message = choice["message"];
-  if (message.contains("content") && message["content"].is_string()) out.content = message["content"].get<std::string>();
+  if (message.contains("content") && message["content"].is_string())
+    out.content = message["content"].get<std::string>();
   if (body.contains("system_fingerprint") && body["system_fingerprint"].is_string())
     out.systemFingerprint = body["system_fingerprint"].get<std::string>();
   if (choice.contains("logprobs") && choice["logprobs"].is_object()) {
@@ -128,8 +129,10 @@ Result<ChatResponse> ChatClient::completeUnredacted(const ChatRequest& request) 
     if (breaker_ && breaker_->isOpen()) return breaker_->openError(server());
     auto response = send(body.value());
     if (breaker_) {
-      if (response) breaker_->recordAnswer();
-      else breaker_->recordFailure(response.error());
+      if (response)
+        breaker_->recordAnswer();
+      else
+        breaker_->recordFailure(response.error());
     }
     if (response && cache_ != nullptr && (request.topLogprobs == 0 || response.value().hasLogprobs)) {
       // Store the raw JSON so replays parse exactly what the server said.
@@ -183,8 +186,8 @@ Result<ChatResponse> ChatClient::send(const nlohmann::json& body) {
         return parsed;
       }
       case RetryDecision::Quota:
-        return Error{ErrorKind::QuotaExceeded,
-                     fmt::format("quota exhausted (not retried): {}", serverMessage(r.body)), server(), status, attempt};
+        return Error{ErrorKind::QuotaExceeded, fmt::format("quota exhausted (not retried): {}", serverMessage(r.body)),
+                     server(), status, attempt};
       case RetryDecision::Fail:
         return Error{ErrorKind::HttpStatus, serverMessage(r.body), server(), status, attempt};
       case RetryDecision::Retry:

@@ -35,12 +35,12 @@ namespace cbtl::textpref {
 struct ChatConfig {
   std::string baseUrl = "https://api.openai.com/v1";  // without the trailing /chat/completions
   std::string model = "gpt-4o-mini";
-  std::string apiKeyEnv = "OPENAI_API_KEY";            // name of the variable, never its value
+  std::string apiKeyEnv = "OPENAI_API_KEY";  // name of the variable, never its value
   std::string maxTokensField = "max_tokens";
   long connectTimeoutMs = 5000;
   long requestTimeoutMs = 60000;
   RetryPolicy retry;
-  std::uint64_t jitterSeed = 0;                        // seeds the backoff-jitter RNG
+  std::uint64_t jitterSeed = 0;  // seeds the backoff-jitter RNG
 };
 
 struct ChatMessage {
@@ -66,13 +66,13 @@ struct TokenLogprob {
 };
 
 struct ChatResponse {
-  std::string content;                    // choices[0].message.content ("" when null)
-  bool hasLogprobs = false;               // choices[0].logprobs.content[0].top_logprobs was present
+  std::string content;                      // choices[0].message.content ("" when null)
+  bool hasLogprobs = false;                 // choices[0].logprobs.content[0].top_logprobs was present
   std::vector<TokenLogprob> firstTokenTop;  // top_logprobs of the first generated token
   std::string systemFingerprint;
   bool fromCache = false;
-  int attempts = 0;                       // HTTP attempts made (0 for a cache hit)
-  nlohmann::json raw;                     // the whole response body as received (or as cached)
+  int attempts = 0;    // HTTP attempts made (0 for a cache hit)
+  nlohmann::json raw;  // the whole response body as received (or as cached)
 };
 
 // Parses a chat-completions response body. MalformedResponse when it lacks choices[0].message.

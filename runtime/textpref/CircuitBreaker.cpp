@@ -43,10 +43,10 @@ void CircuitBreaker::recordAnswer() {
 }
 
 Error CircuitBreaker::openError(const std::string& server) const {
-  return Error{ErrorKind::CircuitOpen,
-               fmt::format("circuit breaker open after {} consecutive transport failures; the server is not called",
-                           threshold_),
-               server};
+  return Error{
+      ErrorKind::CircuitOpen,
+      fmt::format("circuit breaker open after {} consecutive transport failures; the server is not called", threshold_),
+      server};
 }
 
 }  // namespace cbtl::textpref

@@ -51,16 +51,17 @@ nlohmann::json FaultReport::toJson() const {
 std::string FaultReport::summary() const {
   std::string out;
   if (const auto n = ratingFallbackTotal(); n > 0)
-    out += fmt::format("language model: {} rating{} fell back to the generator's fallback ({})\n", n,
-                       n == 1 ? "" : "s", byKind(ratingFallbacks));
+    out += fmt::format("language model: {} rating{} fell back to the generator's fallback ({})\n", n, n == 1 ? "" : "s",
+                       byKind(ratingFallbacks));
   if (const auto n = learningFailureTotal(); n > 0)
     out += fmt::format("language model: {} learning request{} failed, theta kept ({})\n", n, n == 1 ? "" : "s",
                        byKind(learningFailures));
   if (!firstError.empty()) out += fmt::format("language model: first error: {}\n", firstError);
   if (breakerOpen)
-    out += fmt::format("language model: circuit breaker open after {} consecutive transport failures: the server "
-                       "was not called again ({})\n",
-                       breakerThreshold, breakerReason);
+    out += fmt::format(
+        "language model: circuit breaker open after {} consecutive transport failures: the server "
+        "was not called again ({})\n",
+        breakerThreshold, breakerReason);
   return out;
 }
 

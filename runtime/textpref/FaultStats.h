@@ -20,13 +20,13 @@
 namespace cbtl::textpref {
 
 struct FaultReport {
-  std::string backend = "offline";            // "offline" or "openai"
+  std::string backend = "offline";                       // "offline" or "openai"
   std::map<std::string, std::int64_t> ratingFallbacks;   // error kind name -> failed rating queries
   std::map<std::string, std::int64_t> learningFailures;  // error kind name -> failed learning requests
-  std::string firstError;                    // describe() of the first failure, "" when none
-  int breakerThreshold = 0;                  // consecutive transport failures that open the breaker; 0 = off
+  std::string firstError;                                // describe() of the first failure, "" when none
+  int breakerThreshold = 0;  // consecutive transport failures that open the breaker; 0 = off
   bool breakerOpen = false;
-  std::string breakerReason;                 // the failure that opened it, "" while closed
+  std::string breakerReason;  // the failure that opened it, "" while closed
 
   std::int64_t ratingFallbackTotal() const;
   std::int64_t learningFailureTotal() const;

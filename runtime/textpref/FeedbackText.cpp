@@ -9,14 +9,14 @@ namespace cbtl::textpref {
 namespace {
 
 // Word stems; a word matches a stem when it starts with it ("enjoyed" matches "enjoy").
-constexpr std::array<std::string_view, 14> kPositive = {"enjoy", "love", "like", "great", "wonderful", "amazing",
-                                                        "perfect", "excellent", "good", "fantastic", "favourite",
-                                                        "favorite", "delight", "yes"};
-constexpr std::array<std::string_view, 12> kNegative = {"hate", "dislike", "boring", "bored", "awful", "terrible",
-                                                        "bad", "disappoint", "worst", "horrible", "meh", "dull"};
+constexpr std::array<std::string_view, 14> kPositive = {"enjoy",     "love",     "like",      "great", "wonderful",
+                                                        "amazing",   "perfect",  "excellent", "good",  "fantastic",
+                                                        "favourite", "favorite", "delight",   "yes"};
+constexpr std::array<std::string_view, 12> kNegative = {"hate", "dislike",    "boring", "bored",    "awful", "terrible",
+                                                        "bad",  "disappoint", "worst",  "horrible", "meh",   "dull"};
 constexpr std::array<std::string_view, 3> kPolite = {"thank", "thanks", "thx"};
-constexpr std::array<std::string_view, 8> kNegators = {"not", "no", "never", "don't", "didn't", "isn't", "wasn't",
-                                                       "nothing"};
+constexpr std::array<std::string_view, 8> kNegators = {"not",    "no",    "never",  "don't",
+                                                       "didn't", "isn't", "wasn't", "nothing"};
 
 template <std::size_t N>
 bool startsWithAny(const std::string& word, const std::array<std::string_view, N>& stems) {
@@ -60,9 +60,12 @@ std::optional<bool> classifyFeedbackText(std::string_view text) {
       continue;
     }
     int polarity = 0;
-    if (startsWithAny(w, kNegative)) polarity = -1;
-    else if (startsWithAny(w, kPositive)) polarity = +1;
-    else if (equalsAny(w, kPolite)) polite = true;
+    if (startsWithAny(w, kNegative))
+      polarity = -1;
+    else if (startsWithAny(w, kPositive))
+      polarity = +1;
+    else if (equalsAny(w, kPolite))
+      polite = true;
     if (polarity != 0) {
       if (negateWithin > 0) polarity = -polarity;
       negateWithin = 0;

@@ -15,11 +15,11 @@
 namespace cbtl::textpref {
 
 struct HttpRequest {
-  std::string url;                   // absolute http:// or https:// URL
-  std::string body;                  // sent as application/json
-  std::vector<std::string> headers;  // extra "Name: value" lines; may contain secrets, never logged
-  long connectTimeoutMs = 5000;      // time allowed to establish the connection
-  long totalTimeoutMs = 60000;       // time allowed for the whole request, connection included
+  std::string url;                          // absolute http:// or https:// URL
+  std::string body;                         // sent as application/json
+  std::vector<std::string> headers;         // extra "Name: value" lines; may contain secrets, never logged
+  long connectTimeoutMs = 5000;             // time allowed to establish the connection
+  long totalTimeoutMs = 60000;              // time allowed for the whole request, connection included
   std::size_t maxResponseBytes = 8u << 20;  // a larger body aborts the transfer with a Transport error
 };
 

@@ -35,8 +35,8 @@ struct Context {
 struct FeedbackRecord {
   Item item;
   Context context;
-  std::string text;            // what the user said, may be empty
-  std::optional<bool> liked;   // an explicit yes/no, when the feedback event carries one
+  std::string text;           // what the user said, may be empty
+  std::optional<bool> liked;  // an explicit yes/no, when the feedback event carries one
   bool operator==(const FeedbackRecord&) const = default;
 };
 

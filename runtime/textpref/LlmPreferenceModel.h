@@ -22,17 +22,17 @@
 namespace cbtl::textpref {
 
 struct LlmModelOptions {
-  PromptTemplates prompts;               // required: the constraint's two templates
+  PromptTemplates prompts;  // required: the constraint's two templates
   RatingScale scale = RatingScale::Digits;
-  bool renormalize = true;               // the paper's formula; false reproduces the reference code
-  double minCoverage = 0.5;              // below this the answer is UnusableRating
+  bool renormalize = true;   // the paper's formula; false reproduces the reference code
+  double minCoverage = 0.5;  // below this the answer is UnusableRating
   SplitPolicy split = SplitPolicy::Auto;
   double splitThreshold = 0.01;
   // Extra body fields of the split follow-up only (see ChatRequest::extraBody), for servers that continue a
   // pre-filled assistant turn only when asked to (vLLM).
   nlohmann::json followUpExtraBody;
-  int topLogprobs = 20;                  // 1..20
-  std::int64_t seed = 0;                 // sent with every request
+  int topLogprobs = 20;   // 1..20
+  std::int64_t seed = 0;  // sent with every request
   double learningTemperature = 1.0;
   int learningMaxTokens = 400;
   // When the server returns no log-probabilities but its one-token reply is a rating, put all mass on it

@@ -2,8 +2,8 @@
 
 #include "runtime/textpref/FeedbackText.h"
 
-#include <Eigen/Dense>
 #include <fmt/core.h>
+#include <Eigen/Dense>
 
 #include <algorithm>
 #include <cctype>

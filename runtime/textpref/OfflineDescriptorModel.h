@@ -25,15 +25,15 @@
 namespace cbtl::textpref {
 
 struct OfflineModelOptions {
-  double biasPriorVariance = 0.25;        // small: one liked item barely moves unrelated items
-  double identityPriorVariance = 2.0;     // direct feedback on an item counts most for that item
-  double descriptorPriorVariance = 2.0;   // shared descriptors carry evidence between items
+  double biasPriorVariance = 0.25;       // small: one liked item barely moves unrelated items
+  double identityPriorVariance = 2.0;    // direct feedback on an item counts most for that item
+  double descriptorPriorVariance = 2.0;  // shared descriptors carry evidence between items
   double contextPairPriorVariance = 1.0;
   bool contextPairs = true;
   std::vector<std::string> ignoredFields = {"title", "description", "summary"};
   int newtonIterations = 100;
   double newtonTolerance = 1e-10;
-  double minConcentration = 0.5;          // bounds on α+β of the moment-matched Beta
+  double minConcentration = 0.5;  // bounds on α+β of the moment-matched Beta
   double maxConcentration = 1e4;
 };
 

@@ -21,8 +21,8 @@
 namespace cbtl::textpref {
 
 struct PromptTemplates {
-  std::string constraint;              // ConstraintPrompt, without the answer-format instruction
-  std::string learning;                // LearningPrompt; the reply becomes the new theta
+  std::string constraint;                // ConstraintPrompt, without the answer-format instruction
+  std::string learning;                  // LearningPrompt; the reply becomes the new theta
   std::string initialTheta = "Unknown";  // theta before any feedback
 };
 

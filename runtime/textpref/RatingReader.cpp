@@ -8,9 +8,7 @@
 
 namespace cbtl::textpref {
 
-const char* ratingScaleName(RatingScale scale) {
-  return scale == RatingScale::Digits ? "digits" : "options";
-}
+const char* ratingScaleName(RatingScale scale) { return scale == RatingScale::Digits ? "digits" : "options"; }
 
 std::optional<RatingScale> parseRatingScale(std::string_view name) {
   if (name == "digits") return RatingScale::Digits;
@@ -20,9 +18,12 @@ std::optional<RatingScale> parseRatingScale(std::string_view name) {
 
 const char* splitPolicyName(SplitPolicy policy) {
   switch (policy) {
-    case SplitPolicy::Auto: return "auto";
-    case SplitPolicy::Always: return "always";
-    case SplitPolicy::Never: return "never";
+    case SplitPolicy::Auto:
+      return "auto";
+    case SplitPolicy::Always:
+      return "always";
+    case SplitPolicy::Never:
+      return "never";
   }
   return "auto";
 }
@@ -64,7 +65,8 @@ std::optional<int> tokenLabel(std::string_view token) {
 LabelMass readLabels(std::span<const TokenLogprob> top) {
   LabelMass out;
   for (const auto& entry : top)
-    if (auto label = tokenLabel(entry.token)) out.mass[static_cast<std::size_t>(*label)] += probabilityOf(entry.logprob);
+    if (auto label = tokenLabel(entry.token))
+      out.mass[static_cast<std::size_t>(*label)] += probabilityOf(entry.logprob);
   for (double& m : out.mass) m = std::min(m, 1.0);
   return out;
 }
@@ -72,8 +74,10 @@ LabelMass readLabels(std::span<const TokenLogprob> top) {
 bool needsSplitFollowUp(const LabelMass& labels, RatingScale scale, SplitPolicy policy, double splitThreshold) {
   if (labels[1] <= 0.0) return false;
   switch (policy) {
-    case SplitPolicy::Never: return false;
-    case SplitPolicy::Always: return true;
+    case SplitPolicy::Never:
+      return false;
+    case SplitPolicy::Always:
+      return true;
     case SplitPolicy::Auto: {
       const bool multiDigitSeen = labels[10] > 0.0 || (scale == RatingScale::NumberedOptions && labels[11] > 0.0);
       return !multiDigitSeen && labels[1] >= splitThreshold;

@@ -31,9 +31,9 @@ namespace cbtl::textpref {
 enum class RatingScale { Digits, NumberedOptions };
 enum class SplitPolicy { Auto, Always, Never };
 
-const char* ratingScaleName(RatingScale scale);                 // "digits", "options"
+const char* ratingScaleName(RatingScale scale);  // "digits", "options"
 std::optional<RatingScale> parseRatingScale(std::string_view name);
-const char* splitPolicyName(SplitPolicy policy);                // "auto", "always", "never"
+const char* splitPolicyName(SplitPolicy policy);  // "auto", "always", "never"
 std::optional<SplitPolicy> parseSplitPolicy(std::string_view name);
 
 // Probability mass per label 0..11 read from the first answer token.

@@ -44,8 +44,7 @@ std::string replaceAll(std::string_view text, std::string_view needle) {
 }  // namespace
 
 std::string redactSecrets(std::string_view text, std::string_view secret) {
-  const std::string withoutKey =
-      secret.size() >= kMinSecretLength ? replaceAll(text, secret) : std::string(text);
+  const std::string withoutKey = secret.size() >= kMinSecretLength ? replaceAll(text, secret) : std::string(text);
   const std::string_view s = withoutKey;
   std::string out;
   out.reserve(s.size());

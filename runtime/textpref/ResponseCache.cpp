@@ -15,10 +15,14 @@ constexpr const char* kFormat = "cbtl-textpref-cache-1";
 
 const char* cacheModeName(CacheMode mode) {
   switch (mode) {
-    case CacheMode::Off: return "off";
-    case CacheMode::ReadWrite: return "read-write";
-    case CacheMode::ReadOnly: return "read-only";
-    case CacheMode::Record: return "record";
+    case CacheMode::Off:
+      return "off";
+    case CacheMode::ReadWrite:
+      return "read-write";
+    case CacheMode::ReadOnly:
+      return "read-only";
+    case CacheMode::Record:
+      return "record";
   }
   return "off";
 }

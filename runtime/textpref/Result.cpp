@@ -8,18 +8,30 @@ namespace cbtl::textpref {
 
 const char* errorKindName(ErrorKind kind) {
   switch (kind) {
-    case ErrorKind::Configuration: return "configuration";
-    case ErrorKind::Transport: return "transport";
-    case ErrorKind::Timeout: return "timeout";
-    case ErrorKind::HttpStatus: return "http-status";
-    case ErrorKind::QuotaExceeded: return "quota-exceeded";
-    case ErrorKind::MalformedResponse: return "malformed-response";
-    case ErrorKind::NoLogprobs: return "no-logprobs";
-    case ErrorKind::UnusableRating: return "unusable-rating";
-    case ErrorKind::CacheMiss: return "cache-miss";
-    case ErrorKind::CircuitOpen: return "circuit-open";
-    case ErrorKind::InvalidState: return "invalid-state";
-    case ErrorKind::Io: return "io";
+    case ErrorKind::Configuration:
+      return "configuration";
+    case ErrorKind::Transport:
+      return "transport";
+    case ErrorKind::Timeout:
+      return "timeout";
+    case ErrorKind::HttpStatus:
+      return "http-status";
+    case ErrorKind::QuotaExceeded:
+      return "quota-exceeded";
+    case ErrorKind::MalformedResponse:
+      return "malformed-response";
+    case ErrorKind::NoLogprobs:
+      return "no-logprobs";
+    case ErrorKind::UnusableRating:
+      return "unusable-rating";
+    case ErrorKind::CacheMiss:
+      return "cache-miss";
+    case ErrorKind::CircuitOpen:
+      return "circuit-open";
+    case ErrorKind::InvalidState:
+      return "invalid-state";
+    case ErrorKind::Io:
+      return "io";
   }
   return "unknown";
 }

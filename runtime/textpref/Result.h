@@ -33,7 +33,10 @@ const char* errorKindName(ErrorKind kind);
 struct Error {
   Error() = default;
   Error(ErrorKind kind_, std::string message_, std::string server_ = {}, int httpStatus_ = 0, int attempts_ = 0)
-      : kind(kind_), message(std::move(message_)), server(std::move(server_)), httpStatus(httpStatus_),
+      : kind(kind_),
+        message(std::move(message_)),
+        server(std::move(server_)),
+        httpStatus(httpStatus_),
         attempts(attempts_) {}
 
   ErrorKind kind = ErrorKind::Io;
@@ -53,8 +56,8 @@ struct Error {
 template <typename T>
 class Result {
  public:
-  Result(T value) : data_(std::move(value)) {}          // NOLINT(google-explicit-constructor)
-  Result(Error error) : data_(std::move(error)) {}      // NOLINT(google-explicit-constructor)
+  Result(T value) : data_(std::move(value)) {}      // NOLINT(google-explicit-constructor)
+  Result(Error error) : data_(std::move(error)) {}  // NOLINT(google-explicit-constructor)
 
   bool ok() const { return std::holds_alternative<T>(data_); }
   explicit operator bool() const { return ok(); }

@@ -54,8 +54,8 @@ std::optional<long> retryAfterMs(const HttpResponse& response, const RetryPolicy
 
 long backoffDelayMs(int retryIndex, const RetryPolicy& policy, std::mt19937_64& rng) {
   const int k = std::clamp(retryIndex, 0, 30);
-  const double raw = std::min(static_cast<double>(policy.baseDelayMs) * std::ldexp(1.0, k),
-                              static_cast<double>(policy.maxDelayMs));
+  const double raw =
+      std::min(static_cast<double>(policy.baseDelayMs) * std::ldexp(1.0, k), static_cast<double>(policy.maxDelayMs));
   std::uniform_real_distribution<double> jitter(std::clamp(policy.jitterMin, 0.0, 1.0), 1.0);
   return static_cast<long>(std::llround(raw * jitter(rng)));
 }

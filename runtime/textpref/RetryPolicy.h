@@ -22,11 +22,11 @@
 namespace cbtl::textpref {
 
 struct RetryPolicy {
-  int maxAttempts = 5;            // >= 1; 1 means no retries
+  int maxAttempts = 5;  // >= 1; 1 means no retries
   long baseDelayMs = 500;
   long maxDelayMs = 8000;
-  double jitterMin = 0.75;        // in [0, 1]
-  long maxRetryAfterMs = 60000;   // server-requested waits are clamped to this
+  double jitterMin = 0.75;       // in [0, 1]
+  long maxRetryAfterMs = 60000;  // server-requested waits are clamped to this
   bool retryTransportErrors = true;
 };
 

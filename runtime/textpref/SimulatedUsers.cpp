@@ -31,8 +31,11 @@ bool testHolds(const std::string& test, const Item& item, const Context& context
 }
 
 Item book(std::string title, std::string author, std::vector<std::string> genres, std::vector<std::string> topics) {
-  return Item{title, {{"title", {title}}, {"author", {std::move(author)}}, {"genre", std::move(genres)},
-                      {"topic", std::move(topics)}}};
+  return Item{title,
+              {{"title", {title}},
+               {"author", {std::move(author)}},
+               {"genre", std::move(genres)},
+               {"topic", std::move(topics)}}};
 }
 
 }  // namespace
@@ -69,7 +72,8 @@ Result<FeedbackRecord> SimulatedUser::react(const Item& item, const Context& con
 
 std::vector<Item> standardBooks() {
   return {
-      book("Cosmos", "Carl Sagan", {"nonfiction", "science", "astronomy"}, {"universe", "cosmos", "history of science"}),
+      book("Cosmos", "Carl Sagan", {"nonfiction", "science", "astronomy"},
+           {"universe", "cosmos", "history of science"}),
       book("Pride and Prejudice", "Jane Austen", {"fiction", "romance", "classic"},
            {"marriage", "social class", "england"}),
       book("The Hitchhiker's Guide to the Galaxy", "Douglas Adams", {"fiction", "science fiction", "comedy"},

@@ -21,10 +21,23 @@ std::optional<BackendKind> parseBackendKind(std::string_view name) {
 Result<TextBackendConfig> textBackendConfigFromJson(const nlohmann::json& j) {
   auto bad = [](const std::string& what) { return Error{ErrorKind::Configuration, what}; };
   if (!j.is_object()) return bad("the text-backend configuration must be a JSON object");
-  static const std::set<std::string> known{
-      "backend",     "base_url",    "model",     "api_key_env", "max_tokens_field", "connect_timeout_ms",
-      "request_timeout_ms", "max_attempts", "cache_dir", "cache_mode", "scale", "renormalize", "split",
-      "min_coverage", "top_logprobs", "seed", "breaker_threshold"};
+  static const std::set<std::string> known{"backend",
+                                           "base_url",
+                                           "model",
+                                           "api_key_env",
+                                           "max_tokens_field",
+                                           "connect_timeout_ms",
+                                           "request_timeout_ms",
+                                           "max_attempts",
+                                           "cache_dir",
+                                           "cache_mode",
+                                           "scale",
+                                           "renormalize",
+                                           "split",
+                                           "min_coverage",
+                                           "top_logprobs",
+                                           "seed",
+                                           "breaker_threshold"};
   for (const auto& [key, value] : j.items())
     if (!known.count(key)) return bad(fmt::format("unknown text-backend option \"{}\"", key));
 
@@ -44,22 +57,22 @@ Result<TextBackendConfig> textBackendConfigFromJson(const nlohmann::json& j) {
   };
   std::string backend = backendKindName(c.kind), cacheDir, cacheMode = cacheModeName(c.cacheMode),
               scale = ratingScaleName(c.scale), split = splitPolicyName(c.split);
-  for (auto e : {text("backend", backend), text("base_url", c.chat.baseUrl), text("model", c.chat.model),
-                 text("api_key_env", c.chat.apiKeyEnv), text("max_tokens_field", c.chat.maxTokensField),
-                 text("cache_dir", cacheDir), text("cache_mode", cacheMode), text("scale", scale),
-                 text("split", split),
-                 integer("connect_timeout_ms", c.chat.connectTimeoutMs, 1, 3600000),
-                 integer("request_timeout_ms", c.chat.requestTimeoutMs, 1, 3600000),
-                 integer("max_attempts", c.chat.retry.maxAttempts, 1, 100),
-                 integer("top_logprobs", c.topLogprobs, 1, 20), integer("seed", c.seed, 0, INT64_MAX),
-                 integer("breaker_threshold", c.breakerThreshold, 0, 1000)})
+  for (auto e :
+       {text("backend", backend), text("base_url", c.chat.baseUrl), text("model", c.chat.model),
+        text("api_key_env", c.chat.apiKeyEnv), text("max_tokens_field", c.chat.maxTokensField),
+        text("cache_dir", cacheDir), text("cache_mode", cacheMode), text("scale", scale), text("split", split),
+        integer("connect_timeout_ms", c.chat.connectTimeoutMs, 1, 3600000),
+        integer("request_timeout_ms", c.chat.requestTimeoutMs, 1, 3600000),
+        integer("max_attempts", c.chat.retry.maxAttempts, 1, 100), integer("top_logprobs", c.topLogprobs, 1, 20),
+        integer("seed", c.seed, 0, INT64_MAX), integer("breaker_threshold", c.breakerThreshold, 0, 1000)})
     if (e) return *e;
   if (j.contains("renormalize")) {
     if (!j["renormalize"].is_boolean()) return bad("text-backend option \"renormalize\" must be a boolean");
     c.renormalize = j["renormalize"].get<bool>();
   }
   if (j.contains("min_coverage")) {
-    if (!j["min_coverage"].is_number() || j["min_coverage"].get<double>() < 0.0 || j["min_coverage"].get<double>() > 1.0)
+    if (!j["min_coverage"].is_number() || j["min_coverage"].get<double>() < 0.0 ||
+        j["min_coverage"].get<double>() > 1.0)
       return bad("text-backend option \"min_coverage\" must be a number in 0..1");
     c.minCoverage = j["min_coverage"].get<double>();
   }
@@ -90,8 +103,7 @@ struct ClientWithCache {
 };
 }  // namespace
 
-TextBackend::TextBackend(TextBackendConfig config, WarningSink warn, SleepFunction sleep)
-    : config_(std::move(config)) {
+TextBackend::TextBackend(TextBackendConfig config, WarningSink warn, SleepFunction sleep) : config_(std::move(config)) {
   if (config_.kind == BackendKind::OpenAiCompatible) {
     breaker_ = std::make_shared<CircuitBreaker>(config_.breakerThreshold, warn);
     cache_ = std::make_shared<ResponseCache>(config_.cacheDir, config_.cacheMode, std::move(warn));

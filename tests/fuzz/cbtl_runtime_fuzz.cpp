@@ -9,9 +9,9 @@
 // never accept what the re-check rejects. Built only with -DCBTL_FUZZ=ON and clang (scripts/fuzz.sh runtime).
 #include "app/LoadedProgram.h"
 #include "runtime/approach/Planner.h"
+#include "runtime/model/UserModel.h"
 #include "runtime/solver/Recheck.h"
 #include "runtime/solver/Solver.h"
-#include "runtime/model/UserModel.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -26,14 +26,20 @@ using namespace cbtl;
 sim::Value typedValue(const rt::Program& program, const ir::TypeDesc& type, std::uint8_t salt) {
   const rt::ValueType t = program.typeOf(type);
   switch (t.kind) {
-    case rt::ValueKind::Bool: return sim::Value::num(salt & 1);
-    case rt::ValueKind::Int: case rt::ValueKind::Real: return sim::Value::num(static_cast<double>(salt) - 100.0);
-    case rt::ValueKind::Text: return sim::Value::name(std::string(salt % 5, 'a'));
-    case rt::ValueKind::Enum: case rt::ValueKind::Item: {
+    case rt::ValueKind::Bool:
+      return sim::Value::num(salt & 1);
+    case rt::ValueKind::Int:
+    case rt::ValueKind::Real:
+      return sim::Value::num(static_cast<double>(salt) - 100.0);
+    case rt::ValueKind::Text:
+      return sim::Value::name(std::string(salt % 5, 'a'));
+    case rt::ValueKind::Enum:
+    case rt::ValueKind::Item: {
       double index = static_cast<double>(salt % 3);
       return sim::Value::name(program.render(t, &index));
     }
-    default: return sim::Value::vec(std::vector<double>(t.width, static_cast<double>(salt) / 50.0));
+    default:
+      return sim::Value::vec(std::vector<double>(t.width, static_cast<double>(salt) / 50.0));
   }
 }
 
@@ -49,7 +55,8 @@ void execute(const app::LoadedProgram& lp, std::uint8_t salt) {
   solver::Solver solver(options, salt);
   const std::size_t tasks = std::min<std::size_t>(lp.graph().tasks.size(), 3);
   for (std::size_t t = 0; t < tasks; ++t) {
-    for (const auto choice : {approach::evaluationChoice(), approach::CspChoice{solver::PersonalMode::Exclude, solver::CostKind::Entropy}}) {
+    for (const auto choice : {approach::evaluationChoice(),
+                              approach::CspChoice{solver::PersonalMode::Exclude, solver::CostKind::Entropy}}) {
       const approach::Plan plan = approach::makePlan(lp, t, observation, choice, true, solver, user);
       if (plan.refused()) {
         std::fprintf(stderr, "a Solved result failed the re-check: %s\n", plan.recheck.violations.front().c_str());
@@ -69,7 +76,7 @@ void execute(const app::LoadedProgram& lp, std::uint8_t salt) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   // A path in a directory that does not exist: imports and scenes resolve next to it and cannot be read.
   auto lp = app::LoadedProgram::fromSource("/nonexistent-cbtl-fuzz/input.cbtl",
-                                                std::string(reinterpret_cast<const char*>(data), size));
+                                           std::string(reinterpret_cast<const char*>(data), size));
   if (!lp->ok()) return 0;
   execute(*lp, size > 0 ? data[size - 1] : 0);
   return 0;

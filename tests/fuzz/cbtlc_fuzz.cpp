@@ -20,8 +20,8 @@
 namespace {
 
 void requireInside(const cbtl::SourceRange& r, const cbtl::SourceManager& sources, const cbtl::Diagnostic& d) {
-  const bool ok = r.valid() && r.file < sources.fileCount() && r.begin <= r.end &&
-                  r.end <= sources.file(r.file).text.size();
+  const bool ok =
+      r.valid() && r.file < sources.fileCount() && r.begin <= r.end && r.end <= sources.file(r.file).text.size();
   if (!ok) {
     std::fprintf(stderr, "diagnostic %s (%s) has a span outside its file\n", d.code.c_str(), d.message.c_str());
     std::abort();

@@ -1,11 +1,11 @@
 #include "tools/cbtl/ErrorHandling.h"
 
 #include "runtime/core/InternalError.h"
-#include "runtime/model/UserModel.h"
 #include "runtime/core/Values.h"
+#include "runtime/model/UserModel.h"
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 
 #include <exception>
 #include <new>

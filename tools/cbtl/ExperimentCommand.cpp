@@ -98,8 +98,10 @@ std::string trialFolder(const std::string& out, cbtl::approach::ApproachKind kin
 
 // Locks OUT for the whole experiment and applies the mode to what the experiment would write: Fresh refuses
 // an OUT with summary.csv or any trial's files, Force removes summary.csv (each trial clears its own folder).
-std::unique_ptr<cbtl::approach::DirectoryLock> prepareOut(const std::string& out, const std::vector<cbtl::approach::ApproachKind>& kinds,
-                                                          const std::vector<std::uint64_t>& seeds, cbtl::approach::RunMode mode) {
+std::unique_ptr<cbtl::approach::DirectoryLock> prepareOut(const std::string& out,
+                                                          const std::vector<cbtl::approach::ApproachKind>& kinds,
+                                                          const std::vector<std::uint64_t>& seeds,
+                                                          cbtl::approach::RunMode mode) {
   using namespace cbtl;
   if (out.empty()) return nullptr;
   std::filesystem::create_directories(out);
@@ -113,7 +115,8 @@ std::unique_ptr<cbtl::approach::DirectoryLock> prepareOut(const std::string& out
       }
     }
   }
-  if (!existing.empty() && mode == approach::RunMode::Fresh) throw approach::RunDirectoryError(approach::refusalMessage(out, existing));
+  if (!existing.empty() && mode == approach::RunMode::Fresh)
+    throw approach::RunDirectoryError(approach::refusalMessage(out, existing));
   if (mode == approach::RunMode::Force) std::filesystem::remove(std::filesystem::path(out) / "summary.csv");
   return lock;
 }
@@ -129,7 +132,8 @@ int runExperiments(const ExperimentArgs& a) {
     }
     kinds.push_back(*k);
   }
-  const std::vector<std::int64_t> requestedColumns = parseColumns(a.columns);  // before the trials: a typo costs nothing
+  const std::vector<std::int64_t> requestedColumns =
+      parseColumns(a.columns);  // before the trials: a typo costs nothing
   std::vector<std::uint64_t> seeds;
   if (!parseSeeds(a.seeds, seeds)) {
     fmt::print(stderr, "cbtl experiment: error: --seeds wants 'LO..HI' or a comma-separated list, not '{}'\n", a.seeds);
@@ -182,8 +186,8 @@ int runExperiments(const ExperimentArgs& a) {
         if (last.taskSuccessRate > 0) s.finalPrefsWhenServed.push_back(last.preferencesMetRate / last.taskSuccessRate);
       }
       if (!a.quiet) {
-        fmt::print(stderr, "{} seed {}: mean eval {:+.3f}, final {:+.2f} ({:.2f} s)\n", approach::toString(kind), seed, r.meanEval(),
-                   r.evals.empty() ? 0.0 : r.evals.back().mean, s.seconds.back());
+        fmt::print(stderr, "{} seed {}: mean eval {:+.3f}, final {:+.2f} ({:.2f} s)\n", approach::toString(kind), seed,
+                   r.meanEval(), r.evals.empty() ? 0.0 : r.evals.back().mean, s.seconds.back());
         if (r.llmFaults.any()) fmt::print(stderr, "{}", r.llmFaults.summary());
       }
     }
@@ -193,8 +197,8 @@ int runExperiments(const ExperimentArgs& a) {
     for (const auto& [name, s] : summaries) {
       for (const auto& [step, v] : s.bySteps) {
         const Stat m = stat(v);
-        csv += fmt::format("{},{},{},{:.6g},{:.6g},{:.6g},{:.6g}\n", name, step, v.size(), m.mean, m.se, stat(s.success.at(step)).mean,
-                           stat(s.prefs.at(step)).mean);
+        csv += fmt::format("{},{},{},{:.6g},{:.6g},{:.6g},{:.6g}\n", name, step, v.size(), m.mean, m.se,
+                           stat(s.success.at(step)).mean, stat(s.prefs.at(step)).mean);
       }
     }
     approach::writeFileAtomic((std::filesystem::path(a.out) / "summary.csv").string(), csv);
@@ -221,7 +225,8 @@ int runExperiments(const ExperimentArgs& a) {
     fmt::print("{:<20}", approach::toString(kind));
     for (auto c : cols) {
       auto it = s.bySteps.find(c);
-      if (it == s.bySteps.end()) fmt::print(" {:>14}", "-");
+      if (it == s.bySteps.end())
+        fmt::print(" {:>14}", "-");
       else {
         const Stat m = stat(it->second);
         fmt::print(" {:>14}", fmt::format("{:+.2f} ± {:.2f}", m.mean, m.se));
@@ -230,17 +235,21 @@ int runExperiments(const ExperimentArgs& a) {
     const Stat all = stat(s.meanOverCheckpoints);
     const Stat success = stat(s.finalSuccess), prefs = stat(s.finalPrefs), served = stat(s.finalPrefsWhenServed);
     fmt::print(" {:>14} {:>12} {:>12} {:>12} {:>8.2f}\n", fmt::format("{:+.3f} ± {:.3f}", all.mean, all.se),
-               fmt::format("{:.2f} ± {:.2f}", success.mean, success.sd), fmt::format("{:.2f} ± {:.2f}", prefs.mean, prefs.sd),
+               fmt::format("{:.2f} ± {:.2f}", success.mean, success.sd),
+               fmt::format("{:.2f} ± {:.2f}", prefs.mean, prefs.sd),
                fmt::format("{:.2f} ± {:.2f}", served.mean, served.sd), stat(s.seconds).mean);
   }
-  fmt::print("columns: eval satisfaction per checkpoint and over all checkpoints (mean ± standard error over seeds); task\n"
-             "success, preferences met (of all tasks) and preferences met of the served meals at the last checkpoint\n"
-             "(mean ± standard deviation over seeds); wall-clock seconds per trial\n");
+  fmt::print(
+      "columns: eval satisfaction per checkpoint and over all checkpoints (mean ± standard error over seeds); task\n"
+      "success, preferences met (of all tasks) and preferences met of the served meals at the last checkpoint\n"
+      "(mean ± standard deviation over seeds); wall-clock seconds per trial\n");
   fmt::print("{} solutions re-checked before execution, {} refused\n", rechecks, refused);
   cli::printLlmFaults(stdout, llmFaults);
   if (!a.out.empty()) fmt::print("wrote {}/summary.csv and one folder per approach and seed\n", a.out);
   if (refused > 0) {
-    fmt::print(stderr, "cbtl experiment: internal error: {} accepted solutions failed the independent re-check and were refused; the first: {}\n",
+    fmt::print(stderr,
+               "cbtl experiment: internal error: {} accepted solutions failed the independent re-check and were "
+               "refused; the first: {}\n",
                refused, firstRefusal);
     return 70;
   }
@@ -249,19 +258,21 @@ int runExperiments(const ExperimentArgs& a) {
 
 void addExperiment(CLI::App& app, int& exitCode) {
   auto args = std::make_shared<ExperimentArgs>();
-  CLI::App* cmd = app.add_subcommand("experiment", "run approaches x seeds and summarize (mean ± standard error over seeds)");
+  CLI::App* cmd =
+      app.add_subcommand("experiment", "run approaches x seeds and summarize (mean ± standard error over seeds)");
   cbtl::cli::addTrialOptions(cmd, *args);
   cmd->add_option("--approaches", args->approaches, "comma-separated approaches")->capture_default_str();
   cmd->add_option("--seeds", args->seeds, "LO..HI or a comma-separated list")->capture_default_str();
   cmd->add_option("--columns", args->columns, "checkpoints to show in the table, comma-separated");
   cmd->add_option("--out", args->out, "write every trial's files and summary.csv here");
   cmd->add_flag("--quiet,-q", args->quiet, "no per-trial lines");
-  auto* force = cmd->add_flag("--force", args->force, "replace the experiment already in --out (only the files runs write)");
-  cmd->add_flag("--resume", args->resume, "continue the experiment in --out: finished trials are kept, the others resume")
+  auto* force =
+      cmd->add_flag("--force", args->force, "replace the experiment already in --out (only the files runs write)");
+  cmd->add_flag("--resume", args->resume,
+                "continue the experiment in --out: finished trials are kept, the others resume")
       ->excludes(force);
-  cmd->callback([args, &exitCode]() {
-    cbtl::cli::runCommand("experiment", exitCode, [&] { return runExperiments(*args); });
-  });
+  cmd->callback(
+      [args, &exitCode]() { cbtl::cli::runCommand("experiment", exitCode, [&] { return runExperiments(*args); }); });
 }
 
 const cbtl::cli::RegisterCommand registerExperiment(15, addExperiment);

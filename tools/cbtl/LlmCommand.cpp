@@ -134,9 +134,9 @@ int runProbe(const ProbeOptions& o) {
     fmt::print("question (answer {}): reply '{}', {} top tokens, {:.3f} of the mass on 0..10, most likely {}\n",
                q.answer, reply, r.firstTokenTop.size(), coverage, best);
     if (coverage < 0.5 && !failure)
-      failure = Error{ErrorKind::UnusableRating,
-                      fmt::format("only {:.3f} of the probability mass is on the numerals 0..10", coverage),
-                      client.server()};
+      failure =
+          Error{ErrorKind::UnusableRating,
+                fmt::format("only {:.3f} of the probability mass is on the numerals 0..10", coverage), client.server()};
     if (labels[10] > 0.0) sawTen = true;
     if (q.answer == 10 && labels[10] <= 0.0 && labels[1] > 0.0) sawSplitOne = true;
   }
@@ -145,7 +145,8 @@ int runProbe(const ProbeOptions& o) {
     if (sawTen) {
       fmt::print("\"10\" is a single token.\n");
     } else if (sawSplitOne) {
-      fmt::print("\"10\" is split into \"1\" + \"0\": rating queries need the split follow-up (policy auto or always).\n");
+      fmt::print(
+          "\"10\" is split into \"1\" + \"0\": rating queries need the split follow-up (policy auto or always).\n");
       reportSplitFollowUp(client, questions[1].text);
     } else {
       fmt::print("could not tell how \"10\" is tokenized; keep the split policy at auto.\n");
@@ -174,9 +175,9 @@ struct BooksOptions {
 // language-model backend also judges the ground truth with the hidden preference text, as the reference does.
 int runBooks(const BooksOptions& o) {
   using namespace cbtl::textpref;
-  nlohmann::json json{{"backend", o.backend}, {"base_url", o.baseUrl},    {"model", o.model},
-                      {"api_key_env", o.apiKeyEnv}, {"cache_dir", o.cacheDir}, {"cache_mode", o.cacheMode},
-                      {"scale", o.scale}, {"max_attempts", o.attempts}};
+  nlohmann::json json{{"backend", o.backend},       {"base_url", o.baseUrl},     {"model", o.model},
+                      {"api_key_env", o.apiKeyEnv}, {"cache_dir", o.cacheDir},   {"cache_mode", o.cacheMode},
+                      {"scale", o.scale},           {"max_attempts", o.attempts}};
   auto config = textBackendConfigFromJson(json);
   if (!config) {
     fmt::print(stderr, "cbtl llm books: {}\n", config.error().describe());
@@ -259,9 +260,11 @@ void addLlmCommand(CLI::App& app, int& exitCode) {
   booksCmd->add_option("--attempts", books->attempts, "Attempts per request")
       ->capture_default_str()
       ->check(CLI::Range(1, 10));
-  booksCmd->callback([books, &exitCode] { cbtl::cli::runCommand("llm books", exitCode, [&] { return runBooks(*books); }); });
+  booksCmd->callback(
+      [books, &exitCode] { cbtl::cli::runCommand("llm books", exitCode, [&] { return runBooks(*books); }); });
 
-  probe->callback([options, &exitCode] { cbtl::cli::runCommand("llm probe", exitCode, [&] { return runProbe(*options); }); });
+  probe->callback(
+      [options, &exitCode] { cbtl::cli::runCommand("llm probe", exitCode, [&] { return runProbe(*options); }); });
 }
 
 static cbtl::cli::RegisterCommand reg(60, addLlmCommand);

@@ -10,8 +10,8 @@
 // Text that is not a number at all is refused too, with the option's name in the message.
 #pragma once
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 
 #include <cerrno>
 #include <cmath>
@@ -30,7 +30,9 @@ namespace detail {
 inline std::string boundText(std::int64_t v) { return v == kNoMax ? "..." : std::to_string(v); }
 
 // True when `text` is all consumed by strto*, i.e. a number CLI11 would also accept.
-inline bool consumedAll(const std::string& text, const char* end) { return !text.empty() && end == text.c_str() + text.size(); }
+inline bool consumedAll(const std::string& text, const char* end) {
+  return !text.empty() && end == text.c_str() + text.size();
+}
 
 }  // namespace detail
 
@@ -49,11 +51,12 @@ inline CLI::Validator integerIn(std::int64_t lo, std::int64_t hi = kNoMax) {
 }
 
 inline CLI::Validator unsignedIn(std::uint64_t lo, std::uint64_t hi = std::numeric_limits<std::uint64_t>::max()) {
-  const std::string range =
-      fmt::format("[{}, {}]", lo, hi == std::numeric_limits<std::uint64_t>::max() ? std::string("...") : std::to_string(hi));
+  const std::string range = fmt::format(
+      "[{}, {}]", lo, hi == std::numeric_limits<std::uint64_t>::max() ? std::string("...") : std::to_string(hi));
   return CLI::Validator(
       [lo, hi, range](std::string& text) -> std::string {
-        if (text.find('-') != std::string::npos) return fmt::format("{} is negative; the value must be in {}", text, range);
+        if (text.find('-') != std::string::npos)
+          return fmt::format("{} is negative; the value must be in {}", text, range);
         errno = 0;
         char* end = nullptr;
         const unsigned long long v = std::strtoull(text.c_str(), &end, 0);

@@ -21,9 +21,10 @@ inline std::string probeVerdict(const textpref::Error& failure, const std::strin
   switch (failure.kind) {
     case ErrorKind::Transport:
     case ErrorKind::Timeout:
-      return fmt::format("verdict: unusable: transport error: the server did not answer ({}). Check --base-url, that "
-                         "the server runs, and --timeout-ms.",
-                         detail);
+      return fmt::format(
+          "verdict: unusable: transport error: the server did not answer ({}). Check --base-url, that "
+          "the server runs, and --timeout-ms.",
+          detail);
     case ErrorKind::HttpStatus:
       return fmt::format("verdict: unusable: HTTP status {}: {}.{}", failure.httpStatus, detail,
                          failure.httpStatus == 401 || failure.httpStatus == 403

@@ -63,8 +63,10 @@ int runRender(const RenderArgs& a) {
     return 1;
   }
   if (status == RenderStatus::TooLarge) {
-    fmt::print(stderr, "cbtl render: error: {}x{} exceeds the scene's offscreen buffer {}x{} (set <visual><global "
-               "offwidth/offheight> in {})\n", a.width, a.height, renderer->maxWidth(), renderer->maxHeight(), a.scene);
+    fmt::print(stderr,
+               "cbtl render: error: {}x{} exceeds the scene's offscreen buffer {}x{} (set <visual><global "
+               "offwidth/offheight> in {})\n",
+               a.width, a.height, renderer->maxWidth(), renderer->maxHeight(), a.scene);
     return 1;
   }
   if (status != RenderStatus::Ok) {

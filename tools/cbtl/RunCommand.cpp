@@ -26,8 +26,10 @@ int runTrial(const RunArgs& a) {
   using namespace cbtl;
   const auto kind = approach::parseApproach(a.approach);
   if (!kind) {
-    fmt::print(stderr, "cbtl run: error: unknown approach '{}' (choose one of: cbtl, no-personalization, free-explore, "
-                       "exploit-only, epsilon-greedy)\n", a.approach);
+    fmt::print(stderr,
+               "cbtl run: error: unknown approach '{}' (choose one of: cbtl, no-personalization, free-explore, "
+               "exploit-only, epsilon-greedy)\n",
+               a.approach);
     return 2;
   }
   approach::ExperimentConfig c;
@@ -48,10 +50,11 @@ int runTrial(const RunArgs& a) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!a.quiet) {
     fmt::print("{} on {} (seed {}): {} steps, {} tasks completed in training, {} solves ({} failed, {} replanned)\n",
-               a.approach, lp->graph().domain, a.seed, a.steps, r.mealsServed, r.trainSolves, r.trainSolveFailures, r.trainReplans);
+               a.approach, lp->graph().domain, a.seed, a.steps, r.mealsServed, r.trainSolves, r.trainSolveFailures,
+               r.trainReplans);
     fmt::print("eval satisfaction: first {:+.2f}, last {:+.2f}, mean over {} checkpoints {:+.3f}\n",
-               r.evals.empty() ? 0.0 : r.evals.front().mean, r.evals.empty() ? 0.0 : r.evals.back().mean, r.evals.size(),
-               r.meanEval());
+               r.evals.empty() ? 0.0 : r.evals.front().mean, r.evals.empty() ? 0.0 : r.evals.back().mean,
+               r.evals.size(), r.meanEval());
     fmt::print("{:.2f} s wall clock; {} training solver iterations\n", seconds, r.solverIterations);
     fmt::print("{} solutions re-checked before execution, {} refused\n", r.rechecks, r.recheckViolations);
     if (r.textModelErrors > 0) {
@@ -59,13 +62,16 @@ int runTrial(const RunArgs& a) {
                  r.firstTextModelError);
     }
     cli::printLlmFaults(stdout, r.llmFaults);
-    if (!a.out.empty()) fmt::print("wrote {}/train.csv, eval.csv, config.json, llm.json, profile.json, models/, complete.json\n", a.out);
+    if (!a.out.empty())
+      fmt::print("wrote {}/train.csv, eval.csv, config.json, llm.json, profile.json, models/, complete.json\n", a.out);
   } else {
     cli::printLlmFaults(stderr, r.llmFaults);
   }
   if (r.recheckViolations > 0) {
     // Never executed, but a solution the solver accepted broke a hard constraint: a runtime bug.
-    fmt::print(stderr, "cbtl run: internal error: {} accepted solutions failed the independent re-check and were refused; the first: {}\n",
+    fmt::print(stderr,
+               "cbtl run: internal error: {} accepted solutions failed the independent re-check and were refused; the "
+               "first: {}\n",
                r.recheckViolations, r.firstRecheckViolation);
     return 70;
   }
@@ -74,16 +80,20 @@ int runTrial(const RunArgs& a) {
 
 void addRun(CLI::App& app, int& exitCode) {
   auto args = std::make_shared<RunArgs>();
-  CLI::App* cmd = app.add_subcommand("run", "train and evaluate one approach on a domain (the paper's experiment loop)");
+  CLI::App* cmd =
+      app.add_subcommand("run", "train and evaluate one approach on a domain (the paper's experiment loop)");
   cbtl::cli::addTrialOptions(cmd, *args);
-  cmd->add_option("--approach", args->approach, "cbtl | no-personalization | free-explore | exploit-only | epsilon-greedy")
+  cmd->add_option("--approach", args->approach,
+                  "cbtl | no-personalization | free-explore | exploit-only | epsilon-greedy")
       ->capture_default_str();
-  cmd->add_option("--seed", args->seed, "run seed (same seed, same results)")->capture_default_str()
+  cmd->add_option("--seed", args->seed, "run seed (same seed, same results)")
+      ->capture_default_str()
       ->check(cbtl::cli::unsignedIn(0));
   cmd->add_option("--out", args->out, "write train.csv, eval.csv, models and the profile here");
   cmd->add_option("--profile", args->profile, "start from this user profile");
   auto* force = cmd->add_flag("--force", args->force, "replace the run already in --out (only the files a run writes)");
-  cmd->add_flag("--resume", args->resume, "continue the run in --out from its last checkpoint (same options)")->excludes(force);
+  cmd->add_flag("--resume", args->resume, "continue the run in --out from its last checkpoint (same options)")
+      ->excludes(force);
   cmd->add_flag("--quiet,-q", args->quiet, "no progress bar or summary");
   cmd->callback([args, &exitCode]() { cbtl::cli::runCommand("run", exitCode, [&] { return runTrial(*args); }); });
 }

@@ -1,12 +1,13 @@
-// RuntimeSupport.h — what `cbtl run`, `cbtl experiment` and `cbtl solve` share: the trial options, loading a .cbtl file for execution with its
-// errors printed, the domain simulators by name, and the text-preference backend of `model text(...)` factors.
+// RuntimeSupport.h — what `cbtl run`, `cbtl experiment` and `cbtl solve` share: the trial options, loading a .cbtl file
+// for execution with its errors printed, the domain simulators by name, and the text-preference backend of `model
+// text(...)` factors.
 #pragma once
 
-#include "domains/DomainRegistry.h"
-#include "tools/cbtl/OptionChecks.h"
-#include "runtime/approach/Experiment.h"
 #include "app/LoadedProgram.h"
+#include "domains/DomainRegistry.h"
+#include "runtime/approach/Experiment.h"
 #include "runtime/solver/Solver.h"
+#include "tools/cbtl/OptionChecks.h"
 
 #include "runtime/textpref/TextBackend.h"
 
@@ -24,7 +25,7 @@ namespace cbtl::cli {
 
 // Loads FILE; prints its diagnostics to stderr and returns nullptr when it cannot run.
 inline std::unique_ptr<app::LoadedProgram> loadForRun(const std::string& command, const std::string& path,
-                                                           const std::string& stdlibDir) {
+                                                      const std::string& stdlibDir) {
   auto lp = app::LoadedProgram::load(path, stdlibDir);
   if (!lp->ok()) {
     fmt::print(stderr, "{}", lp->errors());
@@ -42,11 +43,16 @@ inline approach::SimulatorFactory simulatorFactory(const std::string& domain) {
 
 inline void addSolverOptions(CLI::App* cmd, solver::SolverOptions& o) {
   cmd->add_option("--max-iters", o.maxIters, "solver iterations per CSP")->capture_default_str()->check(unsignedIn(1));
-  cmd->add_option("--num-improvements", o.numImprovements, "stop after this many improvements (N_improve; 0: the first solution)")
-      ->capture_default_str()->check(unsignedIn(0));
+  cmd->add_option("--num-improvements", o.numImprovements,
+                  "stop after this many improvements (N_improve; 0: the first solution)")
+      ->capture_default_str()
+      ->check(unsignedIn(0));
   cmd->add_option("--max-improvement-attempts", o.maxImprovementAttempts,
-                  "stop this many iterations after the first solution")->capture_default_str()->check(unsignedIn(0));
-  cmd->add_option("--memory-size", o.memorySize, "remembered satisfying values per constraint")->capture_default_str()
+                  "stop this many iterations after the first solution")
+      ->capture_default_str()
+      ->check(unsignedIn(0));
+  cmd->add_option("--memory-size", o.memorySize, "remembered satisfying values per constraint")
+      ->capture_default_str()
       ->check(unsignedIn(1));
   static const std::map<std::string, solver::MemoryPolicy> policies = {
       {"checks", solver::MemoryPolicy::EverySatisfiedCheck}, {"solutions", solver::MemoryPolicy::Solutions}};
@@ -76,9 +82,11 @@ struct TextBackendArgs {
 inline void addTextBackendOptions(CLI::App* cmd, TextBackendArgs& a) {
   cmd->add_option("--text-backend", a.backend, "model of text factors: offline (descriptor model, no network) | openai")
       ->capture_default_str();
-  cmd->add_option("--llm-base-url", a.baseUrl, "OpenAI-compatible server for --text-backend openai (default: api.openai.com)");
+  cmd->add_option("--llm-base-url", a.baseUrl,
+                  "OpenAI-compatible server for --text-backend openai (default: api.openai.com)");
   cmd->add_option("--llm-model", a.model, "language model for --text-backend openai (default: gpt-4o-mini)");
-  cmd->add_option("--llm-timeout-ms", a.timeoutMs, "per-request timeout in ms for --text-backend openai (default 60000)")
+  cmd->add_option("--llm-timeout-ms", a.timeoutMs,
+                  "per-request timeout in ms for --text-backend openai (default 60000)")
       ->check(CLI::Range(1L, 3600000L));
   cmd->add_option("--llm-attempts", a.attempts, "attempts per request, retries included, >= 1 (default 5)")
       ->check(CLI::Range(1, 100));
@@ -91,9 +99,12 @@ inline void addTextBackendOptions(CLI::App* cmd, TextBackendArgs& a) {
 inline std::optional<std::shared_ptr<const textpref::TextBackend>> makeTextBackend(const std::string& command,
                                                                                    const TextBackendArgs& a) {
   if (a.backend == "offline") {
-    const char* openaiOnly = !a.baseUrl.empty() ? "--llm-base-url" : !a.model.empty() ? "--llm-model"
-                             : a.timeoutMs >= 0 ? "--llm-timeout-ms" : a.attempts >= 0 ? "--llm-attempts"
-                             : a.breaker >= 0   ? "--llm-breaker" : nullptr;
+    const char* openaiOnly = !a.baseUrl.empty() ? "--llm-base-url"
+                             : !a.model.empty() ? "--llm-model"
+                             : a.timeoutMs >= 0 ? "--llm-timeout-ms"
+                             : a.attempts >= 0  ? "--llm-attempts"
+                             : a.breaker >= 0   ? "--llm-breaker"
+                                                : nullptr;
     if (openaiOnly != nullptr) {
       fmt::print(stderr, "cbtl {}: error: {} needs --text-backend openai\n", command, openaiOnly);
       return std::nullopt;
@@ -140,22 +151,30 @@ inline void addTrialOptions(CLI::App* cmd, TrialArgs& a) {
   cmd->add_option("file", a.file, "the domain's .cbtl file")->required();
   cmd->add_option("--steps", a.steps, "training steps")->capture_default_str()->check(integerIn(0));
   cmd->add_option("--eval-every", a.evalEvery, "evaluate every K steps")->capture_default_str()->check(integerIn(1));
-  cmd->add_option("--eval-tasks", a.evalTasks, "held-out tasks per evaluation")->capture_default_str()
+  cmd->add_option("--eval-tasks", a.evalTasks, "held-out tasks per evaluation")
+      ->capture_default_str()
       ->check(integerIn(1, std::numeric_limits<int>::max()));
-  cmd->add_option("--max-eval-steps", a.maxEvalSteps, "step limit of one evaluation episode")->capture_default_str()
+  cmd->add_option("--max-eval-steps", a.maxEvalSteps, "step limit of one evaluation episode")
+      ->capture_default_str()
       ->check(integerIn(1));
   cmd->add_option("--task", a.task, "task to run (default: the first)");
   cmd->add_flag("--replan", a.replan, "when the full CSP is unsatisfiable, replan without personalized constraints");
-  cmd->add_option("--epsilon", a.epsilon, "epsilon-greedy's exploration probability")->capture_default_str()
+  cmd->add_option("--epsilon", a.epsilon, "epsilon-greedy's exploration probability")
+      ->capture_default_str()
       ->check(realIn(0, 1));
   cmd->add_option("--nonstationary", a.nonstationary,
-                  "shift the user's preferences: none | no-adapt | user-reset | periodic-reset")->capture_default_str();
-  cmd->add_option("--shift-every", a.shiftEvery, "steps between preference shifts")->capture_default_str()
+                  "shift the user's preferences: none | no-adapt | user-reset | periodic-reset")
+      ->capture_default_str();
+  cmd->add_option("--shift-every", a.shiftEvery, "steps between preference shifts")
+      ->capture_default_str()
       ->check(integerIn(1));
   cmd->add_option("--periodic-reset-every", a.periodicEvery, "steps between model resets (periodic-reset)")
-      ->capture_default_str()->check(integerIn(1));
-  cmd->add_option("--unsatisfiable-stock", a.unsatisfiable, "probability that a restock cannot satisfy the user (Cooking)")
-      ->capture_default_str()->check(realIn(0, 1));
+      ->capture_default_str()
+      ->check(integerIn(1));
+  cmd->add_option("--unsatisfiable-stock", a.unsatisfiable,
+                  "probability that a restock cannot satisfy the user (Cooking)")
+      ->capture_default_str()
+      ->check(realIn(0, 1));
   cmd->add_option("--stdlib", a.stdlibDir, "standard library folder (default: embedded)");
   addSolverOptions(cmd, a.solver);
   addTextBackendOptions(cmd, a.text);
@@ -166,7 +185,8 @@ inline bool configureTrial(const std::string& command, const TrialArgs& a, appro
   if (a.nonstationary != "none") {
     const auto mode = approach::parseAdaptation(a.nonstationary);
     if (!mode) {
-      fmt::print(stderr, "cbtl {}: error: unknown --nonstationary mode '{}' (none, no-adapt, user-reset, periodic-reset)\n",
+      fmt::print(stderr,
+                 "cbtl {}: error: unknown --nonstationary mode '{}' (none, no-adapt, user-reset, periodic-reset)\n",
                  command, a.nonstationary);
       return false;
     }
@@ -191,7 +211,8 @@ inline bool configureTrial(const std::string& command, const TrialArgs& a, appro
 }
 
 // A factory for the program's domain, or nullopt after printing which domains exist.
-inline std::optional<approach::SimulatorFactory> domainSimulator(const std::string& command, const app::LoadedProgram& lp,
+inline std::optional<approach::SimulatorFactory> domainSimulator(const std::string& command,
+                                                                 const app::LoadedProgram& lp,
                                                                  const sim::SimulatorOptions& options) {
   const std::string& domain = lp.graph().domain;
   if (domains::createSimulator(domain, options, 0) != nullptr) return simulatorFactory(domain);

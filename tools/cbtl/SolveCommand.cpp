@@ -6,8 +6,8 @@
 #include "tools/cbtl/RuntimeSupport.h"
 
 #include "runtime/approach/Planner.h"
-#include "runtime/model/UserModel.h"
 #include "runtime/approach/ValueBridge.h"
+#include "runtime/model/UserModel.h"
 
 #include <fmt/core.h>
 
@@ -29,8 +29,10 @@ std::string renderCall(const cbtl::sim::ActionCall& c) {
   for (std::size_t i = 0; i < c.args.size(); ++i) {
     const auto& a = c.args[i];
     if (i) s += ", ";
-    if (a.kind == cbtl::sim::Value::Kind::Name) s += a.text;
-    else if (a.kind == cbtl::sim::Value::Kind::Number) s += fmt::format("{:.6g}", a.number);
+    if (a.kind == cbtl::sim::Value::Kind::Name)
+      s += a.text;
+    else if (a.kind == cbtl::sim::Value::Kind::Number)
+      s += fmt::format("{:.6g}", a.number);
     else {
       s += "(";
       for (std::size_t k = 0; k < a.vector.size(); ++k) s += fmt::format("{}{:.6g}", k ? ", " : "", a.vector[k]);
@@ -46,7 +48,8 @@ void explain(const cbtl::approach::Plan& plan) {
     fmt::print("{}: {} after {} iterations ({} candidates checked, {} pruned by cost, {} improvements)\n", title,
                toString(r.outcome), r.iterations, r.candidatesChecked, r.prunedByCost, r.improvements);
     std::vector<ConstraintStats> stats = r.constraints;
-    std::stable_sort(stats.begin(), stats.end(), [](const auto& a, const auto& b) { return a.rejections > b.rejections; });
+    std::stable_sort(stats.begin(), stats.end(),
+                     [](const auto& a, const auto& b) { return a.rejections > b.rejections; });
     fmt::print("  {:>10} {:>11}  {:<48} {}\n", "rejected", "evaluated", "constraint", "declared at");
     for (const auto& s : stats) {
       if (s.evaluations == 0 && s.rejections == 0) continue;
@@ -61,9 +64,12 @@ void explain(const cbtl::approach::Plan& plan) {
 int runSolve(const SolveArgs& a) {
   using namespace cbtl;
   approach::CspChoice choice;
-  if (a.csp == "exploit") choice = approach::evaluationChoice();
-  else if (a.csp == "explore") choice = {solver::PersonalMode::Exclude, solver::CostKind::Entropy};
-  else if (a.csp == "hard") choice = {solver::PersonalMode::Exclude, solver::CostKind::Declared};
+  if (a.csp == "exploit")
+    choice = approach::evaluationChoice();
+  else if (a.csp == "explore")
+    choice = {solver::PersonalMode::Exclude, solver::CostKind::Entropy};
+  else if (a.csp == "hard")
+    choice = {solver::PersonalMode::Exclude, solver::CostKind::Declared};
   else {
     fmt::print(stderr, "cbtl solve: error: unknown --csp '{}' (exploit, explore, hard)\n", a.csp);
     return 2;
@@ -88,15 +94,18 @@ int runSolve(const SolveArgs& a) {
     fmt::print(stderr, "cbtl solve: note: no simulator for domain '{}'; observations are zero\n", lp->graph().domain);
   }
   solver::Solver solver(a.solver, approach::deriveSeed(a.seed, 1));
-  const approach::Plan plan = approach::makePlan(*lp, static_cast<std::size_t>(task), observation, choice, a.replan, solver, user);
+  const approach::Plan plan =
+      approach::makePlan(*lp, static_cast<std::size_t>(task), observation, choice, a.replan, solver, user);
   const auto& program = lp->program();
   const ir::Task& t = lp->graph().tasks[static_cast<std::size_t>(task)];
-  fmt::print("task {}: {}{}\n", t.name, solver::toString(plan.solve.outcome),
-             plan.replanned ? " (replanned without personalized constraints: the user's preferences cannot be met)" : "");
+  fmt::print(
+      "task {}: {}{}\n", t.name, solver::toString(plan.solve.outcome),
+      plan.replanned ? " (replanned without personalized constraints: the user's preferences cannot be met)" : "");
   if (plan.ok) {
     for (ir::VarId v : t.vars) {
       const auto& slot = program.slot(v);
-      fmt::print("  {} = {}\n", lp->graph().variables[v].name, program.render(slot.type, plan.solve.assignment.data() + slot.offset));
+      fmt::print("  {} = {}\n", lp->graph().variables[v].name,
+                 program.render(slot.type, plan.solve.assignment.data() + slot.offset));
     }
     fmt::print("plan ({} calls):\n", plan.calls.size());
     for (const auto& c : plan.calls) fmt::print("  {}\n", renderCall(c));
@@ -104,11 +113,14 @@ int runSolve(const SolveArgs& a) {
   if (a.explain || !plan.ok) explain(plan);
   if (*textBackend) cli::printLlmFaults(stdout, (*textBackend)->faultReport());
   if (plan.rechecked) {
-    fmt::print("re-check: {} constraints and {} variables evaluated from scratch: {}\n", plan.recheck.constraintsChecked,
-               plan.recheck.variablesChecked, plan.recheck.holds() ? "all hold" : "VIOLATED");
+    fmt::print("re-check: {} constraints and {} variables evaluated from scratch: {}\n",
+               plan.recheck.constraintsChecked, plan.recheck.variablesChecked,
+               plan.recheck.holds() ? "all hold" : "VIOLATED");
   }
   if (plan.refused()) {
-    fmt::print(stderr, "cbtl solve: internal error: the solver accepted a solution that fails the independent re-check; it was refused:\n");
+    fmt::print(stderr,
+               "cbtl solve: internal error: the solver accepted a solution that fails the independent re-check; it was "
+               "refused:\n");
     for (const auto& v : plan.recheck.violations) fmt::print(stderr, "  {}\n", v);
     fmt::print(stderr, "this is a bug; please report it with the command line.\n");
     return 70;
@@ -118,17 +130,21 @@ int runSolve(const SolveArgs& a) {
 
 void addSolve(CLI::App& app, int& exitCode) {
   auto args = std::make_shared<SolveArgs>();
-  CLI::App* cmd = app.add_subcommand("solve", "solve one CSP of a task and print its solution and plan, or why there is none");
+  CLI::App* cmd =
+      app.add_subcommand("solve", "solve one CSP of a task and print its solution and plan, or why there is none");
   cmd->add_option("file", args->file, "the domain's .cbtl file")->required();
   cmd->add_option("--task", args->task, "task to solve (default: the first)");
-  cmd->add_option("--seed", args->seed, "seed of the world and the solver")->capture_default_str()
+  cmd->add_option("--seed", args->seed, "seed of the world and the solver")
+      ->capture_default_str()
       ->check(cbtl::cli::unsignedIn(0));
-  cmd->add_option("--csp", args->csp,
-                  "exploit: hard + personalized constraints; explore: hard constraints, maximize entropy; hard: hard only")
+  cmd->add_option(
+         "--csp", args->csp,
+         "exploit: hard + personalized constraints; explore: hard constraints, maximize entropy; hard: hard only")
       ->capture_default_str();
   cmd->add_option("--profile", args->profile, "the user profile to personalize with");
   cmd->add_flag("--replan", args->replan, "if unsatisfiable, replan without personalized constraints");
-  cmd->add_flag("--explain", args->explain, "which constraints rejected candidates, how often, and where they are declared");
+  cmd->add_flag("--explain", args->explain,
+                "which constraints rejected candidates, how often, and where they are declared");
   cmd->add_option("--stdlib", args->stdlibDir, "standard library folder (default: embedded)");
   cbtl::cli::addSolverOptions(cmd, args->solver);
   cbtl::cli::addTextBackendOptions(cmd, args->text);

@@ -14,8 +14,7 @@ int main(int argc, char** argv) {
 
   int exitCode = 0;
   auto& commands = cbtl::cli::registeredCommands();
-  std::stable_sort(commands.begin(), commands.end(),
-                   [](const auto& a, const auto& b) { return a.order < b.order; });
+  std::stable_sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.order < b.order; });
   for (const auto& command : commands) command.factory(app, exitCode);
 
   try {

@@ -5,8 +5,8 @@
 #include "compiler/driver/Pipeline.h"
 #include "ir/GraphPrinter.h"
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -44,12 +44,14 @@ int report(const cbtl::TranslationUnit& tu, const cbtl::PipelineResult& result, 
     return 1;
   }
   for (const auto& d : tu.diags.sorted()) {
-    if (o.format == "json") fmt::print(stderr, "{}\n", cbtl::renderDiagnosticJson(d, tu.sources));
-    else fmt::print(stderr, "{}", cbtl::renderDiagnosticText(d, tu.sources));
+    if (o.format == "json")
+      fmt::print(stderr, "{}\n", cbtl::renderDiagnosticJson(d, tu.sources));
+    else
+      fmt::print(stderr, "{}", cbtl::renderDiagnosticText(d, tu.sources));
   }
   if (o.format == "text" && (tu.diags.errorCount() > 0 || tu.diags.warningCount() > 0)) {
-    fmt::print(stderr, "{}: {} error{}, {} warning{}{}\n", path, tu.diags.errorCount(), tu.diags.errorCount() == 1 ? "" : "s",
-               tu.diags.warningCount(), tu.diags.warningCount() == 1 ? "" : "s",
+    fmt::print(stderr, "{}: {} error{}, {} warning{}{}\n", path, tu.diags.errorCount(),
+               tu.diags.errorCount() == 1 ? "" : "s", tu.diags.warningCount(), tu.diags.warningCount() == 1 ? "" : "s",
                tu.diags.droppedCount() ? fmt::format(" ({} not shown: error limit)", tu.diags.droppedCount()) : "");
   }
   if (result.outcome == cbtl::PipelineOutcome::InternalError) return 70;
@@ -105,7 +107,8 @@ int main(int argc, char** argv) {
   std::string emitFile, emitFormat = "text", dumpAfter;
   auto* emit = app.add_subcommand("emit", "print the constraint graph, or the representation after one pass");
   emit->add_option("file", emitFile, "the .cbtl file")->required();
-  emit->add_option("--format", emitFormat, "graph format: text, json or dot")->check(CLI::IsMember({"text", "json", "dot"}));
+  emit->add_option("--format", emitFormat, "graph format: text, json or dot")
+      ->check(CLI::IsMember({"text", "json", "dot"}));
   emit->add_option("--dump-after", dumpAfter, "print the representation after this pass instead of the graph")
       ->check(CLI::IsMember(cbtl::passNames()));
   addCommon(emit, emitOpts);
@@ -152,7 +155,8 @@ int main(int argc, char** argv) {
     const int c = app.exit(e);
     return c == 0 ? 0 : 2;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "cbtlc: internal error: {}\nthis is a bug in cbtlc; please report it with the input file.\n", e.what());
+    fmt::print(stderr, "cbtlc: internal error: {}\nthis is a bug in cbtlc; please report it with the input file.\n",
+               e.what());
     return 70;
   }
   return exitCode;

@@ -19,7 +19,7 @@ TEST(DiagnosticEngine, SortsByFileOffsetSeverityCodeAndMessage) {
   EXPECT_EQ(out[1].message, "a");      // file 0, offset 9: errors before warnings, then code, then text
   EXPECT_EQ(out[2].message, "z");
   EXPECT_EQ(out[3].code, "W0201");
-  EXPECT_EQ(out[4].range.file, 1u);    // file 1 last
+  EXPECT_EQ(out[4].range.file, 1u);  // file 1 last
 }
 
 TEST(DiagnosticEngine, OrderDoesNotDependOnReportingOrder) {
@@ -36,7 +36,8 @@ TEST(DiagnosticEngine, OrderDoesNotDependOnReportingOrder) {
 TEST(DiagnosticEngine, ErrorLimitKeepsTheFirstErrorsAndCountsTheRest) {
   DiagnosticEngine e(2);
   for (int i = 0; i < 5; ++i) {
-    e.error("E0201", SourceRange{0, static_cast<std::uint32_t>(10 - i), 11}, "e" + std::to_string(i)).note("ignored past the limit");
+    e.error("E0201", SourceRange{0, static_cast<std::uint32_t>(10 - i), 11}, "e" + std::to_string(i))
+        .note("ignored past the limit");
   }
   e.warning("W0201", SourceRange{0, 0, 1}, "warnings are not limited");
   EXPECT_EQ(e.errorCount(), 5u);

@@ -113,10 +113,12 @@ TEST(Regex, MatchingTakesPolynomialTime) {
 
 TEST(Regex, LongOrDeepPatternsAreRefusedBeforeStdRegexSeesThem) {
   std::string error;
-  EXPECT_FALSE(compileRegex(std::string(kMaxRegexNesting + 1, '(') + "a" + std::string(kMaxRegexNesting + 1, ')'), error));
+  EXPECT_FALSE(
+      compileRegex(std::string(kMaxRegexNesting + 1, '(') + "a" + std::string(kMaxRegexNesting + 1, ')'), error));
   EXPECT_NE(error.find("nests groups"), std::string::npos);
   EXPECT_TRUE(compileRegex(std::string(kMaxRegexNesting, '(') + "a" + std::string(kMaxRegexNesting, ')'), error));
-  EXPECT_TRUE(compileRegex("[(((((((((((((((((((((((((((((((((((((((((((((((((((((]", error)) << error;  // literal in a class
+  EXPECT_TRUE(compileRegex("[(((((((((((((((((((((((((((((((((((((((((((((((((((((]", error))
+      << error;  // literal in a class
   EXPECT_FALSE(compileRegex(std::string(kMaxRegexLength + 1, 'a'), error));
   EXPECT_NE(error.find("longer than"), std::string::npos);
 }

@@ -12,10 +12,10 @@ TEST(SourceManager, LinesAndColumnsAreOneBased) {
   const FileId f = sm.add("a.cbtl", "var x;\nrequire x;\n");
   EXPECT_EQ(sm.position(f, 0).line, 1u);
   EXPECT_EQ(sm.position(f, 0).column, 1u);
-  EXPECT_EQ(sm.position(f, 4).column, 5u);         // 'x'
-  EXPECT_EQ(sm.position(f, 7).line, 2u);           // 'r' of require
+  EXPECT_EQ(sm.position(f, 4).column, 5u);  // 'x'
+  EXPECT_EQ(sm.position(f, 7).line, 2u);    // 'r' of require
   EXPECT_EQ(sm.position(f, 7).column, 1u);
-  EXPECT_EQ(sm.position(f, 6).line, 1u);           // the newline belongs to line 1
+  EXPECT_EQ(sm.position(f, 6).line, 1u);  // the newline belongs to line 1
   EXPECT_EQ(sm.position(f, 6).column, 7u);
 }
 

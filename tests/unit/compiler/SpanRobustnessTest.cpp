@@ -71,7 +71,10 @@ std::vector<std::pair<std::size_t, std::size_t>> roughTokens(const std::string& 
   std::size_t i = 0;
   while (i < s.size()) {
     const unsigned char c = static_cast<unsigned char>(s[i]);
-    if (std::isspace(c)) { ++i; continue; }
+    if (std::isspace(c)) {
+      ++i;
+      continue;
+    }
     std::size_t j = i + 1;
     if (std::isalnum(c) || c == '_') {
       while (j < s.size() && (std::isalnum(static_cast<unsigned char>(s[j])) || s[j] == '_' || s[j] == '.')) ++j;
@@ -129,12 +132,12 @@ TEST(SpanRobustness, GoldenInputsAndTheirMutations) {
 
 // Inputs that once broke the span contract, kept as explicit cases.
 TEST(SpanRobustness, EdgeCases) {
-  for (const std::string& text : {std::string(""), std::string("var"), std::string("var x : real"), std::string("import \""),
-                                 std::string("import"), std::string("\"unterminated"), std::string("/* open"),
-                                 std::string("require (x < 1;"), std::string("domain"), std::string("enum E {"),
-                                 std::string("\xff"), std::string("var x : real in 0 .. 1e999;"),
-                                 std::string("personal p(x: real) { when x ~ \"{\""), std::string(")))"),
-                                 std::string("task t = ;"), std::string("skill s { do { f( } }")}) {
+  for (const std::string& text :
+       {std::string(""), std::string("var"), std::string("var x : real"), std::string("import \""),
+        std::string("import"), std::string("\"unterminated"), std::string("/* open"), std::string("require (x < 1;"),
+        std::string("domain"), std::string("enum E {"), std::string("\xff"), std::string("var x : real in 0 .. 1e999;"),
+        std::string("personal p(x: real) { when x ~ \"{\""), std::string(")))"), std::string("task t = ;"),
+        std::string("skill s { do { f( } }")}) {
     checkSpans("edge.cbtl", text, "edge case '" + text + "'");
   }
 }

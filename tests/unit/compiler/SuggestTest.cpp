@@ -17,7 +17,7 @@ TEST(EditDistance, CountsEachKindOfEditAsOne) {
   EXPECT_EQ(editDistance("temp", "tmep"), 1u);   // adjacent transposition
   EXPECT_EQ(editDistance("kitten", "sitting"), 3u);
   EXPECT_EQ(editDistance("ab", "ba"), 1u);
-  EXPECT_EQ(editDistance("ca", "abc"), 3u);      // OSA: no edit of a transposed pair
+  EXPECT_EQ(editDistance("ca", "abc"), 3u);  // OSA: no edit of a transposed pair
 }
 
 TEST(EditDistance, IsSymmetric) {

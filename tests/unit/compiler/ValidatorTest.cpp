@@ -70,7 +70,8 @@ ConstraintGraph validGraph() {
 }
 
 bool mentions(const std::vector<std::string>& problems, const std::string& part) {
-  return std::any_of(problems.begin(), problems.end(), [&](const std::string& p) { return p.find(part) != std::string::npos; });
+  return std::any_of(problems.begin(), problems.end(),
+                     [&](const std::string& p) { return p.find(part) != std::string::npos; });
 }
 
 TEST(Validator, AcceptsAValidGraph) { EXPECT_TRUE(validate(validGraph()).empty()); }

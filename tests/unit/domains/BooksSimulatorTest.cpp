@@ -2,9 +2,9 @@
 // and the evaluation twin.
 #include "domains/books/BooksSimulator.h"
 
-#include "tests/unit/domains/HomeTestSupport.h"
 #include "domains/books/BookCatalog.h"
 #include "robot/actions/CallArguments.h"
+#include "tests/unit/domains/HomeTestSupport.h"
 
 #include <gtest/gtest.h>
 
@@ -26,7 +26,9 @@ namespace world = cbtl::world;
 
 const world::Pose2 kBedBase{1.0, 0.2, 0.0};
 
-bool contains(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+bool contains(const std::vector<std::string>& v, const std::string& s) {
+  return std::find(v.begin(), v.end(), s) != v.end();
+}
 
 // The robot at the bed holding `body` with the tool `radius` metres from the user's ROM centre.
 std::optional<Eigen::Vector3d> presentAt(BooksSimulator& sim, const std::string& body, double radius, world::Rng& rng) {
@@ -39,7 +41,8 @@ TEST(BooksSimulator, ResetIsDeterministic) {
   b.reset(21);
   EXPECT_EQ(a.observe().at("pickable").members, b.observe().at("pickable").members);
   EXPECT_EQ(a.observe().at("heldBody").text, b.observe().at("heldBody").text);
-  for (const auto& [name, pose] : a.worldState()->objects) EXPECT_EQ(pose.position, b.worldState()->objects.at(name).position) << name;
+  for (const auto& [name, pose] : a.worldState()->objects)
+    EXPECT_EQ(pose.position, b.worldState()->objects.at(name).position) << name;
 }
 
 TEST(BooksSimulator, ObservationsHaveTheDeclaredNamesAndKinds) {
@@ -47,7 +50,8 @@ TEST(BooksSimulator, ObservationsHaveTheDeclaredNamesAndKinds) {
   const auto o = sim.observe();
   ASSERT_EQ(o.size(), 3u);
   ASSERT_EQ(o.at("pickable").kind, Value::Kind::Names);
-  for (const std::string& e : o.at("pickable").members) EXPECT_TRUE(cbtl::domains::books::bookOfEntry(e).has_value()) << e;
+  for (const std::string& e : o.at("pickable").members)
+    EXPECT_TRUE(cbtl::domains::books::bookOfEntry(e).has_value()) << e;
   ASSERT_EQ(o.at("handPose").kind, Value::Kind::Vector);
   ASSERT_EQ(o.at("handPose").vector.size(), 7u);
   EXPECT_EQ(o.at("heldBody").kind, Value::Kind::Name);

@@ -23,13 +23,14 @@ TEST(BooksUser, PaperUserEnjoysCosmosAndPrideAndPrejudiceOnly) {
 TEST(BooksUser, ReachIsAClosedShellAroundTheOffsetHand) {
   const BooksUser u = BooksUser::paperDefault();
   // A hand at (1, 0, 0) whose z points along world x: the centre is (1.2, 0, 0).
-  const world::Pose3 hand{Eigen::Vector3d(1, 0, 0), Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX())};
+  const world::Pose3 hand{Eigen::Vector3d(1, 0, 0),
+                          Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX())};
   EXPECT_TRUE(BooksUser::romCentre(hand).isApprox(Eigen::Vector3d(1.2, 0, 0)));
-  EXPECT_FALSE(u.reaches(hand, Eigen::Vector3d(1.2, 0, 0)));   // d = 0: too close
+  EXPECT_FALSE(u.reaches(hand, Eigen::Vector3d(1.2, 0, 0)));  // d = 0: too close
   EXPECT_FALSE(u.reaches(hand, Eigen::Vector3d(1.2, 0.05, 0)));
-  EXPECT_TRUE(u.reaches(hand, Eigen::Vector3d(1.2, 0.1, 0)));   // lower bound included
+  EXPECT_TRUE(u.reaches(hand, Eigen::Vector3d(1.2, 0.1, 0)));  // lower bound included
   EXPECT_TRUE(u.reaches(hand, Eigen::Vector3d(1.2, 0, 0.2)));
-  EXPECT_TRUE(u.reaches(hand, Eigen::Vector3d(0.9, 0, 0)));     // upper bound included
+  EXPECT_TRUE(u.reaches(hand, Eigen::Vector3d(0.9, 0, 0)));  // upper bound included
   EXPECT_FALSE(u.reaches(hand, Eigen::Vector3d(1.2, 0, -0.31)));
 }
 

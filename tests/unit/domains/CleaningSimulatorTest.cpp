@@ -2,8 +2,8 @@
 // failures, and the evaluation twin.
 #include "domains/cleaning/CleaningSimulator.h"
 
-#include "tests/unit/domains/HomeTestSupport.h"
 #include "robot/actions/CallArguments.h"
+#include "tests/unit/domains/HomeTestSupport.h"
 
 #include <gtest/gtest.h>
 
@@ -46,7 +46,8 @@ TEST(CleaningSimulator, ObservationsHaveTheDeclaredNamesAndKinds) {
   EXPECT_EQ(o.at("heldBody").kind, Value::Kind::Name);
   ASSERT_EQ(o.at("basePose").kind, Value::Kind::Vector);
   EXPECT_EQ(o.at("basePose").vector, (std::vector<double>{0, 0, 0}));
-  const std::set<std::string> members{"mainTable", "shelfBottom", "shelfMiddle", "shelfTop", "sideTable0", "sideTable1", "sideTable2"};
+  const std::set<std::string> members{"mainTable",  "shelfBottom", "shelfMiddle", "shelfTop",
+                                      "sideTable0", "sideTable1",  "sideTable2"};
   for (const std::string& m : o.at("clearSurfaces").members) EXPECT_EQ(members.count(m), 1u) << m;
 }
 
@@ -58,9 +59,12 @@ TEST(CleaningSimulator, EpisodesCoverOneSurfaceAndEveryHeldCaseWithValidStarts) 
     const auto o = sim.observe();
     const std::string held = o.at("heldBody").text;
     const std::string task = sim.requestedTask();
-    if (held.empty()) EXPECT_EQ(task, "cleanSurface");
-    else if (held == "duster") EXPECT_EQ(task, "cleanWithDusterInHand");
-    else EXPECT_EQ(task, "stowThenClean") << held;
+    if (held.empty())
+      EXPECT_EQ(task, "cleanSurface");
+    else if (held == "duster")
+      EXPECT_EQ(task, "cleanWithDusterInHand");
+    else
+      EXPECT_EQ(task, "stowThenClean") << held;
     tasks.insert(task);
     EXPECT_EQ(o.at("clearSurfaces").members.size(), 6u) << "seed " << seed;
     EXPECT_TRUE(world::checkRobotCollisions(sim.world().workspace()).free()) << "seed " << seed;
@@ -118,8 +122,9 @@ TEST(CleaningSimulator, FetchingTheDusterThenWipingFollowsTheSkills) {
   const world::WorldState s = home::emptyRoom(fresh.workspace().state().objects);
   ASSERT_EQ(sim.world().workspace().setState(s), world::StateStatus::Ok);
   EXPECT_EQ(sim.requestedTask(), "cleanSurface");
-  for (const ActionCall& call : {ActionCall{"moveBase", {Value::vec({0, -0.1, 0})}}, ActionCall{"grasp", {Value::name("duster")}},
-                                 ActionCall{"moveArmToNamed", {Value::name("home")}}}) {
+  for (const ActionCall& call :
+       {ActionCall{"moveBase", {Value::vec({0, -0.1, 0})}}, ActionCall{"grasp", {Value::name("duster")}},
+        ActionCall{"moveArmToNamed", {Value::name("home")}}}) {
     const StepResult r = sim.act(call);
     ASSERT_EQ(r.status, ActionStatus::Applied) << call.name << ": " << r.message;
     EXPECT_FALSE(r.taskDone);
@@ -127,11 +132,13 @@ TEST(CleaningSimulator, FetchingTheDusterThenWipingFollowsTheSkills) {
   EXPECT_EQ(sim.requestedTask(), "cleanWithDusterInHand");
   ASSERT_EQ(sim.act(ActionCall{"moveBase", {Value::vec({0, -0.55, 0})}}).status, ActionStatus::Applied);
   world::Rng rng(4);
-  const auto tool = actions::preWipeToolPose(sim.world(), "side_table_0_top", "duster", sim.worldState()->held->toolToObject, {0, -0.55, 0});
+  const auto tool = actions::preWipeToolPose(sim.world(), "side_table_0_top", "duster",
+                                             sim.worldState()->held->toolToObject, {0, -0.55, 0});
   ASSERT_TRUE(tool.has_value());
   const auto q = world::builtins::sampleIk(sim.world(), *tool, rng);
   ASSERT_TRUE(q.has_value());
-  ASSERT_EQ(sim.act(ActionCall{"moveArm", {Value::vec(std::vector<double>(q->begin(), q->end()))}}).status, ActionStatus::Applied);
+  ASSERT_EQ(sim.act(ActionCall{"moveArm", {Value::vec(std::vector<double>(q->begin(), q->end()))}}).status,
+            ActionStatus::Applied);
   const StepResult r = sim.act(wipe("side_table_0_top", {0, -0.55, 0}));
   ASSERT_EQ(r.status, ActionStatus::Applied) << r.message;
   EXPECT_EQ(r.satisfaction, 1.0);

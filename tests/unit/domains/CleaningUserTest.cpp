@@ -13,7 +13,8 @@ TEST(CleaningUser, PaperUserWelcomesTheMiddleShelfAndTheFirstSideTableOnly) {
   const CleaningUser u = CleaningUser::paperDefault();
   EXPECT_TRUE(u.welcomes("shelfMiddle"));
   EXPECT_TRUE(u.welcomes("sideTable0"));
-  for (const char* s : {"mainTable", "shelfBottom", "shelfTop", "sideTable1", "sideTable2", "bed"}) EXPECT_FALSE(u.welcomes(s)) << s;
+  for (const char* s : {"mainTable", "shelfBottom", "shelfTop", "sideTable1", "sideTable2", "bed"})
+    EXPECT_FALSE(u.welcomes(s)) << s;
 }
 
 TEST(CleaningUser, RejectsNamesThatAreNotSurfaces) {

@@ -99,7 +99,10 @@ TEST(CookingSimulator, LateStartAlsoGivesThePlannedTemperature) {
 }
 
 TEST(CookingSimulator, TemperatureBoundsAreExactInTicks) {
-  struct Case { int total; const char* heat; };
+  struct Case {
+    int total;
+    const char* heat;
+  };
   // Served ticks = total - 1: 27 hotter, 28 and 32 good, 33 colder.
   for (const Case c : {Case{28, "wantHotter"}, Case{29, "tempGood"}, Case{33, "tempGood"}, Case{34, "wantColder"}}) {
     CookingSimulator s({}, 2);
@@ -184,7 +187,7 @@ TEST(CookingSimulator, ServeDoesNotHeatAndDropsQueuedAdditions) {
   s.act(addIngredient("salt", "pot0", 0.97));
   s.act(addIngredient("pepper", "pot2", 0.97));
   for (int t = 0; t < 33; ++t) s.act(endTick());  // 32 ticks: the upper bound, good only if serving does not heat
-  s.act(addIngredient("sugar", "pot1", 0.97));     // queued after the last tick: never reaches the meal
+  s.act(addIngredient("sugar", "pot1", 0.97));    // queued after the last tick: never reaches the meal
   const StepResult r = s.act(serve("seasoning"));
   EXPECT_EQ(r.satisfaction, 1.0) << r.message;
   EXPECT_EQ(r.feedback.size(), 2u);
@@ -383,7 +386,7 @@ TEST(CookingSimulator, ShiftsDependOnlyOnTheSeedNotOnTheActions) {
   SimulatorOptions o;
   o.shiftEvery = 40;
   CookingSimulator a(o, 23), b(o, 23);
-  cookSeasoning(a, 0, 37);               // 2 moves + 37 ticks + serve = 40 steps, two restocks' worth of draws
+  cookSeasoning(a, 0, 37);                // 2 moves + 37 ticks + serve = 40 steps, two restocks' worth of draws
   for (int i = 0; i < 40; ++i) b.idle();  // no serve, fewer world draws
   ASSERT_EQ(a.user().shiftCount(), 1);
   ASSERT_EQ(b.user().shiftCount(), 1);

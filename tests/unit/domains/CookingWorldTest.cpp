@@ -41,8 +41,8 @@ TEST(CookingWorld, MoveInsideStoveIsApplied) {
 
 TEST(CookingWorld, MoveLeavingStoveIsRefused) {
   CookingWorld w;
-  EXPECT_EQ(w.movePot(0, 0.4, 5.0), MoveOutcome::LeavesStove);   // radius 0.5 crosses x = 0
-  EXPECT_EQ(w.movePot(1, 5.0, 9.5), MoveOutcome::LeavesStove);   // radius 1.0 crosses y = 10
+  EXPECT_EQ(w.movePot(0, 0.4, 5.0), MoveOutcome::LeavesStove);  // radius 0.5 crosses x = 0
+  EXPECT_EQ(w.movePot(1, 5.0, 9.5), MoveOutcome::LeavesStove);  // radius 1.0 crosses y = 10
   EXPECT_EQ(w.movePot(2, 11.0, 5.0), MoveOutcome::LeavesStove);
   EXPECT_EQ(w.movePot(3, -3.0, -3.0), MoveOutcome::LeavesStove);
   EXPECT_EQ(w.movePot(3, NAN, 5.0), MoveOutcome::BadPosition);
@@ -52,11 +52,11 @@ TEST(CookingWorld, MoveLeavingStoveIsRefused) {
 
 TEST(CookingWorld, OverlappingMoveIsRefusedTouchingIsFine) {
   CookingWorld w;
-  ASSERT_EQ(w.movePot(1, 5.0, 5.0), MoveOutcome::Moved);          // r = 1.0
-  EXPECT_EQ(w.movePot(0, 6.4, 5.0), MoveOutcome::Overlaps);       // r = 0.5, distance 1.4 < 1.5
+  ASSERT_EQ(w.movePot(1, 5.0, 5.0), MoveOutcome::Moved);     // r = 1.0
+  EXPECT_EQ(w.movePot(0, 6.4, 5.0), MoveOutcome::Overlaps);  // r = 0.5, distance 1.4 < 1.5
   EXPECT_FALSE(w.pot(0).onStove);
-  EXPECT_EQ(w.movePot(0, 6.5, 5.0), MoveOutcome::Moved);          // distance 1.5 == 1.5: touching
-  EXPECT_EQ(w.movePot(2, 6.5, 5.5), MoveOutcome::Overlaps);       // overlaps pot0
+  EXPECT_EQ(w.movePot(0, 6.5, 5.0), MoveOutcome::Moved);     // distance 1.5 == 1.5: touching
+  EXPECT_EQ(w.movePot(2, 6.5, 5.5), MoveOutcome::Overlaps);  // overlaps pot0
   // Off-stove pots do not block.
   ASSERT_TRUE(w.removeFromStove(0));
   EXPECT_EQ(w.movePot(2, 6.5, 5.5), MoveOutcome::Moved);

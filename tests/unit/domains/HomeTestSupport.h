@@ -19,7 +19,8 @@ namespace cbtl::test {
 // book except a held one parked; false if the state is rejected.
 inline bool holdAt(world::World& w, const std::string& object, const world::Pose2& base) {
   world::WorldState s = w.workspace().state();
-  for (std::size_t k = 0; k < domains::home::kBookCount; ++k) s.objects[domains::home::bookBody(k)] = domains::home::parkedPose(k);
+  for (std::size_t k = 0; k < domains::home::kBookCount; ++k)
+    s.objects[domains::home::bookBody(k)] = domains::home::parkedPose(k);
   s.base = base;
   s.held.reset();
   domains::home::holdAtHome(s, object);
@@ -46,14 +47,17 @@ inline bool readyToWipe(world::World& w, const std::string& surface, const world
 
 // The handover tool orientation of books.cbtl: rpy(-pi/4, pi/2, 0), R = Rz(yaw) Ry(pitch) Rx(roll).
 inline Eigen::Quaterniond handoverOrientation() {
-  return Eigen::AngleAxisd(0.0, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitY()) *
+  return Eigen::AngleAxisd(0.0, Eigen::Vector3d::UnitZ()) *
+         Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitY()) *
          Eigen::AngleAxisd(-std::numbers::pi / 4, Eigen::Vector3d::UnitX());
 }
 
 // Puts the tool (holding what it holds) at a handover point `radius` metres from `centre`, trying a few
 // directions; the point reached, or nullopt.
-inline std::optional<Eigen::Vector3d> handoverAt(world::World& w, const Eigen::Vector3d& centre, double radius, world::Rng& rng) {
-  const std::vector<Eigen::Vector3d> directions{{-1, 0, 0}, {-1, 0, 1}, {0, -1, 0}, {0, 0, 1}, {-1, -1, 0}, {-1, 1, 0}, {0, 1, 0}};
+inline std::optional<Eigen::Vector3d> handoverAt(world::World& w, const Eigen::Vector3d& centre, double radius,
+                                                 world::Rng& rng) {
+  const std::vector<Eigen::Vector3d> directions{{-1, 0, 0},  {-1, 0, 1}, {0, -1, 0}, {0, 0, 1},
+                                                {-1, -1, 0}, {-1, 1, 0}, {0, 1, 0}};
   for (const Eigen::Vector3d& d : directions) {
     const Eigen::Vector3d p = centre + radius * d.normalized();
     if (armTo(w, world::Pose3{p, handoverOrientation()}, rng)) return w.workspace().toolPose().position;

@@ -1,7 +1,7 @@
 // The standard-action executor on the home scene: each action's effect on the World, call-shape errors,
 // and failures that leave the World unchanged.
-#include "robot/actions/CallArguments.h"
 #include "domains/home/HomeScene.h"
+#include "robot/actions/CallArguments.h"
 #include "robot/actions/RobotActions.h"
 #include "robot/actions/StandardGrasps.h"
 #include "robot/actions/SurfaceGeometry.h"
@@ -75,7 +75,8 @@ TEST_F(RobotActionsTest, MoveArmAndNamedConfigurations) {
   RobotActionResult r = run("moveArmToNamed", {Value::name("home")});
   ASSERT_TRUE(r.done()) << r.detail;
   EXPECT_EQ(w.workspace().state().arm, world::configs::kHome);
-  r = run("moveArm", {Value::vec(std::vector<double>(world::configs::kRetract.begin(), world::configs::kRetract.end()))});
+  r = run("moveArm",
+          {Value::vec(std::vector<double>(world::configs::kRetract.begin(), world::configs::kRetract.end()))});
   ASSERT_TRUE(r.done()) << r.detail;
   EXPECT_EQ(w.workspace().state().arm, world::configs::kRetract);
 
@@ -88,11 +89,11 @@ TEST_F(RobotActionsTest, MoveArmAndNamedConfigurations) {
 
 TEST_F(RobotActionsTest, IllFormedCallsAreUnknownActions) {
   const std::vector<ActionCall> bad{
-      {"moveBase", {Value::vec({0, 0})}},                   // SE2 needs 3 numbers
-      {"moveBase", {Value::name("table")}},                 // wrong kind
-      {"moveArm", {Value::vec({0, 0, 0})}},                 // Conf needs 7
-      {"grasp", {}},                                        // missing argument
-      {"grasp", {Value::num(3)}},                           // wrong kind
+      {"moveBase", {Value::vec({0, 0})}},    // SE2 needs 3 numbers
+      {"moveBase", {Value::name("table")}},  // wrong kind
+      {"moveArm", {Value::vec({0, 0, 0})}},  // Conf needs 7
+      {"grasp", {}},                         // missing argument
+      {"grasp", {Value::num(3)}},            // wrong kind
       {"place", {Value::name("table_top"), Value::vec({0, 0, 0})}},
       {"wipe", {Value::vec({0, 0, 0}), Value::name("shelf_layer_1")}},
       {"say", {Value::names({"a"})}},

@@ -1,7 +1,7 @@
 // The wiping sweep: from a pre-wipe pose the duster covers a reachable surface and the base comes back;
 // without the duster on the surface, or without anything held, the sweep fails and nothing moves.
-#include "robot/actions/CallArguments.h"
 #include "domains/home/HomeScene.h"
+#include "robot/actions/CallArguments.h"
 #include "robot/actions/RobotActions.h"
 #include "robot/actions/StandardGrasps.h"
 #include "robot/actions/WipeSweep.h"
@@ -48,13 +48,14 @@ class WipeSweepTest : public ::testing::Test {
 
 TEST_F(WipeSweepTest, WipesEveryHomeSurfaceFromItsApproachBase) {
   const std::vector<std::pair<std::string, world::Pose2>> cases{
-      {"shelf_layer_1", {0, 0, 0}},          {"shelf_layer_2", {0, 0, 0}},     {"shelf_layer_0", {0.067, 0.023, 0}},
-      {"table_top", {0, -0.1, 0}},           {"side_table_0_top", {0, -0.55, 0}}, {"side_table_2_top", {0, -1.05, 0}}};
+      {"shelf_layer_1", {0, 0, 0}}, {"shelf_layer_2", {0, 0, 0}},        {"shelf_layer_0", {0.067, 0.023, 0}},
+      {"table_top", {0, -0.1, 0}},  {"side_table_0_top", {0, -0.55, 0}}, {"side_table_2_top", {0, -1.05, 0}}};
   for (const auto& [surface, base] : cases) {
     SCOPED_TRACE(surface);
     ASSERT_TRUE(readyToWipe(surface, base));
     const world::ArmConfig arm = w.workspace().state().arm;
-    const auto r = actions.execute(w, ActionCall{"wipe", {Value::name(surface), Value::vec(actions::encodePose2(base))}}, rng);
+    const auto r =
+        actions.execute(w, ActionCall{"wipe", {Value::name(surface), Value::vec(actions::encodePose2(base))}}, rng);
     ASSERT_TRUE(r.has_value());
     ASSERT_TRUE(r->done()) << r->detail;
     EXPECT_GE(r->basePath.size(), 3u);  // at least one stroke there and back, plus the return

@@ -30,20 +30,23 @@ TEST(Approach, EpsilonGreedyDrawsItsCoinFromTheRunRng) {
   int explore = 0;
   const int n = 4000;
   for (int i = 0; i < n; ++i) {
-    if (approach::trainingChoice({ApproachKind::EpsilonGreedy, 0.5, false}, rng).personal == PersonalMode::Exclude) ++explore;
+    if (approach::trainingChoice({ApproachKind::EpsilonGreedy, 0.5, false}, rng).personal == PersonalMode::Exclude)
+      ++explore;
   }
   EXPECT_NEAR(explore / static_cast<double>(n), 0.5, 0.05);
   rt::Rng rng2(5);
   int explore2 = 0;
   for (int i = 0; i < n; ++i) {
-    if (approach::trainingChoice({ApproachKind::EpsilonGreedy, 0.2, false}, rng2).personal == PersonalMode::Exclude) ++explore2;
+    if (approach::trainingChoice({ApproachKind::EpsilonGreedy, 0.2, false}, rng2).personal == PersonalMode::Exclude)
+      ++explore2;
   }
   EXPECT_NEAR(explore2 / static_cast<double>(n), 0.2, 0.05);
 }
 
 TEST(Approach, LearningAndFallback) {
   EXPECT_FALSE(approach::learns({ApproachKind::NoPersonalization, 0.5, false}));
-  for (auto k : {ApproachKind::Cbtl, ApproachKind::FreeExplore, ApproachKind::ExploitOnly, ApproachKind::EpsilonGreedy}) {
+  for (auto k :
+       {ApproachKind::Cbtl, ApproachKind::FreeExplore, ApproachKind::ExploitOnly, ApproachKind::EpsilonGreedy}) {
     EXPECT_TRUE(approach::learns({k, 0.5, false}));
   }
   EXPECT_FALSE(approach::fallsBack({ApproachKind::Cbtl, 0.5, false}));
@@ -72,8 +75,10 @@ TEST(Approach, CspContentsFollowTheChoice) {
     for (const auto& r : c.constraints) personal += r.personal ? 1 : 0;
     return personal;
   };
-  const auto include = solver::makeCsp(lp->program(), 0, lp->instances(0), user, obs, PersonalMode::Include, CostKind::Declared);
-  const auto exclude = solver::makeCsp(lp->program(), 0, lp->instances(0), user, obs, PersonalMode::Exclude, CostKind::Entropy);
+  const auto include =
+      solver::makeCsp(lp->program(), 0, lp->instances(0), user, obs, PersonalMode::Include, CostKind::Declared);
+  const auto exclude =
+      solver::makeCsp(lp->program(), 0, lp->instances(0), user, obs, PersonalMode::Exclude, CostKind::Entropy);
   EXPECT_EQ(count(include), 4u);
   EXPECT_TRUE(include.constraints.front().personal) << "personalized constraints are checked first";
   EXPECT_EQ(count(exclude), 0u);

@@ -2,14 +2,14 @@
 #include "tests/unit/runtime/TestPrograms.h"
 
 #include "domains/DomainRegistry.h"
-#include "tools/cbtl/ErrorHandling.h"
 #include "runtime/approach/Experiment.h"
 #include "runtime/core/InternalError.h"
-#include "runtime/model/UserModel.h"
 #include "runtime/core/Values.h"
+#include "runtime/model/UserModel.h"
+#include "tools/cbtl/ErrorHandling.h"
 
-#include <CLI/CLI.hpp>
 #include <gtest/gtest.h>
+#include <CLI/CLI.hpp>
 
 #include <new>
 
@@ -114,5 +114,6 @@ TEST(ErrorPaths, MessagesNameTheCommandAndCallBugsBugs) {
 
 TEST(ErrorPaths, ParseErrorsGoBackToCli11) {
   int code = -1;
-  EXPECT_THROW(cli::runCommand("test", code, []() -> int { throw CLI::ValidationError("--x", "bad"); }), CLI::ParseError);
+  EXPECT_THROW(cli::runCommand("test", code, []() -> int { throw CLI::ValidationError("--x", "bad"); }),
+               CLI::ParseError);
 }

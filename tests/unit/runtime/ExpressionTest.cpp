@@ -23,8 +23,9 @@ bool holds(app::LoadedProgram& lp, std::vector<double> x, std::size_t constraint
 }  // namespace
 
 TEST(Expression, ArithmeticComparisonAndLogic) {
-  auto lp = test::compileOrFail("e.cbtl", "domain e; var a : real in 0 .. 10; var b : int in 0 .. 10;\n"
-                                          "require a * 2 + 1 > b and not (b == 3) => a - b <= 4;\n");
+  auto lp = test::compileOrFail("e.cbtl",
+                                "domain e; var a : real in 0 .. 10; var b : int in 0 .. 10;\n"
+                                "require a * 2 + 1 > b and not (b == 3) => a - b <= 4;\n");
   ASSERT_TRUE(lp->ok());
   EXPECT_TRUE(holds(*lp, {2.0, 4}));
   EXPECT_FALSE(holds(*lp, {9.0, 4}));  // premise holds, 9 - 4 > 4
@@ -107,12 +108,16 @@ personal anyReal(v: real) {
   // Learning puts the labels under the key the instances read.
   model::UserModel user(lp->graph());
   const auto report = lp->learner().learn(
-      {sim::FeedbackEvent{"liked", {sim::Value::name("pepper"), sim::Value::num(2.0), sim::Value::num(1.0), sim::Value::num(1)}}}, user);
+      {sim::FeedbackEvent{
+          "liked", {sim::Value::name("pepper"), sim::Value::num(2.0), sim::Value::num(1.0), sim::Value::num(1)}}},
+      user);
   EXPECT_TRUE(report.problems.empty());
   EXPECT_EQ(report.labels, 3u);  // a and b of tasty, and anyReal
   EXPECT_EQ(user.generator(0).keys().count("pepper"), 1u);
-  const auto bad = lp->learner().learn({sim::FeedbackEvent{"liked", {sim::Value::name("cumin"), sim::Value::num(2.0),
-                                                                     sim::Value::num(1.0), sim::Value::num(1)}}}, user);
+  const auto bad = lp->learner().learn(
+      {sim::FeedbackEvent{"liked",
+                          {sim::Value::name("cumin"), sim::Value::num(2.0), sim::Value::num(1.0), sim::Value::num(1)}}},
+      user);
   ASSERT_FALSE(bad.problems.empty());
   EXPECT_NE(bad.problems[0].find("cumin"), std::string::npos);
 }

@@ -5,8 +5,8 @@
 #include "tests/unit/runtime/TestPrograms.h"
 
 #include "domains/DomainRegistry.h"
-#include "runtime/model/UserModel.h"
 #include "runtime/approach/ValueBridge.h"
+#include "runtime/model/UserModel.h"
 
 #include <gtest/gtest.h>
 
@@ -21,16 +21,23 @@ namespace {
 sim::Value sampleValue(const rt::Program& program, const ir::TypeDesc& type, bool flag) {
   const rt::ValueType t = program.typeOf(type);
   switch (t.kind) {
-    case rt::ValueKind::Bool: return sim::Value::num(flag ? 1 : 0);
-    case rt::ValueKind::Int: return sim::Value::num(2);
-    case rt::ValueKind::Real: return sim::Value::num(0.4);
-    case rt::ValueKind::Text: return sim::Value::name("fries");
-    case rt::ValueKind::Enum: case rt::ValueKind::Item: {
+    case rt::ValueKind::Bool:
+      return sim::Value::num(flag ? 1 : 0);
+    case rt::ValueKind::Int:
+      return sim::Value::num(2);
+    case rt::ValueKind::Real:
+      return sim::Value::num(0.4);
+    case rt::ValueKind::Text:
+      return sim::Value::name("fries");
+    case rt::ValueKind::Enum:
+    case rt::ValueKind::Item: {
       double first = 0;
       return sim::Value::name(program.render(t, &first));
     }
-    case rt::ValueKind::SE3: return sim::Value::vec({0.4, 0.1, 0.6, 1, 0, 0, 0});
-    default: return sim::Value::vec(std::vector<double>(t.width, 0.2));
+    case rt::ValueKind::SE3:
+      return sim::Value::vec({0.4, 0.1, 0.6, 1, 0, 0, 0});
+    default:
+      return sim::Value::vec(std::vector<double>(t.width, 0.2));
   }
 }
 

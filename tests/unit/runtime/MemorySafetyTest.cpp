@@ -3,11 +3,11 @@
 // overflowed a fixed-size array (run under ASan/UBSan by `make asan`).
 #include "tests/unit/runtime/TestPrograms.h"
 
-#include "runtime/solver/Csp.h"
 #include "runtime/approach/Planner.h"
+#include "runtime/model/UserModel.h"
+#include "runtime/solver/Csp.h"
 #include "runtime/solver/Recheck.h"
 #include "runtime/solver/Solver.h"
-#include "runtime/model/UserModel.h"
 
 #include <gtest/gtest.h>
 
@@ -17,11 +17,13 @@ using namespace cbtl;
 
 namespace {
 
-solver::SolveResult solveFirstTask(const app::LoadedProgram& lp, const model::UserModel& user, std::uint64_t iters = 2000) {
+solver::SolveResult solveFirstTask(const app::LoadedProgram& lp, const model::UserModel& user,
+                                   std::uint64_t iters = 2000) {
   solver::SolverOptions o;
   o.maxIters = iters;
   solver::Solver s(o, 3);
-  const auto csp = solver::makeCsp(lp.program(), 0, lp.instances(0), user, {}, solver::PersonalMode::Include, solver::CostKind::None);
+  const auto csp = solver::makeCsp(lp.program(), 0, lp.instances(0), user, {}, solver::PersonalMode::Include,
+                                   solver::CostKind::None);
   auto r = s.solve(csp);
   if (r.solved()) {
     const auto check = solver::recheck(csp, r.assignment);
@@ -85,7 +87,8 @@ sample idx ~ uniform;
     solver::SolverOptions o;
     o.maxIters = 500;
     solver::Solver s(o, seed);
-    const auto csp = solver::makeCsp(lp->program(), 0, lp->instances(0), user, {}, solver::PersonalMode::Include, solver::CostKind::None);
+    const auto csp = solver::makeCsp(lp->program(), 0, lp->instances(0), user, {}, solver::PersonalMode::Include,
+                                     solver::CostKind::None);
     const auto r = s.solve(csp);
     ASSERT_TRUE(r.solved());
     EXPECT_TRUE(solver::recheck(csp, r.assignment).holds()) << "seed " << seed;

@@ -48,7 +48,8 @@ TEST(Profile, CorruptFilesGiveErrorsWithTheirPath) {
       {R"({"format": "other"})", "format"},
       {R"({"format": "cbtl-profile", "version": 2})", "version"},
       {R"({"format": "cbtl-profile", "version": 1, "domain": "books", "generators": {}})", "domain"},
-      {R"({"format": "cbtl-profile", "version": 1, "domain": "cooking", "generators": {"nope": {}}})", "generators.nope"},
+      {R"({"format": "cbtl-profile", "version": 1, "domain": "cooking", "generators": {"nope": {}}})",
+       "generators.nope"},
       {R"({"format": "cbtl-profile", "version": 1, "domain": "cooking", "generators": {"userEnjoysMeal": {"seasoning|salt": {"temp": {"kind": "interval", "data": [[1, 2]]}, "qty": {"kind": "interval", "data": []}}}}})",
        "temp.data[0]"},
       {R"({"format": "cbtl-profile", "version": 1, "domain": "cooking", "generators": {"userEnjoysMeal": {"seasoning|salt": {"temp": {"kind": "interval", "data": []}}}}})",
@@ -142,16 +143,19 @@ TEST(Profile, FactorKindsMustBeTheProgramsDeclaration) {
   model::UserModel user(lp->graph());
   user.generator(0).mutableFactors("seasoning|salt")[0].observe(30, true);
   const std::string key = "generators.userEnjoysMeal[\"seasoning|salt\"]";
-  expectProfileError(user, profileWith("seasoning|salt", R"({"kind": "threshold", "direction": "above", "data": [[30, true]]})"),
-                     key + ".temp.kind: expected \"interval\"");
+  expectProfileError(
+      user, profileWith("seasoning|salt", R"({"kind": "threshold", "direction": "above", "data": [[30, true]]})"),
+      key + ".temp.kind: expected \"interval\"");
   expectProfileError(user, profileWith("seasoning|salt", R"({"kind": "table", "entries": {}})"), key + ".temp.kind");
-  expectProfileError(user, profileWith("seasoning|salt", R"({"kind": "text", "backend": "x", "state": {}})"), key + ".temp.kind");
+  expectProfileError(user, profileWith("seasoning|salt", R"({"kind": "text", "backend": "x", "state": {}})"),
+                     key + ".temp.kind");
   expectProfileError(user, profileWith("seasoning|salt", R"({"data": []})"), key + ".temp.kind");
   expectProfileError(user, profileWith("seasoning|salt", R"({"kind": 3, "data": []})"), key + ".temp.kind");
   // A factor the generator does not declare.
-  expectProfileError(user,
-                     R"({"format": "cbtl-profile", "version": 1, "domain": "cooking", "generators": {"userEnjoysMeal": {"seasoning|salt": {"temp": {"kind": "interval", "data": []}, "qty": {"kind": "interval", "data": []}, "salt": {"kind": "interval", "data": []}}}}})",
-                     key + ".salt: no such factor");
+  expectProfileError(
+      user,
+      R"({"format": "cbtl-profile", "version": 1, "domain": "cooking", "generators": {"userEnjoysMeal": {"seasoning|salt": {"temp": {"kind": "interval", "data": []}, "qty": {"kind": "interval", "data": []}, "salt": {"kind": "interval", "data": []}}}}})",
+      key + ".salt: no such factor");
   // The declared kind loads.
   user.fromJson(profileWith("seasoning|salt", R"({"kind": "interval", "data": [[31, true]]})"), "p.json");
   EXPECT_EQ(user.dataCount(), 1u);
@@ -163,7 +167,8 @@ TEST(Profile, ModelKeysMustHaveTheGeneratorsShape) {
   model::UserModel user(lp->graph());
   const std::string ok = R"({"kind": "interval", "data": []})";
   // per m, ing: two parts.
-  expectProfileError(user, profileWith("seasoning", ok), "generators.userEnjoysMeal[\"seasoning\"]: expected 2 '|'-separated parts");
+  expectProfileError(user, profileWith("seasoning", ok),
+                     "generators.userEnjoysMeal[\"seasoning\"]: expected 2 '|'-separated parts");
   expectProfileError(user, profileWith("", ok), "generators.userEnjoysMeal[\"\"]: expected 2");
   // m is free text, so a third '|' may belong to it.
   user.fromJson(profileWith("a|b|salt", ok), "p.json");
@@ -189,14 +194,17 @@ personal plain(x: real) {
   ASSERT_TRUE(typed->ok());
   model::UserModel k(typed->graph());
   auto profile = [](const std::string& generator, const std::string& key) {
-    return R"({"format": "cbtl-profile", "version": 1, "domain": "k", "generators": {")" + generator + R"(": {")" + key +
-           R"(": {"interval": {"kind": "interval", "data": [[0.5, true]]}}}}})";
+    return R"({"format": "cbtl-profile", "version": 1, "domain": "k", "generators": {")" + generator + R"(": {")" +
+           key + R"(": {"interval": {"kind": "interval", "data": [[0.5, true]]}}}}})";
   };
   k.fromJson(profile("likes", "blue|true"), "p.json");
   EXPECT_EQ(k.dataCount(), 1u);
-  expectProfileError(k, profile("likes", "green|true"), "generators.likes[\"green|true\"]: part 1 ('green', per c) should be a member of Color");
-  expectProfileError(k, profile("likes", "red|yes"), "generators.likes[\"red|yes\"]: part 2 ('yes', per on) should be true or false");
-  expectProfileError(k, profile("likes", "red|true|x"), "generators.likes[\"red|true|x\"]: expected 2 '|'-separated parts (per c, on), found 3");
+  expectProfileError(k, profile("likes", "green|true"),
+                     "generators.likes[\"green|true\"]: part 1 ('green', per c) should be a member of Color");
+  expectProfileError(k, profile("likes", "red|yes"),
+                     "generators.likes[\"red|yes\"]: part 2 ('yes', per on) should be true or false");
+  expectProfileError(k, profile("likes", "red|true|x"),
+                     "generators.likes[\"red|true|x\"]: expected 2 '|'-separated parts (per c, on), found 3");
   expectProfileError(k, profile("plain", "x"), "generators.plain[\"x\"]: generator 'plain' has no 'per' keys");
   k.fromJson(profile("plain", ""), "p.json");
 }

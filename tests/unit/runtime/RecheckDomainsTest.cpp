@@ -45,7 +45,9 @@ TEST_P(RecheckEverywhere, EveryExecutedPlanIsRecheckedAndNoneIsRefused) {
   c.solverOptions.maxIters = robot ? 300 : 100000;
   c.solverOptions.numImprovements = robot ? 5 : 500;
   c.solverOptions.maxImprovementAttempts = robot ? 10 : 10000;
-  const auto factory = [domain](const sim::SimulatorOptions& o, std::uint64_t seed) { return domains::createSimulator(domain, o, seed); };
+  const auto factory = [domain](const sim::SimulatorOptions& o, std::uint64_t seed) {
+    return domains::createSimulator(domain, o, seed);
+  };
   const auto r = approach::runExperiment(*lp, factory, c);
   EXPECT_EQ(r.recheckViolations, 0) << r.firstRecheckViolation;
   EXPECT_GT(r.rechecks, 0) << "no plan was solved, so nothing was re-checked";
@@ -58,10 +60,12 @@ const auto kEveryApproach = ::testing::Values(approach::ApproachKind::Cbtl, appr
                                               approach::ApproachKind::FreeExplore, approach::ApproachKind::ExploitOnly,
                                               approach::ApproachKind::EpsilonGreedy);
 INSTANTIATE_TEST_SUITE_P(EveryApproach, RecheckEverywhere,
-                         ::testing::Combine(::testing::Values("/cooking/cooking.cbtl", "/cleaning/cleaning.cbtl", "/feeding/feeding.cbtl"),
+                         ::testing::Combine(::testing::Values("/cooking/cooking.cbtl", "/cleaning/cleaning.cbtl",
+                                                              "/feeding/feeding.cbtl"),
                                             kEveryApproach),
                          caseName);
 INSTANTIATE_TEST_SUITE_P(Books, RecheckEverywhere,
                          ::testing::Combine(::testing::Values("/books/books.cbtl"),
-                                            ::testing::Values(approach::ApproachKind::Cbtl, approach::ApproachKind::NoPersonalization)),
+                                            ::testing::Values(approach::ApproachKind::Cbtl,
+                                                              approach::ApproachKind::NoPersonalization)),
                          caseName);

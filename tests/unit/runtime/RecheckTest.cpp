@@ -3,12 +3,12 @@
 // by hand, the bug class the re-check exists for) is refused by the planner and never unrolled into calls.
 #include "tests/unit/runtime/TestPrograms.h"
 
-#include "runtime/solver/Csp.h"
 #include "runtime/approach/Planner.h"
-#include "runtime/solver/Recheck.h"
 #include "runtime/core/Rng.h"
-#include "runtime/solver/Solver.h"
 #include "runtime/model/UserModel.h"
+#include "runtime/solver/Csp.h"
+#include "runtime/solver/Recheck.h"
+#include "runtime/solver/Solver.h"
 
 #include <gtest/gtest.h>
 
@@ -36,11 +36,21 @@ std::string randomProgram(rt::Rng& rng) {
   for (int c = 0; c < constraints; ++c) {
     std::string body;
     switch (rng.index(5)) {
-      case 0: body = var() + " <= " + var(); break;
-      case 1: body = "on(" + var() + ")"; break;
-      case 2: body = "forall k in 0 .. " + var() + ": on(k) or k == " + var(); break;
-      case 3: body = "twice(" + var() + ") >= " + std::to_string(rng.index(6)); break;
-      default: body = "exists k in 0 .. " + std::to_string(members - 1) + ": on(k) and k == " + var(); break;
+      case 0:
+        body = var() + " <= " + var();
+        break;
+      case 1:
+        body = "on(" + var() + ")";
+        break;
+      case 2:
+        body = "forall k in 0 .. " + var() + ": on(k) or k == " + var();
+        break;
+      case 3:
+        body = "twice(" + var() + ") >= " + std::to_string(rng.index(6));
+        break;
+      default:
+        body = "exists k in 0 .. " + std::to_string(members - 1) + ": on(k) and k == " + var();
+        break;
     }
     s += "require c" + std::to_string(c) + ": " + body + ";\n";
   }
@@ -102,9 +112,10 @@ TEST(Recheck, EverySolvedGoldenInputRechecksTrue) {
 TEST(Recheck, NamesTheBrokenConstraintAndTheVariableOutsideItsDomain) {
   auto lp = test::compileOrFail("tiny.cbtl", test::kTinySource);
   model::UserModel user(lp->graph());
-  const auto csp = solver::makeCsp(lp->program(), 0, lp->instances(0), user, {}, solver::PersonalMode::Exclude, solver::CostKind::None);
+  const auto csp = solver::makeCsp(lp->program(), 0, lp->instances(0), user, {}, solver::PersonalMode::Exclude,
+                                   solver::CostKind::None);
   std::vector<double> x(lp->program().assignmentWidth(), 0.0);  // x = y = 0: `order` (x < y) fails
-  x[lp->program().slot(2).offset] = 11;                          // n = 11: outside 0 .. 10
+  x[lp->program().slot(2).offset] = 11;                         // n = 11: outside 0 .. 10
   const auto check = solver::recheck(csp, x);
   ASSERT_EQ(check.violations.size(), 2u);
   EXPECT_NE(check.violations[0].find("'n'"), std::string::npos) << check.violations[0];
@@ -155,12 +166,15 @@ task t = act;
 
 TEST(Recheck, AVariableWithoutAnInitialValueOrASamplerStartsInsideItsDomain) {
   // Found by the runtime fuzzer: x started at 0, outside 1 .. 1, and with no sampler the solver accepted it.
-  auto lp = test::compileOrFail("unsampled.cbtl", "domain unsampled;\nvar x : real in 1 .. 1;\nvar m : text in [\"a\", \"b\"];\nrequire small: x < pi;\n");
+  auto lp = test::compileOrFail(
+      "unsampled.cbtl",
+      "domain unsampled;\nvar x : real in 1 .. 1;\nvar m : text in [\"a\", \"b\"];\nrequire small: x < pi;\n");
   ASSERT_TRUE(lp->ok());
   model::UserModel user(lp->graph());
   solver::Solver s({}, 1);
   const auto plan = approach::makePlan(*lp, 0, {}, approach::evaluationChoice(), false, s, user);
   ASSERT_TRUE(plan.ok) << (plan.recheck.violations.empty() ? "" : plan.recheck.violations.front());
   EXPECT_EQ(plan.solve.assignment[lp->program().slot(0).offset], 1.0);
-  EXPECT_EQ(lp->program().render(lp->program().slot(1).type, &plan.solve.assignment[lp->program().slot(1).offset]), "a");
+  EXPECT_EQ(lp->program().render(lp->program().slot(1).type, &plan.solve.assignment[lp->program().slot(1).offset]),
+            "a");
 }

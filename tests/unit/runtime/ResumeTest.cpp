@@ -3,8 +3,8 @@
 // before its checkpoint again; a second process cannot share the folder; failed writes name their file.
 #include "tests/unit/runtime/TestPrograms.h"
 
-#include "runtime/approach/Checkpoint.h"
 #include "domains/DomainRegistry.h"
+#include "runtime/approach/Checkpoint.h"
 #include "runtime/approach/Experiment.h"
 #include "runtime/approach/RunDirectory.h"
 
@@ -24,7 +24,8 @@ namespace fs = std::filesystem;
 namespace {
 
 approach::SimulatorFactory cooking() {
-  return [](const sim::SimulatorOptions& o, std::uint64_t seed) { return domains::createSimulator("cooking", o, seed); };
+  return
+      [](const sim::SimulatorOptions& o, std::uint64_t seed) { return domains::createSimulator("cooking", o, seed); };
 }
 
 std::string tempDir(const std::string& name) {
@@ -108,7 +109,8 @@ TEST_P(ResumeTest, ResumedRunWritesTheBytesOfAnUninterruptedOne) {
 
   // The checkpoint the resume starts from: the last evaluation point whose checkpoint.json was written.
   std::int64_t from = -1;
-  if (fs::exists(cut + "/checkpoint.json")) from = nlohmann::json::parse(test::readFile(cut + "/checkpoint.json")).at("step");
+  if (fs::exists(cut + "/checkpoint.json"))
+    from = nlohmann::json::parse(test::readFile(cut + "/checkpoint.json")).at("step");
   std::vector<std::pair<std::string, std::int64_t>> calls;
   c.runMode = approach::RunMode::Resume;
   c.testHook = [&](const char* point, std::int64_t step) { calls.emplace_back(point, step); };
@@ -133,15 +135,16 @@ TEST_P(ResumeTest, ResumedRunWritesTheBytesOfAnUninterruptedOne) {
   EXPECT_EQ(resumed.solverIterations, expected.solverIterations);
   EXPECT_EQ(resumed.trainSatisfaction, expected.trainSatisfaction);
   ASSERT_EQ(resumed.evals.size(), expected.evals.size());
-  for (std::size_t i = 0; i < resumed.evals.size(); ++i) EXPECT_EQ(resumed.evals[i].satisfaction, expected.evals[i].satisfaction);
+  for (std::size_t i = 0; i < resumed.evals.size(); ++i)
+    EXPECT_EQ(resumed.evals[i].satisfaction, expected.evals[i].satisfaction);
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Cooking, ResumeTest,
     ::testing::Combine(::testing::Values(Variant{"cbtl", approach::ApproachKind::Cbtl, false},
                                          Variant{"epsilon_shifting", approach::ApproachKind::EpsilonGreedy, true}),
-                       ::testing::Values(Point{"step", 537}, Point{"checkpoint", 600}, Point{"model", 300}, Point{"model", 0},
-                                         Point{"finish", 1000}, Point{"step", 999})),
+                       ::testing::Values(Point{"step", 537}, Point{"checkpoint", 600}, Point{"model", 300},
+                                         Point{"model", 0}, Point{"finish", 1000}, Point{"step", 999})),
     [](const auto& param) {
       const Variant& v = std::get<0>(param.param);
       const Point& p = std::get<1>(param.param);

@@ -1,9 +1,9 @@
 // The sampling solver: the reference's small CSP, memory samplers, costs, outcomes, determinism.
 #include "tests/unit/runtime/TestPrograms.h"
 
+#include "runtime/model/UserModel.h"
 #include "runtime/solver/Csp.h"
 #include "runtime/solver/Solver.h"
-#include "runtime/model/UserModel.h"
 
 #include <gtest/gtest.h>
 
@@ -67,12 +67,14 @@ TEST(Solver, NoSamplersAndNoMemoryIsReported) {
 }
 
 TEST(Solver, InfeasibleWithinBudgetNamesTheRejectingConstraint) {
-  auto lp = test::compileOrFail("inf.cbtl", "domain inf; var a : real in 0 .. 1; require never: a > 2; sample a ~ uniform;\n");
+  auto lp = test::compileOrFail("inf.cbtl",
+                                "domain inf; var a : real in 0 .. 1; require never: a > 2; sample a ~ uniform;\n");
   model::UserModel user(lp->graph());
   solver::SolverOptions o;
   o.maxIters = 500;
   solver::Solver s(o, 1);
-  const auto c = solver::makeCsp(lp->program(), 0, lp->instances(0), user, {}, solver::PersonalMode::Include, solver::CostKind::None);
+  const auto c = solver::makeCsp(lp->program(), 0, lp->instances(0), user, {}, solver::PersonalMode::Include,
+                                 solver::CostKind::None);
   const auto r = s.solve(c);
   EXPECT_EQ(r.outcome, solver::SolveOutcome::InfeasibleWithinBudget);
   EXPECT_EQ(r.iterations, 500u);
@@ -83,11 +85,13 @@ TEST(Solver, InfeasibleWithinBudgetNamesTheRejectingConstraint) {
 }
 
 TEST(Solver, SamplersThatAlwaysFailAreStuck) {
-  auto lp = test::compileOrFail("stuck.cbtl", "domain stuck; var a : int in 0 .. 5; require a > 0;\n"
-                                              "sample a ~ uniformInt(3, 1);\n");
+  auto lp = test::compileOrFail("stuck.cbtl",
+                                "domain stuck; var a : int in 0 .. 5; require a > 0;\n"
+                                "sample a ~ uniformInt(3, 1);\n");
   model::UserModel user(lp->graph());
   solver::Solver s({}, 1);
-  const auto c = solver::makeCsp(lp->program(), 0, lp->instances(0), user, {}, solver::PersonalMode::Include, solver::CostKind::None);
+  const auto c = solver::makeCsp(lp->program(), 0, lp->instances(0), user, {}, solver::PersonalMode::Include,
+                                 solver::CostKind::None);
   EXPECT_EQ(s.solve(c).outcome, solver::SolveOutcome::SamplersStuck);
 }
 

@@ -2,8 +2,8 @@
 // built-ins compute what their declarations promise when called from a compiled program.
 #include "tests/unit/runtime/TestPrograms.h"
 
-#include "runtime/core/Builtins.h"
 #include "robot/bind/WorldBuiltins.h"
+#include "runtime/core/Builtins.h"
 
 #include <gtest/gtest.h>
 
@@ -62,8 +62,10 @@ TEST(StdlibBinding, EveryExternHasABinding) {
   ASSERT_GE(externs.size(), 50u) << "the stdlib scan found too few declarations: " << CBTL_STDLIB_DIR;
   const rt::Builtins b = everyRegistry();
   for (const auto& e : externs) {
-    if (e.kind == "fn") EXPECT_NE(b.function(e.name), nullptr) << e.file << ": extern fn " << e.name << " has no binding";
-    else EXPECT_NE(b.sampler(e.name), nullptr) << e.file << ": extern sampler " << e.name << " has no binding";
+    if (e.kind == "fn")
+      EXPECT_NE(b.function(e.name), nullptr) << e.file << ": extern fn " << e.name << " has no binding";
+    else
+      EXPECT_NE(b.sampler(e.name), nullptr) << e.file << ": extern sampler " << e.name << " has no binding";
   }
 }
 
@@ -148,7 +150,8 @@ TEST(StdlibBinding, BuiltinsReadAndWriteTheirDeclaredWidths) {
       ASSERT_NE(impl, nullptr) << f.name;
       impl(cx, std::span(args.data(), argWidth), widths, std::span(out.data(), resultWidth));
     }
-    for (std::size_t i = resultWidth; i < out.size(); ++i) EXPECT_EQ(out[i], kSentinel) << f.name << " wrote past its result";
+    for (std::size_t i = resultWidth; i < out.size(); ++i)
+      EXPECT_EQ(out[i], kSentinel) << f.name << " wrote past its result";
     if (produced) {
       for (std::size_t i = 0; i < resultWidth; ++i) EXPECT_FALSE(std::isnan(out[i])) << f.name << " result " << i;
     }

@@ -4,11 +4,11 @@
 #include "tests/unit/runtime/TestPrograms.h"
 
 #include "runtime/approach/Approach.h"
-#include "runtime/solver/Csp.h"
 #include "runtime/model/Entropy.h"
+#include "runtime/model/UserModel.h"
+#include "runtime/solver/Csp.h"
 #include "runtime/solver/PersonalEvaluator.h"
 #include "runtime/solver/Solver.h"
-#include "runtime/model/UserModel.h"
 
 #include "runtime/textpref/Prompts.h"
 #include "runtime/textpref/TextBackend.h"
@@ -99,8 +99,10 @@ struct Shelf {
     ADD_FAILURE() << name;
     return 0;
   }
-  approach::LearnReport learn(model::UserModel& user, const std::string& event, const std::string& subject, bool ok) const {
-    return lp->learner().learn({sim::FeedbackEvent{event, {sim::Value::name(subject), sim::Value::num(ok ? 1 : 0)}}}, user);
+  approach::LearnReport learn(model::UserModel& user, const std::string& event, const std::string& subject,
+                              bool ok) const {
+    return lp->learner().learn({sim::FeedbackEvent{event, {sim::Value::name(subject), sim::Value::num(ok ? 1 : 0)}}},
+                               user);
   }
 };
 
@@ -166,9 +168,10 @@ TEST(TextFactor, FromSpecMakesATextFactorAndRejectsUnknownKinds) {
 }
 
 TEST(TextFactor, GeneratorPromptsFrameTheQuestionWithTheItemAndTheta) {
-  const auto t = textpref::generatorPrompts("Would the user enjoy reading this book?", "Describe which books they like.");
-  const std::string prompt = textpref::renderConstraintPrompt(
-      t, textpref::Item{"cosmos", {{"tags", {"science"}}}}, {}, "Unknown", textpref::RatingScale::Digits);
+  const auto t =
+      textpref::generatorPrompts("Would the user enjoy reading this book?", "Describe which books they like.");
+  const std::string prompt = textpref::renderConstraintPrompt(t, textpref::Item{"cosmos", {{"tags", {"science"}}}}, {},
+                                                              "Unknown", textpref::RatingScale::Digits);
   EXPECT_NE(prompt.find("cosmos (tags: science)"), std::string::npos) << prompt;
   EXPECT_NE(prompt.find("Would the user enjoy reading this book?"), std::string::npos) << prompt;
   EXPECT_NE(prompt.find("Unknown"), std::string::npos) << prompt;
@@ -336,7 +339,8 @@ TEST(TextFactor, ExploitSolvePicksALikedBook) {
   s.learn(user, "liked", "emma", true);
   for (const char* b : {"cosmos", "briefHistory", "persuasion", "dracula"}) s.learn(user, "liked", b, false);
   ASSERT_GT(s.p(user, kEnjoys, "book", "emma"), 0.5);
-  for (const char* b : {"cosmos", "briefHistory", "persuasion", "dracula"}) ASSERT_LT(s.p(user, kEnjoys, "book", b), 0.5) << b;
+  for (const char* b : {"cosmos", "briefHistory", "persuasion", "dracula"})
+    ASSERT_LT(s.p(user, kEnjoys, "book", b), 0.5) << b;
   const auto choice = approach::evaluationChoice();
   for (std::uint64_t seed : {1u, 2u, 3u}) {
     solver::Solver solver({}, seed);

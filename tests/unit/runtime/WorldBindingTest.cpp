@@ -3,12 +3,12 @@
 // collision, occlusion, placement, motion-plan feasibility, scene queries) on the Feeding and home scenes.
 #include "tests/unit/runtime/TestPrograms.h"
 
+#include "robot/actions/StandardGrasps.h"
+#include "robot/bind/WorldBuiltins.h"
+#include "robot/world/WorldState.h"
+#include "runtime/model/UserModel.h"
 #include "runtime/solver/Csp.h"
 #include "runtime/solver/Solver.h"
-#include "runtime/model/UserModel.h"
-#include "robot/bind/WorldBuiltins.h"
-#include "robot/actions/StandardGrasps.h"
-#include "robot/world/WorldState.h"
 
 #include <gtest/gtest.h>
 
@@ -30,7 +30,8 @@ std::vector<std::pair<std::string, bool>> checkAll(app::LoadedProgram& lp, const
   rt::EvalContext ctx{x.data(), o.data(), frame.data(), program.callContext()};
   std::vector<std::pair<std::string, bool>> out;
   for (std::size_t c = 0; c < program.constraints().size(); ++c) {
-    out.emplace_back(program.constraints()[c].source->name, program.pool().evalBool(program.constraints()[c].root, ctx));
+    out.emplace_back(program.constraints()[c].source->name,
+                     program.pool().evalBool(program.constraints()[c].root, ctx));
   }
   return out;
 }
@@ -278,9 +279,11 @@ TEST(WorldBuiltins, SideGraspIsTheBooksCarryGrasp) {
   std::snprintf(expected, sizeof expected, "poseQuat(vec3(%.9f, %.9f, %.9f), %.9f, %.9f, %.9f, %.9f)", g.position.x(),
                 g.position.y(), g.position.z(), g.orientation.x(), g.orientation.y(), g.orientation.z(),
                 g.orientation.w());
-  auto lp = test::compileOrFail("g.cbtl", homePrelude() + "const inBody = relativePose(bodyPose(\"book_0\"), sideGraspPose(\"book_0\", -pi / 2));\n" +
-                                              "require same: distance(inBody.position, " + expected + ".position) < 1e-6 and angleBetween(inBody, " +
-                                              expected + ") < 1e-6;\n");
+  auto lp = test::compileOrFail(
+      "g.cbtl", homePrelude() +
+                    "const inBody = relativePose(bodyPose(\"book_0\"), sideGraspPose(\"book_0\", -pi / 2));\n" +
+                    "require same: distance(inBody.position, " + expected +
+                    ".position) < 1e-6 and angleBetween(inBody, " + expected + ") < 1e-6;\n");
   ASSERT_TRUE(lp->ok());
   expectAllHold(*lp);
 }

@@ -251,8 +251,8 @@ TEST(ChatClient, RetriesAreBoundedAndTheErrorNamesServerAndStatus) {
 
 TEST(ChatClient, QuotaErrorIsNeverRetried) {
   Harness h;
-  h.server.setDefault(reply(429, errorBody("You exceeded your current quota", "insufficient_quota",
-                                           "insufficient_quota"),
+  h.server.setDefault(reply(429,
+                            errorBody("You exceeded your current quota", "insufficient_quota", "insufficient_quota"),
                             {{"Retry-After", "1"}}));
   LlmPreferenceModel model(h.client(), bookOptions());
   auto a = model.assess(testBook(), {});
@@ -265,8 +265,8 @@ TEST(ChatClient, QuotaErrorIsNeverRetried) {
 
 TEST(ChatClient, OtherClientErrorsAreNotRetried) {
   Harness h;
-  h.server.setDefault(reply(400, errorBody("logprobs are not supported with reasoning models",
-                                           "invalid_request_error", "unsupported_parameter")));
+  h.server.setDefault(reply(400, errorBody("logprobs are not supported with reasoning models", "invalid_request_error",
+                                           "unsupported_parameter")));
   LlmPreferenceModel model(h.client(), bookOptions());
   auto a = model.assess(testBook(), {});
   ASSERT_FALSE(a.ok());
@@ -395,7 +395,7 @@ TEST(LlmPreferenceModel, LearningPromptRewritesThetaFromTheWholeHistory) {
   EXPECT_EQ(body["temperature"], 1.0);
   EXPECT_EQ(body["max_tokens"], 400);
   const std::string prompt = body["messages"][0]["content"];
-  EXPECT_NE(prompt.find("I loved it"), std::string::npos);         // the whole history is re-sent
+  EXPECT_NE(prompt.find("I loved it"), std::string::npos);  // the whole history is re-sent
   EXPECT_NE(prompt.find("Too long and dull"), std::string::npos);
   EXPECT_NE(prompt.find("Disliked books so far: none."), std::string::npos);  // with the current theta
 }

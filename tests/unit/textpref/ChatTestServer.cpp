@@ -71,21 +71,22 @@ int ChatTestServer::requestCount() const {
 
 std::string ratingBody(const std::vector<std::pair<std::string, double>>& top) {
   nlohmann::json alternatives = nlohmann::json::array();
-  for (const auto& [token, p] : top) alternatives.push_back({{"token", token}, {"logprob", std::log(p)}, {"bytes", nullptr}});
+  for (const auto& [token, p] : top)
+    alternatives.push_back({{"token", token}, {"logprob", std::log(p)}, {"bytes", nullptr}});
   const std::string content = top.empty() ? "" : top.front().first;
-  nlohmann::json body{
-      {"id", "chatcmpl-test"},
-      {"object", "chat.completion"},
-      {"model", "test-model"},
-      {"system_fingerprint", "fp_test"},
-      {"choices",
-       {{{"index", 0},
-         {"finish_reason", "length"},
-         {"message", {{"role", "assistant"}, {"content", content}}},
-         {"logprobs",
-          {{"content",
-            {{{"token", content}, {"logprob", top.empty() ? 0.0 : std::log(top.front().second)},
-              {"top_logprobs", alternatives}}}}}}}}}};
+  nlohmann::json body{{"id", "chatcmpl-test"},
+                      {"object", "chat.completion"},
+                      {"model", "test-model"},
+                      {"system_fingerprint", "fp_test"},
+                      {"choices",
+                       {{{"index", 0},
+                         {"finish_reason", "length"},
+                         {"message", {{"role", "assistant"}, {"content", content}}},
+                         {"logprobs",
+                          {{"content",
+                            {{{"token", content},
+                              {"logprob", top.empty() ? 0.0 : std::log(top.front().second)},
+                              {"top_logprobs", alternatives}}}}}}}}}};
   return body.dump();
 }
 
@@ -105,12 +106,12 @@ std::string errorBody(const std::string& message, const std::string& type, const
 }
 
 ChatTestServer::Handler reply(int status, std::string body, std::vector<std::pair<std::string, std::string>> headers) {
-  return [status, body = std::move(body), headers = std::move(headers)](const httplib::Request&,
-                                                                       httplib::Response& res) {
-    res.status = status;
-    for (const auto& [k, v] : headers) res.set_header(k, v);
-    res.set_content(body, "application/json");
-  };
+  return
+      [status, body = std::move(body), headers = std::move(headers)](const httplib::Request&, httplib::Response& res) {
+        res.status = status;
+        for (const auto& [k, v] : headers) res.set_header(k, v);
+        res.set_content(body, "application/json");
+      };
 }
 
 ChatTestServer::Handler replyRating(const std::vector<std::pair<std::string, double>>& top) {

@@ -2,9 +2,9 @@
 // and its stdout and stderr together.
 #pragma once
 
+#include <sys/wait.h>
 #include <cstdio>
 #include <string>
-#include <sys/wait.h>
 
 namespace cbtl::textpref::testing {
 

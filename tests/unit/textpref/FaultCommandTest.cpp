@@ -44,8 +44,8 @@ TEST(LlmFaultsInARun, NoLogprobsFallbacksAreCountedPrintedAndRecorded) {
   ChatTestServer server;
   server.setDefault(reply(200, textBody("7")));
   OutDir out;
-  const CommandRun run = runCbtl("run " + kFeeding + kShortTrial + openai(server) + " --llm-attempts 1 --out " +
-                                 out.path.string());
+  const CommandRun run =
+      runCbtl("run " + kFeeding + kShortTrial + openai(server) + " --llm-attempts 1 --out " + out.path.string());
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("fell back to the generator's fallback (no-logprobs"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("first error: no-logprobs:"), std::string::npos) << run.output;
@@ -112,7 +112,8 @@ TEST(LlmFaultsInAnExperiment, TheSummaryCountsEveryTrial) {
 }
 
 TEST(LlmFaultOptions, OutOfRangeValuesAreUsageErrorsNamingTheOption) {
-  for (const std::string option : {"--llm-attempts 0", "--llm-timeout-ms 0", "--llm-breaker -1", "--llm-attempts 101"}) {
+  for (const std::string option :
+       {"--llm-attempts 0", "--llm-timeout-ms 0", "--llm-breaker -1", "--llm-attempts 101"}) {
     const CommandRun run = runCbtl("run " + kFeeding + " --text-backend openai " + option);
     EXPECT_EQ(run.exitCode, 2) << option << "\n" << run.output;
     EXPECT_NE(run.output.find(option.substr(0, option.find(' '))), std::string::npos) << run.output;

@@ -77,8 +77,8 @@ TEST(Redaction, AServerEchoingTheKeyIsQuotedWithoutIt) {
 TEST(FaultStats, EachFailureKindIsCountedWithTheFirstError) {
   Harness h;
   h.server.push(reply(200, textBody("7")));                                    // no logprobs
-  h.server.push(reply(200, "this is not JSON"));                                // malformed
-  h.server.push(reply(503, errorBody("overloaded", "server_error", "busy")));   // HTTP status (1 attempt)
+  h.server.push(reply(200, "this is not JSON"));                               // malformed
+  h.server.push(reply(503, errorBody("overloaded", "server_error", "busy")));  // HTTP status (1 attempt)
   h.server.push(reply(429, errorBody("You exceeded your current quota", "insufficient_quota", "insufficient_quota")));
   h.server.push(reply(404, errorBody("no such model", "invalid_request_error", "model_not_found")));
   TextBackend backend(backendConfig(h), {}, h.sleeper());
@@ -130,8 +130,9 @@ TEST(CircuitBreaker, OpensAfterConsecutiveTimeoutsAndStopsCallingTheServer) {
   Harness h;
   h.server.setDefault(h.server.hang());
   std::vector<std::string> notices;
-  TextBackend backend(backendConfig(h, /*attempts=*/1, /*breaker=*/2),
-                      [&](const std::string& w) { notices.push_back(w); }, h.sleeper());
+  TextBackend backend(
+      backendConfig(h, /*attempts=*/1, /*breaker=*/2), [&](const std::string& w) { notices.push_back(w); },
+      h.sleeper());
   auto model = backend.makeModel(*builtinPrompts("userEnjoysBook"));
   std::vector<ErrorKind> kinds;
   for (int i = 0; i < 6; ++i) {
@@ -143,7 +144,7 @@ TEST(CircuitBreaker, OpensAfterConsecutiveTimeoutsAndStopsCallingTheServer) {
   EXPECT_EQ(kinds[1], ErrorKind::Timeout);
   for (int i = 2; i < 6; ++i) EXPECT_EQ(kinds[i], ErrorKind::CircuitOpen);
   EXPECT_EQ(h.server.requestCount(), 2);  // nothing after the breaker opened
-  ASSERT_EQ(notices.size(), 1u);           // said once
+  ASSERT_EQ(notices.size(), 1u);          // said once
   EXPECT_NE(notices[0].find("circuit breaker open after 2 consecutive transport failures"), std::string::npos)
       << notices[0];
   const FaultReport r = backend.faultReport();

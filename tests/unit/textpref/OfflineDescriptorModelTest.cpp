@@ -29,8 +29,9 @@ void learnOne(OfflineDescriptorModel& m, const Item& item, bool liked, const Con
 }
 
 const Item kJaneEyre{"Jane Eyre", {{"author", {"Charlotte Bronte"}}, {"genre", {"fiction", "romance", "classic"}}}};
-const Item kBriefHistory{"A Brief History of Time",
-                         {{"author", {"Stephen Hawking"}}, {"genre", {"nonfiction", "science"}}, {"topic", {"universe"}}}};
+const Item kBriefHistory{
+    "A Brief History of Time",
+    {{"author", {"Stephen Hawking"}}, {"genre", {"nonfiction", "science"}}, {"topic", {"universe"}}}};
 
 TEST(OfflineDescriptorModel, UnseenItemsAreMaximallyUncertain) {
   OfflineDescriptorModel m;
@@ -47,7 +48,7 @@ TEST(OfflineDescriptorModel, PositiveFeedbackGeneralizesToItemsSharingDescriptor
   OfflineDescriptorModel m;
   learnOne(m, findBook("Pride and Prejudice"), true);
   const double same = probability(m, findBook("Pride and Prejudice"));
-  const double sharing = probability(m, kJaneEyre);        // fiction, romance, classic
+  const double sharing = probability(m, kJaneEyre);             // fiction, romance, classic
   const double unrelated = probability(m, findBook("Cosmos"));  // nothing in common but the bias
   EXPECT_GT(same, 0.7);
   EXPECT_GT(sharing, 0.55);
@@ -61,7 +62,7 @@ TEST(OfflineDescriptorModel, NegativeFeedbackLowersSharedItems) {
   learnOne(m, findBook("Moby Dick"), false);  // fiction, adventure, classic
   EXPECT_LT(probability(m, findBook("Moby Dick")), 0.3);
   EXPECT_LT(probability(m, findBook("The Lord of the Rings")), 0.47);  // shares fiction, adventure
-  EXPECT_NEAR(probability(m, findBook("Cosmos")), 0.5, 0.02);           // shares nothing
+  EXPECT_NEAR(probability(m, findBook("Cosmos")), 0.5, 0.02);          // shares nothing
 }
 
 TEST(OfflineDescriptorModel, ConfidenceGrowsWithRepeatedFeedback) {
@@ -123,7 +124,8 @@ TEST(OfflineDescriptorModel, ContextPairsSeparateTheSameDipAcrossFoods) {
   const SimulatedUser user = feedingDipUser();
   std::vector<FeedbackRecord> feedback;
   for (int meal : {0, 1})
-    for (const auto& dip : feedingDips()) feedback.push_back(user.react(dip, meals[static_cast<std::size_t>(meal)]).value());
+    for (const auto& dip : feedingDips())
+      feedback.push_back(user.react(dip, meals[static_cast<std::size_t>(meal)]).value());
   ASSERT_TRUE(m.learn(feedback).ok());
   const Item bbq = feedingDips()[1];
   const Item ranch = feedingDips()[2];
@@ -164,7 +166,8 @@ TEST(OfflineDescriptorModel, CorruptOrForeignStateIsAClearError) {
   ASSERT_FALSE(missing.ok());
   EXPECT_EQ(missing.error().kind, ErrorKind::Io);
 
-  nlohmann::json foreign{{"backend", "openai-compatible"}, {"format", 1}, {"theta", "x"}, {"history", nlohmann::json::array()}};
+  nlohmann::json foreign{
+      {"backend", "openai-compatible"}, {"format", 1}, {"theta", "x"}, {"history", nlohmann::json::array()}};
   EXPECT_EQ(m.loadState(foreign).error().kind, ErrorKind::InvalidState);
 
   nlohmann::json badOptions = m.saveState();

@@ -12,7 +12,7 @@ namespace {
 TEST(LlmProbeCommand, UsableServerExitsZeroAndReportsSplitTen) {
   ChatTestServer server;
   server.push(replyRating({{"4", 0.9}, {"5", 0.1}}));
-  server.push(replyRating({{"1", 0.8}, {"9", 0.2}}));  // "10" split by the tokenizer
+  server.push(replyRating({{"1", 0.8}, {"9", 0.2}}));    // "10" split by the tokenizer
   server.push(replyRating({{"0", 0.95}, {".", 0.05}}));  // the pre-filled "1" is continued with "0"
   const CommandRun run = runCbtl("llm probe --base-url " + server.baseUrl() + " --model test-model --attempts 1");
   EXPECT_EQ(run.exitCode, 0) << run.output;
@@ -54,7 +54,8 @@ TEST(LlmProbeCommand, VerdictNamesAnHttpStatusAndRedactsTheEchoedKey) {
 
 TEST(LlmProbeCommand, VerdictNamesQuotaMalformedRepliesAndLowCoverage) {
   ChatTestServer quota;
-  quota.setDefault(reply(429, errorBody("You exceeded your current quota", "insufficient_quota", "insufficient_quota")));
+  quota.setDefault(
+      reply(429, errorBody("You exceeded your current quota", "insufficient_quota", "insufficient_quota")));
   const std::string q = probeAgainst(quota);
   EXPECT_NE(q.find("verdict: unusable: quota exceeded (HTTP 429)"), std::string::npos) << q;
 

@@ -55,9 +55,7 @@ inline LlmModelOptions bookOptions() {
   return o;
 }
 
-inline Item testBook() {
-  return Item{"Cosmos", {{"author", {"Carl Sagan"}}, {"genre", {"nonfiction"}}}};
-}
+inline Item testBook() { return Item{"Cosmos", {{"author", {"Carl Sagan"}}, {"genre", {"nonfiction"}}}}; }
 
 // A fresh, empty folder under the system temporary directory, removed by the destructor.
 struct ScratchDir {

@@ -45,8 +45,8 @@ TEST(WorldBuiltins, PlacementSamplerRespectsSurfaceAndClearance) {
   for (int i = 0; i < 5; ++i) {
     const auto pose = samplePlacement(w, "book_0", "table_top", 0.1, rng);
     ASSERT_TRUE(pose.has_value());
-    EXPECT_NEAR(pose->position.z(), 0.08, 1e-9);            // resting on the table top (z = 0)
-    EXPECT_LE(std::abs(pose->position.x() + 0.75), 0.1);   // over the table
+    EXPECT_NEAR(pose->position.z(), 0.08, 1e-9);          // resting on the table top (z = 0)
+    EXPECT_LE(std::abs(pose->position.x() + 0.75), 0.1);  // over the table
     EXPECT_LE(std::abs(pose->position.y()), 0.3);
     EXPECT_TRUE(placementClear(w, "book_0", *pose, 0.1));
     // 0.1 m from the book on the nearest side table.

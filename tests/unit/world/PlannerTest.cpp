@@ -34,8 +34,10 @@ TEST(WorldPlanner, RandomValidQueriesGiveFreePaths) {
   int solved = 0;
   for (int i = 0; i < 8; ++i) {
     ArmConfig a, b;
-    do a = randomConfig(ws.scene(), rng); while (!checkArm(ws, a).free());
-    do b = randomConfig(ws.scene(), rng); while (!checkArm(ws, b).free());
+    do a = randomConfig(ws.scene(), rng);
+    while (!checkArm(ws, a).free());
+    do b = randomConfig(ws.scene(), rng);
+    while (!checkArm(ws, b).free());
     const ArmPlan plan = planArm(ws, a, b, rng);
     if (!plan.solved()) continue;
     ++solved;
@@ -62,8 +64,10 @@ TEST(WorldPlanner, TinyBudgetIsExhausted) {
   // A valid pair whose straight segment is blocked, so that RRTConnect must run.
   ArmConfig a, b;
   do {
-    do a = randomConfig(ws.scene(), rng); while (!checkArm(ws, a).free());
-    do b = randomConfig(ws.scene(), rng); while (!checkArm(ws, b).free());
+    do a = randomConfig(ws.scene(), rng);
+    while (!checkArm(ws, a).free());
+    do b = randomConfig(ws.scene(), rng);
+    while (!checkArm(ws, b).free());
   } while (armSegmentFree(ws, a, b, 0.005));
   const ArmPlan plan = planArm(ws, a, b, rng, o);
   EXPECT_EQ(plan.status, PlanStatus::BudgetExhausted);

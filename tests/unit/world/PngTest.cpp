@@ -23,13 +23,13 @@ TEST(WorldPng, LayoutIsSignatureIhdrIdatIend) {
   const std::uint8_t sig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
   EXPECT_EQ(std::memcmp(png.data(), sig, 8), 0);
   EXPECT_EQ(std::memcmp(png.data() + 12, "IHDR", 4), 0);
-  EXPECT_EQ(png[16 + 3], 4);   // width
-  EXPECT_EQ(png[20 + 3], 2);   // height
+  EXPECT_EQ(png[16 + 3], 4);  // width
+  EXPECT_EQ(png[20 + 3], 2);  // height
   EXPECT_EQ(std::memcmp(png.data() + 33 + 4, "IDAT", 4), 0);
   EXPECT_EQ(std::memcmp(png.data() + png.size() - 8, "IEND", 4), 0);
   // IHDR's CRC covers its type and data.
-  const std::uint32_t crc = (std::uint32_t{png[29]} << 24) | (std::uint32_t{png[30]} << 16) |
-                            (std::uint32_t{png[31]} << 8) | png[32];
+  const std::uint32_t crc =
+      (std::uint32_t{png[29]} << 24) | (std::uint32_t{png[30]} << 16) | (std::uint32_t{png[31]} << 8) | png[32];
   EXPECT_EQ(crc, crc32(png.data() + 12, 17));
 }
 

@@ -63,7 +63,8 @@ TEST(WorldScene, CorruptFileIsAnErrorNotACrash) {
 }
 
 TEST(WorldScene, ModelWithoutArmIsRejected) {
-  auto r = Scene::loadString("<mujoco><worldbody><geom type=\"sphere\" size=\"0.1\"/></worldbody></mujoco>", "ball.xml");
+  auto r =
+      Scene::loadString("<mujoco><worldbody><geom type=\"sphere\" size=\"0.1\"/></worldbody></mujoco>", "ball.xml");
   EXPECT_EQ(r.status, LoadStatus::NotARobotScene);
   EXPECT_NE(r.message.find("ball.xml"), std::string::npos);
 }

@@ -84,6 +84,7 @@ class Solver {
   std::size_t memoryEntries() const;
 
  private:
+  friend class SolveRun;  // one call of solve() (SolveRun.h)
   // A FIFO of satisfying sub-assignments of one constraint, in one preallocated ring (no allocation per
   // remembered value).
   struct Memory {

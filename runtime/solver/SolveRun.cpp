@@ -1,0 +1,305 @@
+#include "runtime/solver/SolveRun.h"
+
+#include "runtime/model/Entropy.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace cbtl::solver {
+
+namespace {
+
+constexpr double kMaxExactInt = 9007199254740992.0;  // 2^53
+
+inline void copySmall(const double* from, std::size_t n, double* to) {
+  for (std::size_t i = 0; i < n; ++i) to[i] = from[i];
+}
+
+// Inverts rows over [0, n): for every item, the rows that contain it.
+SolveRun::Rows invert(const SolveRun::Rows& rows, std::size_t rowCount, std::size_t n) {
+  std::vector<std::vector<std::uint32_t>> lists(n);
+  for (std::size_t r = 0; r < rowCount; ++r) {
+    for (const auto* it = rows.begin(r); it != rows.end(r); ++it) lists[*it].push_back(static_cast<std::uint32_t>(r));
+  }
+  SolveRun::Rows out;
+  for (const auto& l : lists) {
+    out.items.insert(out.items.end(), l.begin(), l.end());
+    out.endRow();
+  }
+  return out;
+}
+
+}  // namespace
+
+SolveRun::SolveRun(const SolverOptions& options, rt::Rng& rng, std::map<std::uint64_t, Solver::Memory>& memory,
+                   const Csp& csp)
+    : options_(options),
+      rng_(rng),
+      csp_(csp),
+      program_(*csp.program),
+      pool_(program_.pool()),
+      personal_(program_, *csp.instances, *csp.user),
+      x_(csp.initial),
+      frame_(std::max<std::size_t>(program_.frameSize(), 1), 0.0),
+      ctx_{x_.data(), csp.observation.data(), frame_.data(), program_.callContext()},
+      scratch_(std::max<std::size_t>(program_.maxSamplerOutWidth(), 1)),
+      args_(std::max<std::size_t>(program_.maxSamplerArgsWidth(), 1)) {
+  buildIndexTables();
+  state_.assign(constraintCount_, Dirty);
+  termDirty_.assign(instanceCount_, 1);
+  termValue_.resize(instanceCount_);
+  result_.constraints.resize(constraintCount_);
+  for (std::size_t i = 0; i < constraintCount_; ++i) result_.constraints[i].ref = csp.constraints[i];
+  attachMemories(memory);
+  userSamplers_ = csp.samplers.size();
+  order_.resize(userSamplers_ + memorySamplers_.size());
+  swaps_.resize(order_.size());
+  for (std::uint32_t k = 0; k < order_.size(); ++k) order_[k] = k;
+}
+
+void SolveRun::buildIndexTables() {
+  const auto& graph = program_.graph();
+  constraintCount_ = csp_.constraints.size();
+  for (std::size_t i = 0; i < constraintCount_; ++i) {
+    const auto& ref = csp_.constraints[i];
+    const auto& vars = ref.personal ? (*csp_.instances)[ref.index].hyperedge : graph.constraints[ref.index].vars;
+    for (ir::VarId v : vars) {
+      edgeVars_.items.push_back(v);
+      const auto& slot = program_.slot(v);
+      for (std::uint32_t w = 0; w < slot.type.width; ++w) edgeSlots_.items.push_back(slot.offset + w);
+    }
+    edgeVars_.endRow();
+    edgeSlots_.endRow();
+  }
+  readersOf_ = invert(edgeVars_, constraintCount_, graph.variables.size());
+  instanceCount_ = csp_.instances->size();
+  Rows termVars;
+  for (std::size_t t = 0; t < instanceCount_; ++t) {
+    if (std::find(csp_.entropyTerms.begin(), csp_.entropyTerms.end(), t) != csp_.entropyTerms.end()) {
+      for (ir::VarId v : (*csp_.instances)[t].hyperedge) termVars.items.push_back(v);
+    }
+    termVars.endRow();
+  }
+  termsOf_ = invert(termVars, instanceCount_, graph.variables.size());
+}
+
+// Memory samplers: one per constraint that already has memory when the solve starts. A memory whose width no
+// longer fits its constraint (another program under the same identity) starts afresh.
+void SolveRun::attachMemories(std::map<std::uint64_t, Solver::Memory>& memory) {
+  memories_.assign(constraintCount_, nullptr);
+  if (!options_.useMemory) return;
+  for (std::size_t i = 0; i < constraintCount_; ++i) {
+    Solver::Memory& m = memory[csp_.constraints[i].identity];
+    if (m.capacity == 0 || m.width != edgeSlots_.size(i)) {
+      m = Solver::Memory{};
+      m.width = edgeSlots_.size(i);
+      m.capacity = std::max<std::size_t>(options_.memorySize, 1);
+      m.ring.assign(m.width * m.capacity, 0.0);
+    }
+    memories_[i] = &m;
+    if (!m.empty()) memorySamplers_.push_back(static_cast<std::uint32_t>(i));
+  }
+}
+
+void SolveRun::remember(std::size_t i) {
+  if (memories_[i] == nullptr) return;
+  double* slot = memories_[i]->pushSlot();
+  for (const auto* at = edgeSlots_.begin(i); at != edgeSlots_.end(i); ++at) *slot++ = x_[*at];
+}
+
+bool SolveRun::check(std::size_t i) {
+  if (state_[i] != Dirty) return state_[i] == Holds;
+  const auto& ref = csp_.constraints[i];
+  ++result_.constraints[i].evaluations;
+  bool ok;
+  if (ref.personal) {
+    const PersonalValue v = personal_.evaluate(ref.index, ctx_);
+    ok = personal_.holds(ref.index, v);
+  } else {
+    ok = pool_.evalBool(program_.constraints()[ref.index].root, ctx_);
+  }
+  state_[i] = ok ? Holds : Fails;
+  if (ok && options_.memoryPolicy == MemoryPolicy::EverySatisfiedCheck) remember(i);
+  return ok;
+}
+
+bool SolveRun::checkAll() {
+  for (std::size_t i = 0; i < constraintCount_; ++i) {
+    if (!check(i)) {
+      ++result_.constraints[i].rejections;
+      return false;
+    }
+  }
+  return true;
+}
+
+double SolveRun::costOf() {
+  if (csp_.cost == CostKind::Entropy) {
+    double sum = 0;
+    std::size_t active = 0;
+    for (std::uint32_t t : csp_.entropyTerms) {
+      if (termDirty_[t]) {
+        termValue_[t] = personal_.evaluate(t, ctx_);
+        termDirty_[t] = 0;
+      }
+      if (!termValue_[t].applies) continue;
+      sum += model::bernoulliEntropyBits(termValue_[t].probability);
+      ++active;
+    }
+    return active == 0 ? 1.0 : 1.0 - sum / static_cast<double>(active);
+  }
+  if (csp_.cost == CostKind::Declared) {
+    double sum = 0;
+    for (std::uint32_t c : csp_.task->costs) sum += pool_.evalScalar(program_.costs()[c], ctx_);
+    return sum;
+  }
+  return 0;
+}
+
+void SolveRun::markWritten(ir::VarId v) {
+  for (const auto* c = readersOf_.begin(v); c != readersOf_.end(v); ++c) state_[*c] = Dirty;
+  for (const auto* t = termsOf_.begin(v); t != termsOf_.end(v); ++t) termDirty_[*t] = 1;
+}
+
+// Writes a sampler's drawn values (laid out variable after variable in `scratch_`) into the candidate.
+void SolveRun::writeDrawn(const std::vector<ir::VarId>& writes) {
+  std::size_t from = 0;
+  for (ir::VarId v : writes) {
+    const auto& slot = program_.slot(v);
+    copySmall(scratch_.data() + from, slot.type.width, x_.data() + slot.offset);
+    from += slot.type.width;
+    markWritten(v);
+  }
+}
+
+bool SolveRun::runSampler(std::uint32_t s) {
+  const rt::CompiledSampler& cs = program_.samplers()[s];
+  if (cs.impl == nullptr) return drawUniform(cs);
+  double* const args = args_.data();
+  std::size_t at = 0;
+  for (std::uint32_t a : cs.args) {
+    pool_.eval(a, ctx_, args + at);
+    at += pool_.width(a);
+  }
+  if (!cs.impl(*program_.callContext(), std::span<const double>(args, at), std::span<const std::uint16_t>(cs.argWidths),
+               rng_, std::span<double>(scratch_.data(), cs.outWidth))) {
+    return false;
+  }
+  writeDrawn(cs.writes);
+  return true;
+}
+
+bool SolveRun::drawUniform(const rt::CompiledSampler& cs) {
+  double* const scratch = scratch_.data();
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < cs.writes.size(); ++k) {
+    const auto& plan = cs.uniform[k];
+    const auto& slot = program_.slot(cs.writes[k]);
+    for (std::size_t c = 0; c < slot.type.width; ++c, ++at) {
+      switch (plan.kind) {
+        case rt::UniformPlan::Kind::Bool:
+          scratch[at] = rng_.coin() ? 1 : 0;
+          break;
+        case rt::UniformPlan::Kind::Choice:
+          scratch[at] = plan.choices[rng_.index(plan.choices.size())];
+          break;
+        case rt::UniformPlan::Kind::Int: {
+          // Bounds are clamped to the integers a double holds exactly (and int64 can convert).
+          const double lo = std::max(std::ceil(pool_.evalScalar(plan.lo[c], ctx_)), -kMaxExactInt);
+          const double hi = std::min(std::floor(pool_.evalScalar(plan.hi[c], ctx_)), kMaxExactInt);
+          if (!(lo <= hi)) return false;
+          scratch[at] =
+              static_cast<double>(rng_.uniformInt(static_cast<std::int64_t>(lo), static_cast<std::int64_t>(hi)));
+          break;
+        }
+        case rt::UniformPlan::Kind::Real: {
+          const double lo = pool_.evalScalar(plan.lo[c], ctx_), hi = pool_.evalScalar(plan.hi[c], ctx_);
+          if (!(lo <= hi) || !std::isfinite(hi - lo)) return false;
+          scratch[at] = rng_.uniform(lo, hi);
+          break;
+        }
+      }
+    }
+  }
+  writeDrawn(cs.writes);
+  return true;
+}
+
+bool SolveRun::runMemorySampler(std::uint32_t i) {
+  const Solver::Memory& m = *memories_[i];
+  if (m.empty()) return false;
+  const double* sub = m.at(rng_.index(m.size()));
+  for (const auto* at = edgeSlots_.begin(i); at != edgeSlots_.end(i); ++at) x_[*at] = *sub++;
+  for (const auto* v = edgeVars_.begin(i); v != edgeVars_.end(i); ++v) markWritten(*v);
+  return true;
+}
+
+// A uniformly random order, drawn lazily (Fisher-Yates one position at a time): the first sampler usually
+// succeeds, so most moves cost one draw instead of a full shuffle. `order_` starts every move as the identity;
+// the swaps are undone afterwards instead of rewriting the whole array.
+bool SolveRun::move() {
+  bool moved = false;
+  std::size_t pos = 0;
+  for (; pos < order_.size() && !moved; ++pos) {
+    swaps_[pos] = static_cast<std::uint32_t>(pos + rng_.index(order_.size() - pos));
+    std::swap(order_[pos], order_[swaps_[pos]]);
+    const std::uint32_t k = order_[pos];
+    moved = k < userSamplers_ ? runSampler(csp_.samplers[k]) : runMemorySampler(memorySamplers_[k - userSamplers_]);
+  }
+  while (pos-- > 0) std::swap(order_[pos], order_[swaps_[pos]]);
+  return moved;
+}
+
+SolveResult SolveRun::run() {
+  bool found = false;
+  double bestCost = std::numeric_limits<double>::infinity();
+  std::vector<double> best;
+  std::uint64_t attempts = 0;
+  for (std::uint64_t iter = 0; iter < options_.maxIters; ++iter) {
+    if (found && (attempts >= options_.maxImprovementAttempts || result_.improvements >= options_.numImprovements))
+      break;
+    if (found) ++attempts;
+    ++result_.iterations;
+    const double cost = csp_.cost == CostKind::None ? 0 : costOf();
+    if (cost > bestCost) {
+      ++result_.prunedByCost;
+    } else {
+      ++result_.candidatesChecked;
+      if (checkAll()) {
+        if (options_.memoryPolicy == MemoryPolicy::Solutions) {
+          for (std::size_t i = 0; i < constraintCount_; ++i) remember(i);
+        }
+        if (found) ++result_.improvements;
+        found = true;
+        if (csp_.cost == CostKind::None) {
+          result_.outcome = SolveOutcome::Solved;
+          result_.assignment = x_;
+          result_.cost = 0;
+          return std::move(result_);
+        }
+        best = x_;
+        bestCost = cost;
+      }
+    }
+    if (order_.empty()) {
+      result_.outcome = found ? SolveOutcome::Solved : SolveOutcome::NoSamplers;
+      break;
+    }
+    if (!move()) {
+      result_.outcome = found ? SolveOutcome::Solved : SolveOutcome::SamplersStuck;
+      break;
+    }
+  }
+  if (found) {
+    result_.outcome = SolveOutcome::Solved;
+    result_.assignment = std::move(best);
+    result_.cost = bestCost;
+  } else {
+    if (result_.outcome == SolveOutcome::Solved) result_.outcome = SolveOutcome::InfeasibleWithinBudget;
+    result_.assignment = x_;
+  }
+  return std::move(result_);
+}
+
+}  // namespace cbtl::solver

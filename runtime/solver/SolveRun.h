@@ -1,0 +1,81 @@
+// SolveRun.h — one call of Solver::solve: the CSP's index tables, the candidate, the cached constraint
+// results and the loop of Solver.h's algorithm, in named steps. Internal to the solver (Solver.cpp is its only
+// user); the algorithm and its guarantees are documented in Solver.h.
+//
+// A SolveRun borrows the Solver's options, RNG and constraint memories for its lifetime and draws from the RNG
+// in exactly the order Solver.h describes, so a run is a pure function of (CSP, RNG state, memories).
+#pragma once
+
+#include "runtime/solver/Solver.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace cbtl::solver {
+
+class SolveRun {
+ public:
+  SolveRun(const SolverOptions& options, rt::Rng& rng, std::map<std::uint64_t, Solver::Memory>& memory, const Csp& csp);
+  SolveResult run();
+
+  // Lists of lists in two flat arrays (compressed rows): the solve loop walks them for every move.
+  struct Rows {
+    std::vector<std::uint32_t> start{0}, items;
+    void endRow() { start.push_back(static_cast<std::uint32_t>(items.size())); }
+    const std::uint32_t* begin(std::size_t r) const { return items.data() + start[r]; }
+    const std::uint32_t* end(std::size_t r) const { return items.data() + start[r + 1]; }
+    std::size_t size(std::size_t r) const { return start[r + 1] - start[r]; }
+  };
+
+ private:
+  enum ConstraintState : std::uint8_t { Dirty, Holds, Fails };
+
+  void buildIndexTables();
+  void attachMemories(std::map<std::uint64_t, Solver::Memory>& memory);
+  void remember(std::size_t i);
+  bool check(std::size_t i);
+  // True when every constraint holds; charges the first that fails with the rejection.
+  bool checkAll();
+  double costOf();
+  void markWritten(ir::VarId v);
+  void writeDrawn(const std::vector<ir::VarId>& writes);
+  bool runSampler(std::uint32_t s);
+  // The built-in `uniform` sampler: draws every component into `scratch_` first, so a failure leaves the
+  // assignment untouched.
+  bool drawUniform(const rt::CompiledSampler& cs);
+  bool runMemorySampler(std::uint32_t i);
+  // One move: samplers in a lazily drawn uniform order until one produces values. False when none did.
+  bool move();
+
+  const SolverOptions& options_;
+  rt::Rng& rng_;
+  const Csp& csp_;
+  const rt::Program& program_;
+  const rt::ExprPool& pool_;
+  PersonalEvaluator personal_;
+
+  std::vector<double> x_;  // the candidate
+  std::vector<double> frame_;
+  rt::EvalContext ctx_;
+
+  // Per constraint: the variables it reads, and the positions in the assignment of their values (the
+  // sub-assignment its memory stores). Per variable: the constraints and entropy terms that read it.
+  std::size_t constraintCount_ = 0, instanceCount_ = 0;
+  Rows edgeVars_, edgeSlots_, readersOf_, termsOf_;
+
+  std::vector<std::uint8_t> state_;
+  std::vector<std::uint8_t> termDirty_;
+  std::vector<PersonalValue> termValue_;
+
+  std::vector<std::uint32_t> memorySamplers_;  // constraints with memory when the solve started
+  std::vector<Solver::Memory*> memories_;
+  std::size_t userSamplers_ = 0;
+  std::vector<std::uint32_t> order_, swaps_;
+
+  // Sized from the program: a family of any size can be drawn by one sampler.
+  std::vector<double> scratch_, args_;
+
+  SolveResult result_;
+};
+
+}  // namespace cbtl::solver

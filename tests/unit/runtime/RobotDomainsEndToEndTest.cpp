@@ -123,6 +123,8 @@ TEST(RobotDomainsEndToEnd, BooksSolvesAndReportsExecutionFailures) {
     ASSERT_EQ(log.size(), 1u);
     EXPECT_TRUE(log[0].solved) << log[0].task << " (seed " << seed << ")";
     EXPECT_TRUE(log[0].done) << log[0].task << " (seed " << seed << ")";
-    if (!log[0].failure.empty()) EXPECT_TRUE(log[0].failed) << log[0].failure;
+    if (!log[0].failure.empty()) {
+      EXPECT_TRUE(log[0].failed) << log[0].failure;
+    }
   }
 }

@@ -3,7 +3,7 @@
 // motion), speaking the names of domains/books/books.cbtl.
 //
 // Episode start (reset(seed), all draws from the simulator's RNG in this order):
-//   1. the room of robot/HomeEpisode.h (base at the origin, arm at kHomeSceneInitial, duster on the main
+//   1. the room of robot/HomeEpisode.h (base at the origin, arm at homeSceneInitial, duster on the main
 //      table, books parked outside the room);
 //   2. a uniform permutation of the books and one of the nine home.xml book slots (three on the middle
 //      shelf layer, three on the top layer, one per side table);

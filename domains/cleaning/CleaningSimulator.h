@@ -3,7 +3,7 @@
 // the names of domains/cleaning/cleaning.cbtl.
 //
 // Episode start (reset(seed), all draws from the simulator's RNG in this order):
-//   1. the room of robot/HomeEpisode.h (base at the origin, arm at kHomeSceneInitial, duster on the main
+//   1. the room of robot/HomeEpisode.h (base at the origin, arm at homeSceneInitial, duster on the main
 //      table, books parked outside the room);
 //   2. a uniform permutation of the nine books;
 //   3. what the robot holds: nothing, the duster or a book (the permutation's second book), 1/3 each, so

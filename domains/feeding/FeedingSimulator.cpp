@@ -1,5 +1,6 @@
 #include "domains/feeding/FeedingSimulator.h"
 
+#include "domains/feeding/TableSlide.h"
 #include "domains/home/HomeEpisode.h"
 #include "robot/actions/CallArguments.h"
 
@@ -293,6 +294,13 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
     progress_.signal = call.args[0].text;
     return step;
   }
+  if (isTableSlide(call.name)) {
+    step = slideOnTable(*world_, call).toStepResult(call.name);
+    if (step.status == sim::ActionStatus::UnknownAction) return step;
+    if (step.status == sim::ActionStatus::Ignored) return fail(std::move(step));
+    if (call.name == "moveDrink" && request_ == Request::Prepare) return complete(std::move(step), true);
+    return step;
+  }
   if (call.name == "grasp" && call.args.size() == 1 && call.args[0].text == "drink") return graspDrink();
   if (call.name == "release" && call.args.empty() && holding("utensil")) return releaseUtensil();
 
@@ -313,7 +321,6 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
                                                {sim::Value::vec(std::vector<double>(q.begin(), q.end()))}});
     return step;
   }
-  if (call.name == "moveDrink" && request_ == Request::Prepare) return complete(std::move(step), true);
   if (call.name == "waitForUser") {
     const std::string signal = call.args[0].text;
     if (request_ == Request::Food && signal == "biteTaken") progress_.biteTaken = true;

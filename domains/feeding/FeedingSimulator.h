@@ -17,7 +17,8 @@
 // viewBlocked(q) when the occlusion score from their eyes (Occlusion.h) reaches their threshold, else the
 // move passes as viewClear(q).
 //
-// Actions: the standard ones through actions::RobotActions (one step each), with three Feeding rules: grasp("drink")
+// Actions: the standard ones through actions::RobotActions (one step each), Feeding's movePlate(xy) and
+// moveDrink(xy) (TableSlide.h, one step each), with three Feeding rules: grasp("drink")
 // moves the tool in front of the drink's handle (kDrinkGraspOffset from the drink's body frame, 10 cm short
 // of it along -y, tool z along +y; nearer, the open fingers touch it), attaches the drink, closes and lifts 1 cm;
 // release() of the utensil at its mount puts it back in the mount (the mount is not a surface), and the

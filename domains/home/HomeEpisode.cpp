@@ -2,19 +2,30 @@
 
 #include "domains/home/HomeScene.h"
 #include "robot/actions/StandardGrasps.h"
+#include "robot/world/NamedConfigurations.h"
 
 #include <algorithm>
 #include <numeric>
 #include <random>
+#include <stdexcept>
 
 namespace cbtl::domains::home {
 
 std::string bookBody(std::size_t k) { return "book_" + std::to_string(k); }
 
+const world::ArmConfig& initialArm() {
+  static const world::ArmConfig q = [] {
+    const auto named = world::namedConfiguration(*homeScene(), "homeSceneInitial");
+    if (!named) throw std::runtime_error(homeScenePath() + " has no conf_homeSceneInitial numeric of size 7");
+    return *named;
+  }();
+  return q;
+}
+
 world::WorldState emptyRoom(const std::map<std::string, world::Pose3>& scenePoses) {
   world::WorldState s;
   s.base = world::Pose2{0, 0, 0};
-  s.arm = world::configs::kHomeSceneInitial;
+  s.arm = initialArm();
   s.gripper = 1.0;
   s.objects = scenePoses;
   for (std::size_t k = 0; k < kBookCount; ++k) s.objects[bookBody(k)] = parkedPose(k);

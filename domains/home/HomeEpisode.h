@@ -1,9 +1,9 @@
 // HomeEpisode.h — building blocks of an episode's start in the home scene, shared by Cleaning and Books.
 //
 // Every episode starts from the same room: the base at the origin (yaw 0), the arm at the reference's
-// initial configuration (configs::kHomeSceneInitial), the gripper open, the duster on the main table where
-// home.xml puts it, and every book parked outside the room (HomeScene.h parkedPose(k) for book_k); the
-// domain then puts books on surfaces and may put an object in the robot's hand.
+// initial configuration (initialArm(): home.xml's conf_homeSceneInitial), the gripper open, the duster on
+// the main table where home.xml puts it, and every book parked outside the room (HomeScene.h parkedPose(k)
+// for book_k); the domain then puts books on surfaces and may put an object in the robot's hand.
 // Random draws use std::uniform_*_distribution over world::Rng (one platform's results are reproducible).
 #pragma once
 
@@ -18,6 +18,10 @@ namespace cbtl::domains::home {
 
 inline constexpr std::size_t kBookCount = 9;  // book_0 .. book_8
 std::string bookBody(std::size_t k);          // "book_k"
+
+// The arm's configuration at the start of an episode: the home scene's named configuration homeSceneInitial
+// (home.xml), read once. Throws std::runtime_error when the scene lacks it (a broken installation).
+const world::ArmConfig& initialArm();
 
 // The room above. `scenePoses` are the movable objects' poses as home.xml puts them (a fresh Workspace's
 // state().objects).

@@ -69,6 +69,4 @@ std::vector<double> encodePose3(const world::Pose3& p) {
   return {p.position.x(), p.position.y(), p.position.z(), q.x(), q.y(), q.z(), q.w()};
 }
 
-std::vector<double> encodePose2(const world::Pose2& p) { return {p.x, p.y, p.yaw}; }
-
 }  // namespace cbtl::actions

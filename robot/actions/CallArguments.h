@@ -43,8 +43,7 @@ std::optional<world::Pose3> decodePose3(const std::vector<double>& v);
 std::optional<world::Pose2> decodePose2(const std::vector<double>& v);
 std::optional<world::ArmConfig> decodeConf(const std::vector<double>& v);
 
-// Encoders in the same layouts.
+// The encoder in the same layout (observations of a pose).
 std::vector<double> encodePose3(const world::Pose3& p);
-std::vector<double> encodePose2(const world::Pose2& p);
 
 }  // namespace cbtl::actions

@@ -81,11 +81,11 @@ ActionResult moveToolNear(world::World& w, const world::Pose3& target, world::Rn
   return world::builtins::moveArm(w, ik.q, rng);
 }
 
-// The standard action names, sorted (names()).
+// The standard action names, sorted (isStandard).
 const std::vector<std::string> kNames = [] {
-  std::vector<std::string> n{
-      "moveArm",   "moveTool",  "moveArmToNamed", "moveBase", "grasp", "closeGripper", "release", "place",
-      "movePlate", "moveDrink", "handOver",       "wipe",     "say",   "waitForUser",  "wait"};
+  std::vector<std::string> n{"moveArm", "moveTool", "moveArmToNamed", "moveBase", "grasp", "closeGripper",
+                             "release", "place",    "handOver",       "wipe",     "say",   "waitForUser",
+                             "wait"};
   std::sort(n.begin(), n.end());
   return n;
 }();
@@ -111,10 +111,6 @@ sim::StepResult RobotActionResult::toStepResult(const std::string& action) const
   return s;
 }
 
-RobotActions::RobotActions(ActionConfigurations named) : named_(std::move(named)) {}
-
-const std::vector<std::string>& RobotActions::names() { return kNames; }
-
 bool RobotActions::isStandard(std::string_view name) { return std::binary_search(kNames.begin(), kNames.end(), name); }
 
 std::optional<RobotActionResult> RobotActions::execute(world::World& w, const sim::ActionCall& call,
@@ -138,12 +134,12 @@ std::optional<RobotActionResult> RobotActions::execute(world::World& w, const si
   }
   if (n == "moveArmToNamed") {
     if (auto e = checkArguments(call, {kNameArg}); !e.empty()) return illFormed(e);
-    // The scene's own names first, as std.kinova's namedConf reads them (world/ActionConfigurations.h).
-    auto q = world::namedConfiguration(w.workspace().scene(), a[0].text);
-    if (!q) q = named_.find(a[0].text);
+    // The scene's own names first, as std.kinova's namedConf reads them.
+    const auto q = world::namedConfiguration(w.workspace().scene(), a[0].text);
     if (!q) {
       std::string known;
-      for (const std::string& name : named_.names()) known += (known.empty() ? "" : ", ") + name;
+      for (const std::string& name : world::namedConfigurationNames(w.workspace().scene()))
+        known += (known.empty() ? "" : ", ") + name;
       return failed(ActionStatus::InvalidArgument,
                     fmt::format("no named configuration '{}' (known: {})", a[0].text, known));
     }
@@ -179,13 +175,6 @@ std::optional<RobotActionResult> RobotActions::execute(world::World& w, const si
     const auto pose = decodePose3(a[1].vector);
     if (!pose) return failed(ActionStatus::InvalidArgument, "place: the pose is not finite or its quaternion is zero");
     return place(w, a[0].text, *pose, rng);
-  }
-  if (n == "movePlate" || n == "moveDrink") {
-    if (auto e = checkArguments(call, {kVec2Arg}); !e.empty()) return illFormed(e);
-    const double x = a[0].vector[0], y = a[0].vector[1];
-    if (!std::isfinite(x) || !std::isfinite(y))
-      return failed(ActionStatus::InvalidArgument, n + ": the position is not finite");
-    return from(n == "movePlate" ? world::builtins::movePlate(w, x, y) : world::builtins::moveDrink(w, x, y));
   }
   if (n == "handOver") {
     if (auto e = checkArguments(call, {}); !e.empty()) return illFormed(e);

@@ -1,5 +1,5 @@
 // RobotActions.h — the executor of std.actions (stdlib/std/actions.cbtl) on a robot world, shared by the
-// home-scene domains (Cleaning, Books) and Feeding.
+// home-scene domains (Cleaning, Books) and Feeding. Domain-only actions (Feeding's movePlate) are the domain's.
 //
 // execute(world, call, rng) runs one sim::ActionCall whose name is a standard action and returns what
 // happened; for any other name it returns std::nullopt, so a domain handles its own actions first or after.
@@ -17,8 +17,9 @@
 //   moveArm(q: Conf)            plan (straight segment first, then RRTConnect) and move the arm to q.
 //   moveTool(tool: SE3)         IK seeded at the current joints, then as moveArm. Simplification: a joint-space
 //                               move to the IK solution, not a Cartesian servo.
-//   moveArmToNamed(name)        moveArm to an ActionConfigurations entry; an unknown name fails
-//                               (InvalidArgument, the detail lists the known names).
+//   moveArmToNamed(name)        moveArm to the scene's named configuration (NamedConfigurations.h, as std.kinova's
+//                               namedConf); an unknown name fails (InvalidArgument, the detail lists the known
+//                               names).
 //   moveBase(pose: SE2)         plan the base in SE(2) with the arm fixed and move there.
 //   grasp(body)                 fails AlreadyHolding / InvalidArgument (unknown body). A body with a standard
 //                               grasp (StandardGrasps.h: the duster) is approached first unless the tool is
@@ -38,7 +39,6 @@
 //                               unless it is already within 1 mm / 0.01 rad of it, releases the body settled
 //                               exactly at `pose` (z snapped onto the face), opens the gripper and retracts the
 //                               tool kRetract along its -z (NoIk / NoPath if that is impossible).
-//   movePlate(xy) / moveDrink(xy)  slide the plate / drink (world::builtins::movePlate / moveDrink).
 //   handOver()                  NotHolding if empty-handed; otherwise holds the object out where the tool is
 //                               and says "Here you go!". Whether the user takes it is the domain's business.
 //   wipe(surface, base: SE2)    WipeSweep.h sweepSurface.
@@ -46,8 +46,6 @@
 //   waitForUser(signal)         nothing happens in the world; domains with a user interpret the signal.
 //   wait(n)                     n steps pass (InvalidArgument for a negative or fractional n).
 #pragma once
-
-#include "robot/actions/ActionConfigurations.h"
 
 #include "robot/world/WorldOperations.h"
 #include "runtime/sim/DomainSimulator.h"
@@ -81,23 +79,15 @@ struct RobotActionResult {
 
 class RobotActions {
  public:
-  explicit RobotActions(ActionConfigurations named = {});
-
-  // The standard action names, sorted.
-  static const std::vector<std::string>& names();
   static bool isStandard(std::string_view name);
 
   // Runs `call` on `w` drawing random choices from `rng`; nullopt when `call.name` is not a standard action.
   std::optional<RobotActionResult> execute(world::World& w, const sim::ActionCall& call, world::Rng& rng) const;
 
-  const ActionConfigurations& namedConfigurations() const { return named_; }
-
  private:
   RobotActionResult grasp(world::World& w, const std::string& body, world::Rng& rng) const;
   RobotActionResult release(world::World& w) const;
   RobotActionResult place(world::World& w, const std::string& surface, const world::Pose3& pose, world::Rng& rng) const;
-
-  ActionConfigurations named_;
 };
 
 }  // namespace cbtl::actions

@@ -50,18 +50,6 @@ bool segmentValid(const JointSpace& space, const Waypoint& a, const Waypoint& b,
   return ok;
 }
 
-std::vector<Waypoint> densify(const JointSpace& space, const std::vector<Waypoint>& path, double spacing) {
-  if (path.empty()) return {};
-  std::vector<Waypoint> out{path.front()};
-  for (std::size_t i = 1; i < path.size(); ++i) {
-    const long n = std::max(1L, static_cast<long>(std::ceil(linfDistance(space, path[i - 1], path[i]) / spacing)));
-    for (long k = 1; k < n; ++k)
-      out.push_back(interpolate(space, path[i - 1], path[i], static_cast<double>(k) / static_cast<double>(n)));
-    out.push_back(path[i]);
-  }
-  return out;
-}
-
 namespace {
 
 void greedyPass(const JointSpace& space, std::vector<Waypoint>& path, double resolution, const ValidityFn& valid,

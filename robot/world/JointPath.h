@@ -31,9 +31,6 @@ Waypoint interpolate(const JointSpace& space, const Waypoint& a, const Waypoint&
 bool segmentValid(const JointSpace& space, const Waypoint& a, const Waypoint& b, double resolution,
                   const ValidityFn& valid, long* checks = nullptr);
 
-// The path with extra waypoints so that consecutive waypoints are at most `spacing` apart.
-std::vector<Waypoint> densify(const JointSpace& space, const std::vector<Waypoint>& path, double spacing);
-
 // Shortens a valid path in place: a greedy pass that skips waypoints whose neighbours connect directly,
 // then `attempts` random shortcuts between points on the path (drawn from rng), then a final greedy pass.
 // Every accepted shortcut is checked with segmentValid at `resolution`, so the result stays valid.

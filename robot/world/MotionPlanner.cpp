@@ -268,28 +268,6 @@ bool armSegmentFree(Workspace& ws, const ArmConfig& a, const ArmConfig& b, doubl
   return valid(toWp(a)) && segmentValid(armSpace(s), toWp(a), toWp(b), resolution, valid);
 }
 
-double armPathDuration(const Scene& scene, const std::vector<ArmConfig>& path) {
-  double total = 0.0;
-  for (std::size_t k = 1; k < path.size(); ++k) {
-    double segment = 0.0;
-    for (int i = 0; i < kArmDof; ++i) {
-      const double delta = scene.armContinuous(i) ? angleDiff(path[k][i], path[k - 1][i]) : path[k][i] - path[k - 1][i];
-      const double v = scene.armVelocityLimit(i);
-      if (v > 0) segment = std::max(segment, std::abs(delta) / v);
-    }
-    total += segment;
-  }
-  return total;
-}
-
-std::vector<ArmConfig> densifyArmPath(const Scene& scene, const std::vector<ArmConfig>& path, double spacing) {
-  std::vector<Waypoint> wps;
-  for (const auto& q : path) wps.push_back(toWp(q));
-  std::vector<ArmConfig> out;
-  for (const auto& w : densify(armSpace(scene), wps, spacing)) out.push_back(toArm(w));
-  return out;
-}
-
 ArmPlan planArm(Workspace& ws, const ArmConfig& start, const ArmConfig& goal, Rng& rng, const PlanOptions& o) {
   const Scene& s = ws.scene();
   const ValidityFn valid = [&](const Waypoint& w) {

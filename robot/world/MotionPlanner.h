@@ -76,10 +76,5 @@ JointSpace armSpace(const Scene& scene);
 // included. Leaves the arm at an unspecified configuration of the segment.
 bool armSegmentFree(Workspace& ws, const ArmConfig& a, const ArmConfig& b, double resolution,
                     const CollisionOptions& options = {});
-// Time in seconds to follow the path with each segment taking as long as its slowest joint needs at the
-// joint velocity limits of the scene (joints start and stop together on every segment).
-double armPathDuration(const Scene& scene, const std::vector<ArmConfig>& path);
-// The arm path with waypoints at most `spacing` rad apart (L∞).
-std::vector<ArmConfig> densifyArmPath(const Scene& scene, const std::vector<ArmConfig>& path, double spacing);
 
 }  // namespace cbtl::world

@@ -2,8 +2,8 @@
 //
 // MuJoCo's default error handler prints "Press Enter to exit", waits on stdin and calls exit(1). Every
 // entry point of the robot world calls installMujocoHandlers() first; after that a MuJoCo error throws
-// MujocoError (a std::runtime_error) from the failing call, and warnings are counted and kept (the last
-// one) instead of being appended to MUJOCO_LOG.TXT in the working directory.
+// MujocoError (a std::runtime_error) from the failing call, and warnings are dropped (nothing in the project
+// reads them) instead of being appended to MUJOCO_LOG.TXT in the working directory.
 // The handlers are process-global; installing them is idempotent and thread-safe.
 #pragma once
 
@@ -18,9 +18,5 @@ class MujocoError : public std::runtime_error {
 };
 
 void installMujocoHandlers();
-
-// Number of MuJoCo warnings seen in this process, and the text of the most recent one.
-long mujocoWarningCount();
-std::string lastMujocoWarning();
 
 }  // namespace cbtl::world

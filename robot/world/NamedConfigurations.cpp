@@ -2,17 +2,13 @@
 
 #include "robot/world/WorldState.h"
 
+#include <set>
+
 namespace cbtl::world {
 
 const std::map<std::string, ArmConfig, std::less<>>& standardConfigurations() {
   static const std::map<std::string, ArmConfig, std::less<>> table = {
-      {"zero", configs::kZero},
-      {"home", configs::kHome},
-      {"retract", configs::kRetract},
-      {"abovePlate", configs::kAbovePlate},
-      {"utensilAboveMount", configs::kUtensilAboveMount},
-      {"drinkGaze", configs::kDrinkGaze},
-      {"homeSceneInitial", configs::kHomeSceneInitial}};
+      {"zero", configs::kZero}, {"home", configs::kHome}, {"retract", configs::kRetract}};
   return table;
 }
 
@@ -28,6 +24,18 @@ std::optional<ArmConfig> namedConfiguration(const Scene& scene, std::string_view
   const auto it = table.find(name);
   if (it == table.end()) return std::nullopt;
   return it->second;
+}
+
+std::vector<std::string> namedConfigurationNames(const Scene& scene) {
+  std::set<std::string> names;
+  const mjModel* m = scene.model();
+  constexpr std::string_view kPrefix = "conf_";
+  for (int id = 0; id < m->nnumeric; ++id) {
+    const std::string_view name(m->names + m->name_numericadr[id]);
+    if (name.starts_with(kPrefix) && m->numeric_size[id] == kArmDof) names.emplace(name.substr(kPrefix.size()));
+  }
+  for (const auto& [name, q] : standardConfigurations()) names.insert(name);
+  return {names.begin(), names.end()};
 }
 
 }  // namespace cbtl::world

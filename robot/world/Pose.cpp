@@ -6,10 +6,6 @@
 
 namespace cbtl::world {
 
-Pose3 Pose3::fromPose2(const Pose2& p, double z) {
-  return {Eigen::Vector3d(p.x, p.y, z), Eigen::Quaterniond(Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ()))};
-}
-
 Pose3 Pose3::operator*(const Pose3& other) const {
   return {position + orientation * other.position, (orientation * other.orientation).normalized()};
 }

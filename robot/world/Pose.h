@@ -30,10 +30,7 @@ struct Pose3 {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
 
-  static Pose3 identity() { return {}; }
   static Pose3 fromPosition(const Eigen::Vector3d& p) { return {p, Eigen::Quaterniond::Identity()}; }
-  // A pose on the ground plane: (x, y, z) with a rotation of yaw about world z.
-  static Pose3 fromPose2(const Pose2& p, double z);
 
   // this ∘ other: `other` is expressed in this pose's frame.
   Pose3 operator*(const Pose3& other) const;

@@ -6,26 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 
 namespace cbtl::world {
-
-const char* toString(LoadStatus s) {
-  switch (s) {
-    case LoadStatus::Ok:
-      return "ok";
-    case LoadStatus::FileNotFound:
-      return "file not found";
-    case LoadStatus::ParseError:
-      return "parse error";
-    case LoadStatus::NotARobotScene:
-      return "not a robot scene";
-  }
-  return "unknown";
-}
 
 namespace {
 
@@ -33,11 +18,11 @@ SceneLoadResult fail(LoadStatus s, std::string msg) { return {s, std::move(msg),
 
 // Calls mj_loadXML and converts both of MuJoCo's failure channels (a null model with a message, or a
 // thrown MujocoError from the installed handler) into a message.
-mjModel* loadXml(const char* name, const mjVFS* vfs, std::string& error) {
+mjModel* loadXml(const char* path, std::string& error) {
   char err[1024] = {0};
   mjModel* m = nullptr;
   try {
-    m = mj_loadXML(name, vfs, err, sizeof err);
+    m = mj_loadXML(path, nullptr, err, sizeof err);
   } catch (const MujocoError& e) {
     error = e.what();
     return nullptr;
@@ -54,37 +39,15 @@ SceneLoadResult Scene::loadFile(const std::string& path) {
   if (!std::filesystem::is_regular_file(path, ec) || !std::ifstream(path).good())
     return fail(LoadStatus::FileNotFound, fmt::format("{}: scene file not found or not readable", path));
   std::string error;
-  mjModel* m = loadXml(path.c_str(), nullptr, error);
+  mjModel* m = loadXml(path.c_str(), error);
   if (!m) return fail(LoadStatus::ParseError, fmt::format("{}: {}", path, error));
-  std::shared_ptr<Scene> scene(new Scene(m, path));
+  std::shared_ptr<Scene> scene(new Scene(m));
   if (std::string msg = scene->initialise(); !msg.empty())
     return fail(LoadStatus::NotARobotScene, fmt::format("{}: {}", path, msg));
   return {LoadStatus::Ok, {}, std::move(scene)};
 }
 
-SceneLoadResult Scene::loadString(std::string_view xml, const std::string& name) {
-  installMujocoHandlers();
-  // mjVFS is about 2 MB in MuJoCo 2.2.2: always on the heap.
-  auto vfs = std::make_unique<mjVFS>();
-  mj_defaultVFS(vfs.get());
-  std::string error;
-  mjModel* m = nullptr;
-  if (mj_makeEmptyFileVFS(vfs.get(), name.c_str(), static_cast<int>(xml.size())) != 0) {
-    error = "could not create the virtual file";
-  } else {
-    const int idx = mj_findFileVFS(vfs.get(), name.c_str());
-    std::memcpy(vfs->filedata[idx], xml.data(), xml.size());
-    m = loadXml(name.c_str(), vfs.get(), error);
-  }
-  mj_deleteVFS(vfs.get());
-  if (!m) return fail(LoadStatus::ParseError, fmt::format("{}: {}", name, error));
-  std::shared_ptr<Scene> scene(new Scene(m, name));
-  if (std::string msg = scene->initialise(); !msg.empty())
-    return fail(LoadStatus::NotARobotScene, fmt::format("{}: {}", name, msg));
-  return {LoadStatus::Ok, {}, std::move(scene)};
-}
-
-Scene::Scene(mjModel* m, std::string source) : model_(m), source_(std::move(source)) {}
+Scene::Scene(mjModel* m) : model_(m) {}
 
 Scene::~Scene() { mj_deleteModel(model_); }
 
@@ -99,7 +62,6 @@ std::string Scene::initialise() {
     continuous_[i] = m->jnt_limited[j] == 0;
     lower_[i] = continuous_[i] ? -std::numbers::pi : m->jnt_range[2 * j];
     upper_[i] = continuous_[i] ? std::numbers::pi : m->jnt_range[2 * j + 1];
-    velocity_[i] = m->nuser_jnt > 0 ? m->jnt_user[j * m->nuser_jnt] : 0.0;
   }
   toolSite_ = siteId("tool_frame");
   if (toolSite_ < 0) return "no site named 'tool_frame'";

@@ -5,7 +5,7 @@
 // domains/assets/gen3.xml (joints joint_1..joint_7, site tool_frame, bodies base_link and end_effector_link).
 // Optional parts: a mobile base (body mobile_base with joints base_x, base_y, base_yaw), finger slide
 // joints finger_left / finger_right, and movable objects (bodies whose first joint is a free joint).
-// Units: metres, radians; joint velocity limits in rad/s (read from each arm joint's `user` value).
+// Units: metres, radians.
 #pragma once
 
 #include "robot/world/Pose.h"
@@ -26,8 +26,6 @@ enum class LoadStatus {
   ParseError,      // MuJoCo rejected the XML (message has MuJoCo's text with line numbers)
   NotARobotScene,  // the model compiled but lacks the Gen3 arm names listed above
 };
-
-const char* toString(LoadStatus s);
 
 class Scene;
 
@@ -55,16 +53,12 @@ class Scene {
  public:
   // Loads an MJCF file; includes resolve relative to the file's directory.
   static SceneLoadResult loadFile(const std::string& path);
-  // Loads MJCF text through MuJoCo's virtual file system; `name` is used in messages. The text cannot
-  // <include> files.
-  static SceneLoadResult loadString(std::string_view xml, const std::string& name = "scene.xml");
 
   ~Scene();
   Scene(const Scene&) = delete;
   Scene& operator=(const Scene&) = delete;
 
   const mjModel* model() const { return model_; }
-  const std::string& source() const { return source_; }
 
   // Arm joints (index 0..6 for joint_1..joint_7).
   int armQposAdr(int i) const { return armQpos_[i]; }
@@ -72,7 +66,6 @@ class Scene {
   bool armContinuous(int i) const { return continuous_[i]; }
   double armLower(int i) const { return lower_[i]; }  // -pi for continuous joints
   double armUpper(int i) const { return upper_[i]; }  //  pi for continuous joints
-  double armVelocityLimit(int i) const { return velocity_[i]; }
   // True when every limited joint of q lies within its range (continuous joints are always fine).
   bool withinLimits(const ArmConfig& q) const;
   // Wraps continuous joints to [-pi, pi) and clamps limited joints into range.
@@ -112,14 +105,13 @@ class Scene {
   void buildPairs();
   bool mujocoWouldCollide(int g1, int g2) const;
 
-  Scene(mjModel* m, std::string source);
+  explicit Scene(mjModel* m);
   std::string initialise();  // returns an error message, empty on success
 
   mjModel* model_ = nullptr;
-  std::string source_;
   std::array<int, kArmDof> armQpos_{}, armDof_{};
   std::array<bool, kArmDof> continuous_{};
-  std::array<double, kArmDof> lower_{}, upper_{}, velocity_{};
+  std::array<double, kArmDof> lower_{}, upper_{};
   std::array<int, 3> baseQpos_{-1, -1, -1};
   std::array<int, 2> fingerQpos_{-1, -1};
   double fingerTravel_ = 0.0;

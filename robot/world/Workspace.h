@@ -32,7 +32,6 @@ class Workspace {
   Workspace& operator=(const Workspace&) = delete;
 
   const Scene& scene() const { return *scene_; }
-  const std::shared_ptr<const Scene>& scenePtr() const { return scene_; }
   const mjModel* model() const { return scene_->model(); }
   mjData* data() { return data_; }
   const mjData* data() const { return data_; }

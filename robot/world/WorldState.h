@@ -27,16 +27,13 @@ struct WorldState {
   std::optional<Grasp> held;
 };
 
-// Named arm configurations of the Gen3 (radians), from Kinova's published keyframes and the reference
-// scenes. `retract` folds the arm over its base; `zero` points it straight up.
+// Named arm configurations of the Gen3 (radians), from Kinova's published keyframes; every scene shares
+// them. `retract` folds the arm over its base; `zero` points it straight up. Configurations of one scene
+// (Feeding's abovePlate, the home scene's homeSceneInitial) live in that scene's file (NamedConfigurations.h).
 namespace configs {
 inline constexpr ArmConfig kZero{0, 0, 0, 0, 0, 0, 0};
 inline constexpr ArmConfig kHome{0, 0.2618, 3.1416, -2.2689, 0, 0.9599, 1.5708};
 inline constexpr ArmConfig kRetract{0, -0.3491, 3.1416, -2.5482, 0, -0.8727, 1.5708};
-inline constexpr ArmConfig kAbovePlate{-2.86495, -1.61461, -2.61159, -1.37673, 1.11843, -1.17905, -2.69574};
-inline constexpr ArmConfig kUtensilAboveMount{-0.30812, 0.14493, -2.45151, -2.35393, -0.14376, -0.68726, 0.50281};
-inline constexpr ArmConfig kDrinkGaze{-0.00419, 0.60346, -3.12590, -2.35380, 0.01149, 1.34116, 1.68252};
-inline constexpr ArmConfig kHomeSceneInitial{1.0, -0.71, -3.14159265358979, -2.3, 0, 0, -1.5707963267949};
 }  // namespace configs
 
 }  // namespace cbtl::world

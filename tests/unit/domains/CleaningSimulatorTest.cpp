@@ -23,7 +23,7 @@ namespace home = cbtl::domains::home;
 namespace world = cbtl::world;
 
 ActionCall wipe(const std::string& surface, const world::Pose2& base) {
-  return ActionCall{"wipe", {Value::name(surface), Value::vec(actions::encodePose2(base))}};
+  return ActionCall{"wipe", {Value::name(surface), Value::vec({base.x, base.y, base.yaw})}};
 }
 
 TEST(CleaningSimulator, ResetIsDeterministic) {

@@ -1,5 +1,6 @@
 // The standard-action executor on the home scene: each action's effect on the World, call-shape errors,
 // and failures that leave the World unchanged.
+#include "domains/home/HomeEpisode.h"
 #include "domains/home/HomeScene.h"
 #include "robot/actions/CallArguments.h"
 #include "robot/actions/RobotActions.h"
@@ -25,7 +26,7 @@ class RobotActionsTest : public ::testing::Test {
  protected:
   RobotActionsTest() : w(home::homeScene()), rng(11) {
     world::WorldState s = w.workspace().state();
-    s.arm = world::configs::kHomeSceneInitial;
+    s.arm = home::initialArm();
     EXPECT_EQ(w.workspace().setState(s), world::StateStatus::Ok);
   }
 
@@ -51,7 +52,7 @@ class RobotActionsTest : public ::testing::Test {
 TEST_F(RobotActionsTest, OtherNamesAreNotStandard) {
   EXPECT_FALSE(actions.execute(w, ActionCall{"movePot", {}}, rng).has_value());
   EXPECT_TRUE(RobotActions::isStandard("wipe"));
-  EXPECT_EQ(RobotActions::names().size(), 15u);
+  EXPECT_FALSE(RobotActions::isStandard("movePlate"));  // Feeding's own (domains/feeding/TableSlide.h)
 }
 
 TEST_F(RobotActionsTest, MoveBaseMovesTheBase) {
@@ -83,7 +84,9 @@ TEST_F(RobotActionsTest, MoveArmAndNamedConfigurations) {
   r = run("moveArmToNamed", {Value::name("nowhere")});
   EXPECT_EQ(r.status, ActionStatus::InvalidArgument);
   EXPECT_NE(r.detail.find("nowhere"), std::string::npos);
-  EXPECT_NE(r.detail.find("retract"), std::string::npos);  // the message lists the known names
+  EXPECT_NE(r.detail.find("retract"), std::string::npos);           // the message lists the known names
+  EXPECT_NE(r.detail.find("homeSceneInitial"), std::string::npos);  // with the scene's own (home.xml)
+  EXPECT_EQ(r.detail.find("abovePlate"), std::string::npos);        // but not Feeding's
   EXPECT_EQ(w.workspace().state().arm, world::configs::kRetract);
 }
 

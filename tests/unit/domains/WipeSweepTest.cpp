@@ -55,7 +55,7 @@ TEST_F(WipeSweepTest, WipesEveryHomeSurfaceFromItsApproachBase) {
     ASSERT_TRUE(readyToWipe(surface, base));
     const world::ArmConfig arm = w.workspace().state().arm;
     const auto r =
-        actions.execute(w, ActionCall{"wipe", {Value::name(surface), Value::vec(actions::encodePose2(base))}}, rng);
+        actions.execute(w, ActionCall{"wipe", {Value::name(surface), Value::vec({base.x, base.y, base.yaw})}}, rng);
     ASSERT_TRUE(r.has_value());
     ASSERT_TRUE(r->done()) << r->detail;
     EXPECT_GE(r->basePath.size(), 3u);  // at least one stroke there and back, plus the return

@@ -7,7 +7,7 @@ namespace {
 
 TEST(WorldClearance, DefaultFeedingPlacementsAreClear) {
   Workspace ws(test::feedingScene());
-  ClearanceChecker cc(ws.scenePtr());
+  ClearanceChecker cc(test::feedingScene());
   const auto plate = *ws.objectPose("plate");
   PlacementOptions o;
   o.clearance = 0.0;
@@ -17,7 +17,7 @@ TEST(WorldClearance, DefaultFeedingPlacementsAreClear) {
 
 TEST(WorldClearance, PlateDrinkDistanceIsExact) {
   Workspace ws(test::feedingScene());
-  ClearanceChecker cc(ws.scenePtr());
+  ClearanceChecker cc(test::feedingScene());
   // Plate (cylinder r 0.149) and drink cup (cylinder r 0.0435) side by side along y, both upright.
   const Pose3 plate = Pose3::fromPosition({0.34, 0.30, 0.1625});
   const Pose3 drink = Pose3::fromPosition({0.34, 0.60, 0.15});
@@ -29,7 +29,7 @@ TEST(WorldClearance, PlateDrinkDistanceIsExact) {
 
 TEST(WorldClearance, PlacementNeedsClearanceFromOtherObjects) {
   Workspace ws(test::homeScene());
-  ClearanceChecker cc(ws.scenePtr());
+  ClearanceChecker cc(test::homeScene());
   // Book 0 moved next to book 1 on the middle shelf: clear of the shelf, too close to book 1.
   const Pose3 near = Pose3::fromPosition({-0.06, 0.75, 0.13});
   const auto tooClose = cc.checkPlacement(ws, "book_0", near);
@@ -48,7 +48,7 @@ TEST(WorldClearance, PlacementNeedsClearanceFromOtherObjects) {
 
 TEST(WorldClearance, ObjectBoxesComeFromTheGeoms) {
   Workspace ws(test::homeScene());
-  ClearanceChecker cc(ws.scenePtr());
+  ClearanceChecker cc(test::homeScene());
   const auto box = cc.objectBox("book_3");
   ASSERT_TRUE(box.has_value());
   EXPECT_NEAR(box->halfExtents.x(), 0.02, 1e-9);

@@ -8,7 +8,8 @@ namespace {
 
 TEST(WorldCollision, NamedFeedingConfigurationsAreFree) {
   Workspace ws(test::feedingScene());
-  for (const auto& q : {configs::kRetract, configs::kHome, configs::kAbovePlate, configs::kDrinkGaze, configs::kZero}) {
+  for (const auto& q : {configs::kRetract, configs::kHome, test::feedingConf("abovePlate"),
+                        test::feedingConf("drinkGaze"), configs::kZero}) {
     const auto r = checkArm(ws, q);
     EXPECT_TRUE(r.free()) << toString(r.status) << " " << r.first << " / " << r.second;
   }
@@ -94,7 +95,7 @@ TEST(WorldCollision, FastCheckAgreesWithFullScenePass) {
 TEST(WorldCollision, UnknownObjectInStateIsRejected) {
   Workspace ws(test::feedingScene());
   WorldState st;
-  st.objects["teapot"] = Pose3::identity();
+  st.objects["teapot"] = Pose3{};
   EXPECT_EQ(ws.setState(st), StateStatus::UnknownObject);
   WorldState limits;
   limits.arm = {0, 3.0, 0, 0, 0, 0, 0};

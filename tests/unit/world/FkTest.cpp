@@ -1,5 +1,6 @@
 // Forward kinematics of the Gen3 model against the published test vectors (tool_frame, 1 mm).
 #include "robot/world/Workspace.h"
+#include "tests/unit/world/WorldTestSupport.h"
 
 #include <gtest/gtest.h>
 
@@ -31,16 +32,16 @@ TEST(WorldFk, RetractConfiguration) {
 TEST(WorldFk, SeedConfigurations) {
   Workspace ws(feeding());
   expectNear(ws.forwardKinematics(configs::kHome).position, 0.5767, 0.0014, 0.4337);
-  expectNear(ws.forwardKinematics(configs::kAbovePlate).position, 0.5013, 0.3031, 0.5317);
-  expectNear(ws.forwardKinematics(configs::kUtensilAboveMount).position, 0.2389, -0.0735, 0.1683);
-  expectNear(ws.forwardKinematics(configs::kDrinkGaze).position, 0.5837, -0.0003, 0.3091);
+  expectNear(ws.forwardKinematics(test::feedingConf("abovePlate")).position, 0.5013, 0.3031, 0.5317);
+  expectNear(ws.forwardKinematics(test::feedingConf("utensilAboveMount")).position, 0.2389, -0.0735, 0.1683);
+  expectNear(ws.forwardKinematics(test::feedingConf("drinkGaze")).position, 0.5837, -0.0003, 0.3091);
 }
 
 TEST(WorldFk, HomeSceneMobileBase) {
   auto r = Scene::loadFile(CBTL_DOMAINS_DIR "/home/home.xml");
   ASSERT_EQ(r.status, LoadStatus::Ok) << r.message;
   Workspace ws(r.scene);
-  expectNear(ws.forwardKinematics(configs::kHomeSceneInitial).position, 0.1781, -0.2748, 0.5923);
+  expectNear(ws.forwardKinematics(test::namedConf(*r.scene, "homeSceneInitial")).position, 0.1781, -0.2748, 0.5923);
   WorldState st;
   st.arm = configs::kZero;
   st.base = {1.0, 0.2, 0.0};

@@ -29,8 +29,8 @@ TEST(WorldIk, RoundTripsOnRandomReachableTargets) {
 TEST(WorldIk, SeedNearSolutionConvergesQuickly) {
   Workspace ws(test::feedingScene());
   Rng rng(1);
-  const Pose3 target = ws.forwardKinematics(configs::kAbovePlate) * Pose3::fromPosition({0.02, -0.03, 0.01});
-  const IkResult r = solveIk(ws, target, configs::kAbovePlate, rng);
+  const Pose3 target = ws.forwardKinematics(test::feedingConf("abovePlate")) * Pose3::fromPosition({0.02, -0.03, 0.01});
+  const IkResult r = solveIk(ws, target, test::feedingConf("abovePlate"), rng);
   ASSERT_TRUE(r.solved()) << toString(r.status);
   EXPECT_EQ(r.attempts, 1);
   EXPECT_LT(r.iterations, 60);

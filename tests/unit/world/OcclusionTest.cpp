@@ -69,7 +69,7 @@ TEST(WorldOcclusion, ArmAcrossTheFaceOccludesHeavily) {
 TEST(WorldOcclusion, AbovePlateBarelyOccludes) {
   Workspace ws(test::feedingScene());
   const auto spec = *occlusionSpecFor(ws.scene());
-  ws.setArm(configs::kAbovePlate);
+  ws.setArm(test::feedingConf("abovePlate"));
   const double score = occlusionScore(ws, spec);
   EXPECT_GE(score, 0.0);
   EXPECT_LT(score, 0.2);

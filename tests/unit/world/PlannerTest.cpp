@@ -1,15 +1,38 @@
 // Motion planning: solved paths are re-checked at a finer resolution than the planner used; statuses for
 // invalid endpoints; the SE(2) base planner; determinism.
 #include "robot/world/InverseKinematics.h"
+#include "robot/world/JointPath.h"
 #include "robot/world/MotionPlanner.h"
 #include "tests/unit/world/WorldTestSupport.h"
 
 namespace cbtl::world {
 namespace {
 
+// The path with extra waypoints so that consecutive waypoints are at most `spacing` apart (L∞).
+std::vector<Waypoint> densify(const JointSpace& space, const std::vector<Waypoint>& path, double spacing) {
+  if (path.empty()) return {};
+  std::vector<Waypoint> out{path.front()};
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    const long n = std::max(1L, static_cast<long>(std::ceil(linfDistance(space, path[i - 1], path[i]) / spacing)));
+    for (long k = 1; k < n; ++k)
+      out.push_back(interpolate(space, path[i - 1], path[i], static_cast<double>(k) / static_cast<double>(n)));
+    out.push_back(path[i]);
+  }
+  return out;
+}
+
 // Every interpolated state of the path at `spacing` (rad, L∞) is collision-free and within limits.
 void expectPathFree(Workspace& ws, const std::vector<ArmConfig>& path, double spacing) {
-  const auto dense = densifyArmPath(ws.scene(), path, spacing);
+  JointSpace space;
+  for (int i = 0; i < kArmDof; ++i) space.circular.push_back(ws.scene().armContinuous(i));
+  std::vector<Waypoint> wps;
+  for (const ArmConfig& q : path) wps.emplace_back(q.begin(), q.end());
+  std::vector<ArmConfig> dense;
+  for (const Waypoint& w : densify(space, wps, spacing)) {
+    ArmConfig q{};
+    std::copy(w.begin(), w.end(), q.begin());
+    dense.push_back(q);
+  }
   for (std::size_t i = 0; i < dense.size(); ++i) {
     ASSERT_TRUE(ws.scene().withinLimits(dense[i])) << "waypoint " << i;
     const auto r = checkArm(ws, dense[i]);
@@ -20,11 +43,11 @@ void expectPathFree(Workspace& ws, const std::vector<ArmConfig>& path, double sp
 TEST(WorldPlanner, RetractToAbovePlate) {
   Workspace ws(test::feedingScene());
   Rng rng(5);
-  const ArmPlan plan = planArm(ws, configs::kRetract, configs::kAbovePlate, rng);
+  const ArmPlan plan = planArm(ws, configs::kRetract, test::feedingConf("abovePlate"), rng);
   ASSERT_EQ(plan.status, PlanStatus::Solved);
   ASSERT_GE(plan.path.size(), 2U);
   EXPECT_EQ(plan.path.front(), configs::kRetract);
-  EXPECT_EQ(plan.path.back(), configs::kAbovePlate);
+  EXPECT_EQ(plan.path.back(), test::feedingConf("abovePlate"));
   expectPathFree(ws, plan.path, 0.0025);
 }
 
@@ -77,8 +100,8 @@ TEST(WorldPlanner, TinyBudgetIsExhausted) {
 TEST(WorldPlanner, SameSeedSamePath) {
   Workspace ws(test::feedingScene());
   Rng a(77), b(77);
-  const ArmPlan p1 = planArm(ws, configs::kRetract, configs::kAbovePlate, a);
-  const ArmPlan p2 = planArm(ws, configs::kRetract, configs::kAbovePlate, b);
+  const ArmPlan p1 = planArm(ws, configs::kRetract, test::feedingConf("abovePlate"), a);
+  const ArmPlan p2 = planArm(ws, configs::kRetract, test::feedingConf("abovePlate"), b);
   ASSERT_TRUE(p1.solved());
   EXPECT_EQ(p1.path, p2.path);
 }
@@ -100,18 +123,6 @@ TEST(WorldPlanner, BaseAroundTheTableInTheHomeScene) {
     ws.setBase({w[0], w[1], w[2]});
     ASSERT_TRUE(checkRobotCollisions(ws).free());
   }
-}
-
-TEST(WorldPlanner, PathDurationUsesVelocityLimits) {
-  const auto& scene = *test::feedingScene();
-  // Joint 1 (1.3963 rad/s) turns 1 rad, then joint 7 (1.2218 rad/s) turns 1 rad the short way across ±pi.
-  const ArmConfig a{0, 0, 0, 0, 0, 0, 3.0};
-  ArmConfig b = a;
-  b[0] = 1.0;
-  ArmConfig c = b;
-  c[6] = 3.0 + 1.0 - 2 * M_PI;
-  EXPECT_NEAR(armPathDuration(scene, {a, b, c}), 1.0 / 1.3963 + 1.0 / 1.2218, 1e-9);
-  EXPECT_EQ(armPathDuration(scene, {a}), 0.0);
 }
 
 TEST(WorldPlanner, BasePlanningNeedsAMobileBase) {

@@ -18,8 +18,8 @@ Outcome work(const std::shared_ptr<const Scene>& scene, std::uint64_t seed) {
   Workspace ws(scene);
   Rng rng(seed);
   Outcome o;
-  o.path = planArm(ws, configs::kRetract, configs::kAbovePlate, rng).path;
-  o.ik = solveIk(ws, ws.forwardKinematics(configs::kDrinkGaze), configs::kRetract, rng).q;
+  o.path = planArm(ws, configs::kRetract, test::feedingConf("abovePlate"), rng).path;
+  o.ik = solveIk(ws, ws.forwardKinematics(test::feedingConf("drinkGaze")), configs::kRetract, rng).q;
   return o;
 }
 

@@ -3,6 +3,7 @@
 #include "compiler/diag/DiagnosticRenderer.h"
 #include "compiler/driver/Pipeline.h"
 #include "robot/bind/WorldBuiltins.h"
+#include "robot/world/Scene.h"
 #include "runtime/sim/DomainSimulator.h"
 
 #include <fmt/format.h>
@@ -64,11 +65,13 @@ void LoadedProgram::prepareCompiled(bool compiled, const std::string& lastPass, 
   if (!graph.world.empty()) {
     namespace fs = std::filesystem;
     setWorldPath((fs::path(path()).parent_path() / graph.world).lexically_normal().string());
-    std::string error;
-    if (!bind::addWorldFromFile(builtins, worldPath(), error)) {
-      setErrors(fmt::format("error: {}: world scene '{}': {}\n", path(), graph.world, error));
+    const world::SceneLoadResult scene = world::Scene::loadFile(worldPath());
+    if (scene.status != world::LoadStatus::Ok) {
+      setErrors(fmt::format("error: {}: world scene '{}': {}\n", path(), graph.world, scene.message));
       return;
     }
+    scene_ = scene.scene;
+    builtins = bind::withWorld(std::move(builtins), scene_);
     sync = syncRobotWorld;
   }
   // The graph lives in the translation unit: share it (and keep the unit alive) without copying.

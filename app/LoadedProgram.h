@@ -12,6 +12,10 @@
 #include <memory>
 #include <string>
 
+namespace cbtl::world {
+class Scene;
+}
+
 namespace cbtl::app {
 
 class LoadedProgram : public approach::PreparedProgram {
@@ -24,11 +28,16 @@ class LoadedProgram : public approach::PreparedProgram {
                                                    const std::string& stdlibDir = "",
                                                    rt::Builtins builtins = rt::Builtins::standard());
 
+  // Robot domains: the scene of worldPath(), loaded once and shared read-only (the world built-ins read it, and
+  // the domain simulators get it through app/SimulatorFacts.h); null without a `world` line.
+  const std::shared_ptr<const world::Scene>& scene() const { return scene_; }
+
  private:
   explicit LoadedProgram(std::string path) : PreparedProgram(std::move(path)) {}
   void prepareCompiled(bool compiled, const std::string& lastPass, rt::Builtins builtins);
   // Shared with the base's graph pointer, so the graph outlives everything prepared from it.
   std::shared_ptr<TranslationUnit> tu_;
+  std::shared_ptr<const world::Scene> scene_;
 };
 
 }  // namespace cbtl::app

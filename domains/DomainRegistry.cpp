@@ -19,7 +19,8 @@ namespace cbtl::domains {
 
 namespace {
 
-using Factory = std::unique_ptr<sim::DomainSimulator> (*)(const sim::SimulatorOptions&, std::uint64_t);
+using Factory = std::unique_ptr<sim::DomainSimulator> (*)(const ProgramFacts&, const sim::SimulatorOptions&,
+                                                          std::uint64_t);
 
 struct Entry {
   const char* name;
@@ -32,28 +33,32 @@ const std::vector<Entry>& entries() {
   static const std::vector<Entry> all = [] {
     std::vector<Entry> e;
 #if defined(CBTL_HAVE_DOMAIN_BOOKS)
-    e.push_back(
-        {"books", [](const sim::SimulatorOptions& o, std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {
-           return std::make_unique<books::BooksSimulator>(o, seed);
-         }});
+    e.push_back({"books",
+                 [](const ProgramFacts& p, const sim::SimulatorOptions& o,
+                    std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {
+                   return std::make_unique<books::BooksSimulator>(p, o, seed);
+                 }});
 #endif
 #if defined(CBTL_HAVE_DOMAIN_CLEANING)
-    e.push_back(
-        {"cleaning", [](const sim::SimulatorOptions& o, std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {
-           return std::make_unique<cleaning::CleaningSimulator>(o, seed);
-         }});
+    e.push_back({"cleaning",
+                 [](const ProgramFacts& p, const sim::SimulatorOptions& o,
+                    std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {
+                   return std::make_unique<cleaning::CleaningSimulator>(p, o, seed);
+                 }});
 #endif
 #if defined(CBTL_HAVE_DOMAIN_COOKING)
-    e.push_back(
-        {"cooking", [](const sim::SimulatorOptions& o, std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {
-           return std::make_unique<cooking::CookingSimulator>(o, seed);
-         }});
+    e.push_back({"cooking",
+                 [](const ProgramFacts&, const sim::SimulatorOptions& o,
+                    std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {  // no scene, no items it reads
+                   return std::make_unique<cooking::CookingSimulator>(o, seed);
+                 }});
 #endif
 #if defined(CBTL_HAVE_DOMAIN_FEEDING)
-    e.push_back(
-        {"feeding", [](const sim::SimulatorOptions& o, std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {
-           return std::make_unique<feeding::FeedingSimulator>(o, seed);
-         }});
+    e.push_back({"feeding",
+                 [](const ProgramFacts& p, const sim::SimulatorOptions& o,
+                    std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {
+                   return std::make_unique<feeding::FeedingSimulator>(p, o, seed);
+                 }});
 #endif
     std::sort(e.begin(), e.end(), [](const Entry& a, const Entry& b) { return std::string(a.name) < b.name; });
     return e;
@@ -63,10 +68,10 @@ const std::vector<Entry>& entries() {
 
 }  // namespace
 
-std::unique_ptr<sim::DomainSimulator> createSimulator(const std::string& domain, const sim::SimulatorOptions& options,
-                                                      std::uint64_t seed) {
+std::unique_ptr<sim::DomainSimulator> createSimulator(const std::string& domain, const ProgramFacts& program,
+                                                      const sim::SimulatorOptions& options, std::uint64_t seed) {
   for (const Entry& e : entries()) {
-    if (domain == e.name) return e.make(options, seed);
+    if (domain == e.name) return e.make(program, options, seed);
   }
   return nullptr;
 }

@@ -1,9 +1,11 @@
-// DomainRegistry.h — creates a domain's simulator by the domain's name (the `domain` line of its .cbtl file).
+// DomainRegistry.h — creates a domain's simulator by the domain's name (the `domain` line of its .cbtl file),
+// from the facts of the loaded program (ProgramFacts.h: its scene and item sets).
 //
 // Only the domains whose library was built are known; the build links every domains/<name>/ folder that has a
 // CMakeLists.txt. The registry owns nothing: each call makes a new, independent simulator.
 #pragma once
 
+#include "domains/ProgramFacts.h"
 #include "runtime/sim/DomainSimulator.h"
 
 #include <cstdint>
@@ -13,11 +15,11 @@
 
 namespace cbtl::domains {
 
-// A new simulator for `domain` (e.g. "cooking"), constructed with `options` and reset with `seed`; nullptr when
-// no simulator of that name was built. Throws what the domain's constructor throws for invalid options.
-std::unique_ptr<cbtl::sim::DomainSimulator> createSimulator(const std::string& domain,
-                                                            const cbtl::sim::SimulatorOptions& options,
-                                                            std::uint64_t seed);
+// A new simulator for `domain` (e.g. "cooking") over the program's facts, constructed with `options` and reset
+// with `seed`; nullptr when no simulator of that name was built. Throws what the domain's constructor throws for
+// invalid options or facts (a robot domain without a scene: std::invalid_argument).
+std::unique_ptr<sim::DomainSimulator> createSimulator(const std::string& domain, const ProgramFacts& program,
+                                                      const sim::SimulatorOptions& options, std::uint64_t seed);
 
 // The names createSimulator accepts, sorted.
 std::vector<std::string> knownDomains();

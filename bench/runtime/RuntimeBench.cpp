@@ -30,8 +30,9 @@ const app::LoadedProgram& cooking() {
 }
 
 approach::SimulatorFactory factory() {
-  return
-      [](const sim::SimulatorOptions& o, std::uint64_t seed) { return domains::createSimulator("cooking", o, seed); };
+  return [](const sim::SimulatorOptions& o, std::uint64_t seed) {
+    return domains::createSimulator("cooking", {}, o, seed);
+  };
 }
 
 void BM_CookingTrial(benchmark::State& state) {
@@ -79,7 +80,7 @@ const model::UserModel& learnedUser() {
 void BM_SolverThroughput(benchmark::State& state) {
   const auto& lp = cooking();
   const auto& user = learnedUser();
-  auto world = domains::createSimulator("cooking", {}, 1);
+  auto world = domains::createSimulator("cooking", {}, {}, 1);
   const auto obs = approach::observationVector(lp.program(), world->observe());
   const bool explore = state.range(0) == 1;
   const auto csp = solver::makeCsp(lp.program(), 0, lp.instances(0), user, obs,

@@ -1,34 +1,45 @@
-// BookCatalog.h — the nine books of books.cbtl (`items standardBooks : Book`): item entry, scene body and
-// title, in declaration order (entry k is body "book_k").
+// BookCatalog.h — the Book entries of the program (books.cbtl `items standardBooks : Book`), read from the
+// program's item sets rather than written down again: entry name, title, scene body, and the item as the
+// program's `model text` factor shows it to a text-preference model.
+//
+// The catalogue is the first item set of type Book, in declaration order. Each entry needs a text `title` and a
+// text `body` (a movable body of the scene); every declared field becomes a descriptor by the conversion of
+// rt::ItemDescriptors (runtime/core/ItemDescriptors.h), so the simulated user's descriptor rule and a
+// language-model judge read exactly what the program's text factor reads.
 #pragma once
 
-#include <array>
+#include "domains/ProgramFacts.h"
+#include "runtime/textpref/Item.h"
+
 #include <cstddef>
-#include <optional>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace cbtl::domains::books {
 
-struct BookEntry {
-  std::string_view entry;  // item entry name in books.cbtl
-  std::string_view body;   // movable body in home.xml
-  std::string_view title;
+struct Book {
+  std::string entry;  // item entry name in the program
+  std::string title;
+  std::string body;     // movable body in the scene
+  textpref::Item item;  // name = entry; one descriptor per declared field
 };
 
-inline constexpr std::array<BookEntry, 9> kBooks{{
-    {"cosmos", "book_0", "Cosmos"},
-    {"prideAndPrejudice", "book_1", "Pride and Prejudice"},
-    {"hitchhikersGuide", "book_2", "The Hitchhiker's Guide to the Galaxy"},
-    {"henriettaLacks", "book_3", "The Immortal Life of Henrietta Lacks"},
-    {"anneFrank", "book_4", "The Diary of Anne Frank"},
-    {"intoTheWild", "book_5", "Into the Wild"},
-    {"mobyDick", "book_6", "Moby Dick"},
-    {"lordOfTheRings", "book_7", "The Lord of the Rings"},
-    {"andThenThereWereNone", "book_8", "And Then There Were None"},
-}};
+class BookCatalog {
+ public:
+  // Throws std::invalid_argument when the program has no item set of type Book, or an entry lacks a text
+  // title or body, or a field is not a literal.
+  static BookCatalog fromProgram(const ProgramFacts& program);
 
-// Index into kBooks of the book with this body / entry name; nullopt for anything else.
-std::optional<std::size_t> bookOfBody(std::string_view body);
-std::optional<std::size_t> bookOfEntry(std::string_view entry);
+  const std::vector<Book>& books() const { return books_; }
+  std::size_t size() const { return books_.size(); }
+  // The book with this scene body / entry name; null for anything else.
+  const Book* byBody(std::string_view body) const;
+  const Book* byEntry(std::string_view entry) const;
+
+ private:
+  explicit BookCatalog(std::vector<Book> books) : books_(std::move(books)) {}
+  std::vector<Book> books_;
+};
 
 }  // namespace cbtl::domains::books

@@ -1,6 +1,5 @@
 #include "domains/books/BooksSimulator.h"
 
-#include "domains/books/BookCatalog.h"
 #include "domains/home/HomeEpisode.h"
 #include "domains/home/HomeScene.h"
 #include "domains/home/HomeSurfaces.h"
@@ -14,16 +13,48 @@ namespace cbtl::domains::books {
 using sim::StepResult;
 using sim::Value;
 
-BooksSimulator::BooksSimulator(const sim::SimulatorOptions& options, std::uint64_t seed)
-    : BooksSimulator(options, seed, BooksUser::paperDefault()) {}
+namespace {
 
-BooksSimulator::BooksSimulator(const sim::SimulatorOptions& options, std::uint64_t seed, BooksUser user)
-    : BooksSimulator(options, std::make_shared<const BooksUser>(std::move(user)), seed) {}
+// The simulator's user has no language-model judge, so its ground truth cannot fail.
+bool enjoysBook(const BooksUser& user, const Book& book) {
+  const auto enjoyed = user.enjoys(book);
+  if (!enjoyed) throw std::logic_error("books: the user's taste failed: " + enjoyed.error().describe());
+  return enjoyed.value();
+}
 
-BooksSimulator::BooksSimulator(const sim::SimulatorOptions& options, std::shared_ptr<const BooksUser> user,
-                               std::uint64_t seed)
-    : options_(options), user_(std::move(user)), world_(std::make_unique<world::World>(home::homeScene())) {
+// The parked slot home::emptyRoom gives `body` (book_k: slot k).
+std::size_t parkingSlot(const std::string& body) {
+  for (std::size_t k = 0; k < home::kBookCount; ++k)
+    if (home::bookBody(k) == body) return k;
+  return home::kBookCount;  // a catalogue body beyond the scene's books: the next free slot
+}
+
+}  // namespace
+
+BooksSimulator::BooksSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options, std::uint64_t seed)
+    : BooksSimulator(program, options, seed, BooksUser::paperDefault()) {}
+
+BooksSimulator::BooksSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options, std::uint64_t seed,
+                               BooksUser user)
+    : BooksSimulator(options,
+                     Shared{home::programScene(program, "books"),
+                            std::make_shared<const BookCatalog>(BookCatalog::fromProgram(program)),
+                            std::make_shared<const BooksUser>(std::move(user))},
+                     seed) {}
+
+BooksSimulator::BooksSimulator(const sim::SimulatorOptions& options, Shared shared, std::uint64_t seed)
+    : options_(options),
+      scene_(std::move(shared.scene)),
+      catalog_(std::move(shared.catalog)),
+      user_(std::move(shared.user)),
+      world_(std::make_unique<world::World>(scene_)) {
   scenePoses_ = world_->workspace().state().objects;
+  for (const Book& b : catalog_->books()) {
+    if (!scenePoses_.count(b.body)) {
+      throw std::invalid_argument("books: the body '" + b.body + "' of Book entry '" + b.entry +
+                                  "' is not a movable object of the scene");
+    }
+  }
   const auto hand = home::userHandFrame(world_->workspace());
   if (!hand) throw std::runtime_error("books: the home scene lacks the sites user_hand and handover_center");
   hand_ = *hand;
@@ -48,7 +79,7 @@ void BooksSimulator::stockShelves(world::WorldState& state, bool mayHold) {
 void BooksSimulator::reset(std::uint64_t seed) {
   rng_.seed(seed);
   world_->utterances().clear();
-  world::WorldState s = home::emptyRoom(scenePoses_);
+  world::WorldState s = home::emptyRoom(*scene_, scenePoses_);
   stockShelves(s, true);
   if (world_->workspace().setState(s) != world::StateStatus::Ok) {
     throw std::logic_error("books: the episode's start state is invalid");  // a bug in this file
@@ -60,7 +91,7 @@ std::vector<std::string> BooksSimulator::pickable() const {
   const std::vector<std::string> geoms = home::homeSurfaceGeoms();
   const std::string held = ws.state().held ? ws.state().held->object : std::string();
   std::vector<std::string> out;
-  for (const BookEntry& b : kBooks) {
+  for (const Book& b : catalog_->books()) {
     if (b.body == held) continue;
     if (actions::supportOf(*world_, b.body, geoms)) out.emplace_back(b.entry);
   }
@@ -103,20 +134,19 @@ StepResult BooksSimulator::handOver(StepResult r) {
   world::Workspace& ws = world_->workspace();
   const std::string body = ws.state().held->object;  // handOver succeeded, so something is held
   r.taskDone = true;
-  const auto book = bookOfBody(body);
-  if (!book) {
+  const Book* book = catalog_->byBody(body);
+  if (book == nullptr) {
     r.status = sim::ActionStatus::Ignored;
     r.message = "handOver: the user does not take the " + body;
     return r;
   }
-  const std::string entry(kBooks[*book].entry);
   const Eigen::Vector3d point = ws.toolPose().position;
   const bool reached = user_->reaches(hand_, point);
-  const bool enjoyed = reached && user_->enjoys(entry);
-  const std::string said = user_->reaction(entry, reached);
+  const bool enjoyed = reached && enjoysBook(*user_, *book);
+  const std::string said = BooksUser::reaction(*book, reached, enjoyed);
   r.feedback.push_back(
       sim::FeedbackEvent{"handoverOutcome",
-                         {Value::name(entry), Value::vec({point.x(), point.y(), point.z()}),
+                         {Value::name(book->entry), Value::vec({point.x(), point.y(), point.z()}),
                           Value::num(reached ? 1 : 0), Value::name(said), Value::num(enjoyed ? 1 : 0)}});
   r.hasSatisfaction = true;
   r.satisfaction = reached && enjoyed ? 1.0 : -1.0;
@@ -126,7 +156,7 @@ StepResult BooksSimulator::handOver(StepResult r) {
     ws.setHeld(std::nullopt);
     world::WorldState s = ws.state();
     s.gripper = 1.0;
-    s.objects[body] = home::parkedPose(*book);
+    s.objects[body] = home::parkedPose(parkingSlot(body));
     ws.setState(s);
     if (pickable().empty()) {
       s = ws.state();
@@ -145,7 +175,7 @@ StepResult BooksSimulator::idle() {
 }
 
 std::unique_ptr<sim::DomainSimulator> BooksSimulator::makeEvaluationTwin() const {
-  return std::unique_ptr<sim::DomainSimulator>(new BooksSimulator(options_, user_, 0));
+  return std::unique_ptr<sim::DomainSimulator>(new BooksSimulator(options_, Shared{scene_, catalog_, user_}, 0));
 }
 
 }  // namespace cbtl::domains::books

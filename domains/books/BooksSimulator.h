@@ -1,6 +1,7 @@
 // BooksSimulator.h — the Books domain behind the runtime's DomainSimulator contract: the home scene (robot
 // on its mobile base, nine books, the user sitting in bed) plus BooksUser (hidden book taste and range of
-// motion), speaking the names of domains/books/books.cbtl.
+// motion), speaking the names of domains/books/books.cbtl. Scene and Book entries come from the program
+// (ProgramFacts: its `world` scene, its `items standardBooks : Book` catalogue, BookCatalog.h).
 //
 // Episode start (reset(seed), all draws from the simulator's RNG in this order):
 //   1. the room of robot/HomeEpisode.h (base at the origin, arm at homeSceneInitial, duster on the main
@@ -14,7 +15,8 @@
 // After a task ends the world goes on. When the user has taken the last book on the furniture and the robot
 // holds nothing, the shelves are restocked by steps 2 and 4 (the user has finished reading).
 //
-// Observations (books.cbtl): "pickable" (Names: the Book entries resting on one of the seven surfaces),
+// Observations (books.cbtl): "pickable" (Names: the Book entries resting on one of the seven surfaces, in
+// catalogue order),
 // "handPose" (Vector SE3: robot/HomeSurfaces.h userHandFrame, whose z points at the scene's
 // handover_center), "heldBody" (Name: "" or the body held).
 // requestedTask(): "stowThenHandOverBook" while the robot holds anything, otherwise "handOverBook".
@@ -33,9 +35,11 @@
 //     satisfaction, the message says why; the world is as before that action.
 // idle(): one step passes, nothing changes.
 // Options: none of SimulatorOptions applies (kept only for the evaluation twin).
-// Lifetime state (not touched by reset): the user, shared with evaluation twins.
+// Lifetime state (not touched by reset): the user, the catalogue and the scene, shared with evaluation twins.
 #pragma once
 
+#include "domains/ProgramFacts.h"
+#include "domains/books/BookCatalog.h"
 #include "domains/books/BooksUser.h"
 #include "robot/actions/RobotActions.h"
 #include "runtime/sim/DomainSimulator.h"
@@ -54,9 +58,11 @@ inline constexpr double kHeldProbability = 0.25;
 
 class BooksSimulator final : public sim::DomainSimulator {
  public:
-  // The paper's user (BooksUser::paperDefault). Throws std::runtime_error when the home scene cannot load.
-  BooksSimulator(const sim::SimulatorOptions& options, std::uint64_t seed);
-  BooksSimulator(const sim::SimulatorOptions& options, std::uint64_t seed, BooksUser user);
+  // The paper's user (BooksUser::paperDefault). Throws std::invalid_argument when `program` names no scene,
+  // has no Book catalogue, or a book's body is not a movable object of the scene; std::runtime_error when the
+  // scene cannot be loaded.
+  BooksSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options, std::uint64_t seed);
+  BooksSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options, std::uint64_t seed, BooksUser user);
 
   void reset(std::uint64_t seed) override;
   sim::Observation observe() const override;
@@ -68,21 +74,29 @@ class BooksSimulator final : public sim::DomainSimulator {
   std::unique_ptr<sim::DomainSimulator> makeEvaluationTwin() const override;
 
   const BooksUser& user() const { return *user_; }
+  const BookCatalog& catalog() const { return *catalog_; }
   world::World& world() { return *world_; }
   const world::World& world() const { return *world_; }
-  // The Book entries on the furniture now (the "pickable" observation), in kBooks order.
+  // The Book entries on the furniture now (the "pickable" observation), in catalogue order.
   std::vector<std::string> pickable() const;
   // The user's hand frame (the "handPose" observation).
   const world::Pose3& handFrame() const { return hand_; }
 
  private:
-  BooksSimulator(const sim::SimulatorOptions& options, std::shared_ptr<const BooksUser> user, std::uint64_t seed);
+  struct Shared {  // what evaluation twins share with their training world
+    std::shared_ptr<const world::Scene> scene;
+    std::shared_ptr<const BookCatalog> catalog;
+    std::shared_ptr<const BooksUser> user;
+  };
+  BooksSimulator(const sim::SimulatorOptions& options, Shared shared, std::uint64_t seed);
 
   // Steps 2 and 4 of the episode start on `state` (step 3 too when `mayHold`).
   void stockShelves(world::WorldState& state, bool mayHold);
   sim::StepResult handOver(sim::StepResult r);
 
   sim::SimulatorOptions options_;
+  std::shared_ptr<const world::Scene> scene_;
+  std::shared_ptr<const BookCatalog> catalog_;
   std::shared_ptr<const BooksUser> user_;
   std::unique_ptr<world::World> world_;
   std::map<std::string, world::Pose3> scenePoses_;  // home.xml's object poses (the book slots among them)

@@ -12,15 +12,21 @@ namespace cbtl::domains::cleaning {
 using sim::StepResult;
 using sim::Value;
 
-CleaningSimulator::CleaningSimulator(const sim::SimulatorOptions& options, std::uint64_t seed)
-    : CleaningSimulator(options, seed, CleaningUser::paperDefault()) {}
-
-CleaningSimulator::CleaningSimulator(const sim::SimulatorOptions& options, std::uint64_t seed, CleaningUser user)
-    : CleaningSimulator(options, std::make_shared<const CleaningUser>(std::move(user)), seed) {}
-
-CleaningSimulator::CleaningSimulator(const sim::SimulatorOptions& options, std::shared_ptr<const CleaningUser> user,
+CleaningSimulator::CleaningSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options,
                                      std::uint64_t seed)
-    : options_(options), user_(std::move(user)), world_(std::make_unique<world::World>(home::homeScene())) {
+    : CleaningSimulator(program, options, seed, CleaningUser::paperDefault()) {}
+
+CleaningSimulator::CleaningSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options,
+                                     std::uint64_t seed, CleaningUser user)
+    : CleaningSimulator(home::programScene(program, "cleaning"), options,
+                        std::make_shared<const CleaningUser>(std::move(user)), seed) {}
+
+CleaningSimulator::CleaningSimulator(std::shared_ptr<const world::Scene> scene, const sim::SimulatorOptions& options,
+                                     std::shared_ptr<const CleaningUser> user, std::uint64_t seed)
+    : options_(options),
+      scene_(std::move(scene)),
+      user_(std::move(user)),
+      world_(std::make_unique<world::World>(scene_)) {
   scenePoses_ = world_->workspace().state().objects;
   reset(seed);
 }
@@ -28,7 +34,7 @@ CleaningSimulator::CleaningSimulator(const sim::SimulatorOptions& options, std::
 void CleaningSimulator::reset(std::uint64_t seed) {
   rng_.seed(seed);
   world_->utterances().clear();
-  world::WorldState s = home::emptyRoom(scenePoses_);
+  world::WorldState s = home::emptyRoom(*scene_, scenePoses_);
   const std::vector<std::size_t> books = home::shuffledIndices(rng_, home::kBookCount);
   const double held = home::uniform01(rng_);
   if (held >= 2.0 / 3.0) {
@@ -121,7 +127,7 @@ StepResult CleaningSimulator::idle() {
 }
 
 std::unique_ptr<sim::DomainSimulator> CleaningSimulator::makeEvaluationTwin() const {
-  return std::unique_ptr<sim::DomainSimulator>(new CleaningSimulator(options_, user_, 0));
+  return std::unique_ptr<sim::DomainSimulator>(new CleaningSimulator(scene_, options_, user_, 0));
 }
 
 }  // namespace cbtl::domains::cleaning

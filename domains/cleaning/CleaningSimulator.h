@@ -35,6 +35,7 @@
 // Lifetime state (not touched by reset): the user, shared with evaluation twins.
 #pragma once
 
+#include "domains/ProgramFacts.h"
 #include "domains/cleaning/CleaningUser.h"
 #include "robot/actions/RobotActions.h"
 #include "runtime/sim/DomainSimulator.h"
@@ -53,9 +54,11 @@ inline constexpr double kObstacleClearance = 0.02;  // metres between an obstacl
 
 class CleaningSimulator final : public sim::DomainSimulator {
  public:
-  // The paper's user (CleaningUser::paperDefault). Throws std::runtime_error when the home scene cannot load.
-  CleaningSimulator(const sim::SimulatorOptions& options, std::uint64_t seed);
-  CleaningSimulator(const sim::SimulatorOptions& options, std::uint64_t seed, CleaningUser user);
+  // The paper's user (CleaningUser::paperDefault) in the program's scene (home.xml). Throws
+  // std::invalid_argument when `program` names no scene, std::runtime_error when it cannot be loaded.
+  CleaningSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options, std::uint64_t seed);
+  CleaningSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options, std::uint64_t seed,
+                    CleaningUser user);
 
   void reset(std::uint64_t seed) override;
   sim::Observation observe() const override;
@@ -74,9 +77,11 @@ class CleaningSimulator final : public sim::DomainSimulator {
   std::vector<std::string> clearSurfaces() const;
 
  private:
-  CleaningSimulator(const sim::SimulatorOptions& options, std::shared_ptr<const CleaningUser> user, std::uint64_t seed);
+  CleaningSimulator(std::shared_ptr<const world::Scene> scene, const sim::SimulatorOptions& options,
+                    std::shared_ptr<const CleaningUser> user, std::uint64_t seed);
 
   sim::SimulatorOptions options_;
+  std::shared_ptr<const world::Scene> scene_;  // shared with evaluation twins
   std::shared_ptr<const CleaningUser> user_;
   std::unique_ptr<world::World> world_;
   std::map<std::string, world::Pose3> scenePoses_;  // home.xml's object poses

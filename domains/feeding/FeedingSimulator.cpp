@@ -2,13 +2,13 @@
 
 #include "domains/feeding/TableSlide.h"
 #include "domains/home/HomeEpisode.h"
+#include "domains/home/HomeScene.h"
 #include "robot/actions/CallArguments.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 #include <random>
 #include <stdexcept>
 
@@ -59,29 +59,18 @@ const char* toString(Request r) {
   return "?";
 }
 
-std::shared_ptr<const world::Scene> feedingScene() {
-  static std::once_flag once;
-  static std::shared_ptr<const world::Scene> scene;
-  static std::string error;
-  std::call_once(once, [] {
-    const auto r = world::Scene::loadFile(CBTL_FEEDING_SCENE_PATH);
-    if (r.status == world::LoadStatus::Ok)
-      scene = r.scene;
-    else
-      error = r.message;
-  });
-  if (!scene) throw std::runtime_error("the Feeding scene cannot be loaded: " + error);
-  return scene;
-}
+FeedingSimulator::FeedingSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options,
+                                   std::uint64_t seed)
+    : FeedingSimulator(program, options, seed, FeedingUser::paperDefault()) {}
 
-FeedingSimulator::FeedingSimulator(const sim::SimulatorOptions&, std::uint64_t seed)
-    : FeedingSimulator(std::make_shared<const FeedingUser>(FeedingUser::paperDefault()), seed) {}
+FeedingSimulator::FeedingSimulator(const ProgramFacts& program, const sim::SimulatorOptions&, std::uint64_t seed,
+                                   FeedingUser user)
+    : FeedingSimulator(home::programScene(program, "feeding"), std::make_shared<const FeedingUser>(std::move(user)),
+                       seed) {}
 
-FeedingSimulator::FeedingSimulator(const sim::SimulatorOptions&, std::uint64_t seed, FeedingUser user)
-    : FeedingSimulator(std::make_shared<const FeedingUser>(std::move(user)), seed) {}
-
-FeedingSimulator::FeedingSimulator(std::shared_ptr<const FeedingUser> user, std::uint64_t seed)
-    : user_(std::move(user)), world_(std::make_unique<world::World>(feedingScene())) {
+FeedingSimulator::FeedingSimulator(std::shared_ptr<const world::Scene> scene, std::shared_ptr<const FeedingUser> user,
+                                   std::uint64_t seed)
+    : scene_(std::move(scene)), user_(std::move(user)), world_(std::make_unique<world::World>(scene_)) {
   scenePoses_ = world_->workspace().state().objects;
   reset(seed);
 }
@@ -361,7 +350,7 @@ sim::StepResult FeedingSimulator::idle() {
 }
 
 std::unique_ptr<sim::DomainSimulator> FeedingSimulator::makeEvaluationTwin() const {
-  return std::unique_ptr<sim::DomainSimulator>(new FeedingSimulator(user_, 0));
+  return std::unique_ptr<sim::DomainSimulator>(new FeedingSimulator(scene_, user_, 0));
 }
 
 }  // namespace cbtl::domains::feeding

@@ -31,6 +31,7 @@
 // request, the drink position). SimulatorOptions (preference shifts, unsatisfiable stock) do not apply.
 #pragma once
 
+#include "domains/ProgramFacts.h"
 #include "domains/feeding/FeedingUser.h"
 #include "robot/actions/RobotActions.h"
 #include "runtime/sim/DomainSimulator.h"
@@ -47,13 +48,13 @@ namespace cbtl::domains::feeding {
 enum class Request { Food, Prepare, Drink };
 const char* toString(Request r);
 
-// The feeding.xml scene (loaded once per process; throws std::runtime_error when it cannot be loaded).
-std::shared_ptr<const world::Scene> feedingScene();
-
 class FeedingSimulator final : public sim::DomainSimulator {
  public:
-  FeedingSimulator(const sim::SimulatorOptions& options, std::uint64_t seed);
-  FeedingSimulator(const sim::SimulatorOptions& options, std::uint64_t seed, FeedingUser user);
+  // The paper's user (FeedingUser::paperDefault) in the program's scene (feeding.xml). Throws
+  // std::invalid_argument when `program` names no scene, std::runtime_error when it cannot be loaded.
+  FeedingSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options, std::uint64_t seed);
+  FeedingSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options, std::uint64_t seed,
+                   FeedingUser user);
 
   void reset(std::uint64_t seed) override;
   sim::Observation observe() const override;
@@ -71,7 +72,8 @@ class FeedingSimulator final : public sim::DomainSimulator {
   world::World& world() { return *world_; }
 
  private:
-  FeedingSimulator(std::shared_ptr<const FeedingUser> user, std::uint64_t seed);
+  FeedingSimulator(std::shared_ptr<const world::Scene> scene, std::shared_ptr<const FeedingUser> user,
+                   std::uint64_t seed);
   struct Progress {
     bool biteTaken = false;
     bool drinkOffered = false;
@@ -89,6 +91,7 @@ class FeedingSimulator final : public sim::DomainSimulator {
   sim::StepResult releaseUtensil();
   world::Pose2 randomXY(double x0, double x1, double y0, double y1);
 
+  std::shared_ptr<const world::Scene> scene_;  // shared with evaluation twins
   std::shared_ptr<const FeedingUser> user_;
   std::unique_ptr<world::World> world_;
   actions::RobotActions actions_;

@@ -13,19 +13,16 @@ namespace cbtl::domains::home {
 
 std::string bookBody(std::size_t k) { return "book_" + std::to_string(k); }
 
-const world::ArmConfig& initialArm() {
-  static const world::ArmConfig q = [] {
-    const auto named = world::namedConfiguration(*homeScene(), "homeSceneInitial");
-    if (!named) throw std::runtime_error(homeScenePath() + " has no conf_homeSceneInitial numeric of size 7");
-    return *named;
-  }();
-  return q;
+world::ArmConfig initialArm(const world::Scene& scene) {
+  const auto named = world::namedConfiguration(scene, "homeSceneInitial");
+  if (!named) throw std::runtime_error("the home scene has no conf_homeSceneInitial numeric of size 7");
+  return *named;
 }
 
-world::WorldState emptyRoom(const std::map<std::string, world::Pose3>& scenePoses) {
+world::WorldState emptyRoom(const world::Scene& scene, const std::map<std::string, world::Pose3>& scenePoses) {
   world::WorldState s;
   s.base = world::Pose2{0, 0, 0};
-  s.arm = initialArm();
+  s.arm = initialArm(scene);
   s.gripper = 1.0;
   s.objects = scenePoses;
   for (std::size_t k = 0; k < kBookCount; ++k) s.objects[bookBody(k)] = parkedPose(k);

@@ -20,12 +20,13 @@ inline constexpr std::size_t kBookCount = 9;  // book_0 .. book_8
 std::string bookBody(std::size_t k);          // "book_k"
 
 // The arm's configuration at the start of an episode: the home scene's named configuration homeSceneInitial
-// (home.xml), read once. Throws std::runtime_error when the scene lacks it (a broken installation).
-const world::ArmConfig& initialArm();
+// (home.xml's conf_homeSceneInitial) of `scene`, the program's home scene. Throws std::runtime_error when the
+// scene lacks it (not the home scene, or a broken installation).
+world::ArmConfig initialArm(const world::Scene& scene);
 
-// The room above. `scenePoses` are the movable objects' poses as home.xml puts them (a fresh Workspace's
-// state().objects).
-world::WorldState emptyRoom(const std::map<std::string, world::Pose3>& scenePoses);
+// The room above in `scene`. `scenePoses` are the movable objects' poses as home.xml puts them (a fresh
+// Workspace's state().objects).
+world::WorldState emptyRoom(const world::Scene& scene, const std::map<std::string, world::Pose3>& scenePoses);
 
 // Puts `object` in the robot's hand in `state`: arm at configs::kHome, gripper closed, grasped with the
 // duster's standard grasp or, for any other object, the book carry grasp (StandardGrasps.h).

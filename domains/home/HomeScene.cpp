@@ -1,6 +1,7 @@
 #include "domains/home/HomeScene.h"
 
 #include <stdexcept>
+#include <string>
 
 namespace cbtl::domains::home {
 
@@ -9,19 +10,15 @@ constexpr double kParkX = 20.0, kParkY = 20.0, kParkSpacing = 0.5, kParkZ = 0.5;
 constexpr double kParkedBeyond = 10.0;  // metres: nothing of the room lies this far out
 }  // namespace
 
-const std::string& homeScenePath() {
-  static const std::string path = CBTL_HOME_SCENE_PATH;
-  return path;
-}
-
-std::shared_ptr<const world::Scene> homeScene() {
-  // A function-local static initialises once even with concurrent first calls.
-  static const std::shared_ptr<const world::Scene> scene = [] {
-    world::SceneLoadResult r = world::Scene::loadFile(homeScenePath());
-    if (r.status != world::LoadStatus::Ok) throw std::runtime_error("home scene: " + r.message);
-    return r.scene;
-  }();
-  return scene;
+std::shared_ptr<const world::Scene> programScene(const ProgramFacts& program, std::string_view domain) {
+  if (program.scene) return program.scene;
+  if (program.scenePath.empty()) {
+    throw std::invalid_argument(std::string(domain) +
+                                ": no scene: a robot domain's simulator needs the program's `world \"...\"` scene");
+  }
+  const world::SceneLoadResult r = world::Scene::loadFile(program.scenePath);
+  if (r.status != world::LoadStatus::Ok) throw std::runtime_error(std::string(domain) + " scene: " + r.message);
+  return r.scene;
 }
 
 world::Pose3 parkedPose(std::size_t slot) {

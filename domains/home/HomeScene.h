@@ -1,23 +1,25 @@
-// HomeScene.h — the home scene of the Cleaning and Books domains (domains/home/home.xml), loaded once per
-// process and shared read-only by every simulator and thread.
+// HomeScene.h — the scene a robot domain acts in, as the program names it, and where the home-scene domains
+// (Cleaning, Books) keep objects that have left the room. No scene file is named here: the program's
+// `world "..."` line names it (home.xml, feeding.xml), and a simulator receives it through ProgramFacts
+// (domains/ProgramFacts.h), loaded once per process by the app.
 //
 // Frames and units: world frame of the scene (z up, metres, radians); the mobile base starts at the origin.
 #pragma once
 
+#include "domains/ProgramFacts.h"
+#include "robot/world/Pose.h"
 #include "robot/world/Scene.h"
 
 #include <cstddef>
 #include <memory>
-#include <string>
+#include <string_view>
 
 namespace cbtl::domains::home {
 
-// The scene file compiled into the library (the source tree's domains/home/home.xml).
-const std::string& homeScenePath();
-
-// The loaded scene; the first call loads it (thread-safe). Throws std::runtime_error with the loader's
-// message when the file is missing or does not compile: a broken installation, not a plan error.
-std::shared_ptr<const world::Scene> homeScene();
+// The scene of the program: `program.scene`, else `program.scenePath` loaded now. Throws std::invalid_argument
+// naming `domain` when the program has neither (the simulator of a robot domain needs its scene),
+// std::runtime_error with the loader's message when the file cannot be loaded.
+std::shared_ptr<const world::Scene> programScene(const ProgramFacts& program, std::string_view domain);
 
 // Where objects that have left the room are kept (a book the user took, a book not in this episode): a row
 // of poses 20 m outside the walls, `slot` 0.5 m apart, upright. Far enough that no check of the room sees

@@ -11,7 +11,7 @@
 // `--replan` gives every approach the paper's recourse: when the full CSP is unsatisfiable, replan
 // without the personalized constraints and tell the user.
 // Epsilon-greedy's coin comes from the run's RNG, one draw per CSP (the reference re-seeded its generator
-// on every call, so in Cooking its coin always came up "exploit"; see docs/runtime.md).
+// on every call, so in one domain its coin always came up "exploit"; see docs/runtime.md).
 #pragma once
 
 #include "runtime/core/Rng.h"

@@ -21,8 +21,8 @@
 namespace cbtl::approach {
 
 // The world a step's feedback is about: the solution the robot acted on and the observation its CSP was
-// solved against. Rules read them through their features (Books' handoverInROM measures a handover from the
-// user's hand pose, an observation). Missing or short vectors read as zeros, never past their end.
+// solved against. Rules read them through their features (a rule may measure a chosen point from an observed
+// pose). Missing or short vectors read as zeros, never past their end.
 struct StepWorld {
   std::vector<double> assignment;
   std::vector<double> observation;

@@ -1,6 +1,6 @@
 // TableModel.h — a per-key tri-state table: unknown (P = 0.5, one bit of uncertainty), holds (1), fails (0).
 //
-// Keys are the rendered values of the factor's key expression (a surface's name, a dip, ...). The latest
+// Keys are the rendered values of the factor's key expression (an enum member, an item entry, ...). The latest
 // label for a key wins, so a user who changes their mind is believed (the reference kept the first).
 #pragma once
 

@@ -15,7 +15,7 @@
 //    next learn(), loadState() or reset(); a cache hit looks a name up in a hash map and allocates nothing. A
 //    failed assessment gives the generator's `fallback` (textpref::assessOrFallback) and is cached too, so an
 //    unreachable server is asked once per subject and learning step, not once per candidate.
-//  - `scale: relative` (the reference's Books rule) divides by the best probability among the available
+//  - `scale: relative` (the reference's rule) divides by the best probability among the available
 //    subjects, so the best one has P = 1. The runtime has no per-CSP availability yet: "available" is the whole
 //    domain the caller passes (every entry of the subject's item set, or every enum member). A subject without a
 //    fixed domain (a text) is scored absolutely.

@@ -2,10 +2,10 @@
 // model key ("seasoning|salt"). Keys never seen read the prior. Saved and loaded as the user profile.
 //
 // Profile file (JSON, documented in docs/profile.md):
-//   {"format": "cbtl-profile", "version": 1, "domain": "cooking",
-//    "generators": {"userEnjoysMeal": {"seasoning|salt": {"temp": {"kind": "interval", "lo": 25, "hi": 35,
+//   {"format": "cbtl-profile", "version": 1, "domain": "example",
+//    "generators": {"likesRange":     {"key|member": {"temp": {"kind": "interval", "lo": 25, "hi": 35,
 //                                                                  "data": [[30, true], [34, false]]}, ...}},
-//                   "userEnjoysBook": {"": {"text": {"kind": "text", "backend": "offline-descriptor-bayes-v1",
+//                   "likesItem":      {"": {"text": {"kind": "text", "backend": "offline-descriptor-bayes-v1",
 //                                                    "state": {...the text model's saveState()...}}}}}}
 // Only the data is stored; the fitted state is recomputed on load, so a profile can never disagree with
 // itself (a text model's state is its feedback history, plus theta for a language model). Loading validates

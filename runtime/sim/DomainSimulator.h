@@ -28,7 +28,7 @@ namespace cbtl::sim {
 // One argument or observation value. `kind` tells which member is meaningful:
 //   Number: real, int and bool (0/1) in `number`;  Vector: vec<N>, SE2 (x y yaw), SE3 (x y z qx qy qz qw),
 //   Conf (joint angles, rad) in `vector`;  Name: enum member, item entry or text in `text`;  Names: a set of
-//   enum members or item entries (observations such as `observe pickable : set<Book>`) in `members`.
+//   enum members or item entries (observations such as `observe available : set<Item>`) in `members`.
 struct Value {
   enum class Kind { Number, Vector, Name, Names };
   Kind kind = Kind::Number;
@@ -95,7 +95,7 @@ class DomainSimulator {
   // the CSP is checked against the world it will act in. nullptr for domains without a robot scene.
   virtual const world::WorldState* worldState() const { return nullptr; }
 
-  // The task (its name in the .cbtl file) the world asks for now, e.g. "stowThenHandOverBook" while the robot
+  // The task (its name in the .cbtl file) the world asks for now, e.g. a "put away, then ..." task while the robot
   // still holds something; empty: the task the run was configured with.
   virtual std::string requestedTask() const { return {}; }
 

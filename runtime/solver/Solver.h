@@ -35,7 +35,7 @@ namespace cbtl::solver {
 
 // What enters a constraint's memory: its values whenever it is found satisfied (the reference), or only
 // its values in accepted solutions (a memory of jointly consistent values; about 3x fewer iterations in
-// Cooking, but the baselines explore less — docs/runtime.md has the measurements).
+// one measured domain, but the baselines explore less — docs/runtime.md has the measurements).
 enum class MemoryPolicy { EverySatisfiedCheck, Solutions };
 
 struct SolverOptions {

@@ -1,8 +1,8 @@
 // Item.h — what a text-preference constraint is asked about, and what the user said about it.
 //
 // An Item is a value of a `.cbtl` item domain: a name (unique within its domain) plus descriptor fields, each a
-// key with a list of strings (title, author, tags, genres, flavours, ...). A Context carries the parts of the
-// observation that matter to the constraint (e.g. the food on the plate for dipPreferred). A FeedbackRecord
+// key with a list of strings (one per declared field of the item type). A Context carries the parts of the
+// observation that matter to the constraint (a situation the same item may be liked in or not). A FeedbackRecord
 // is one reaction of the user to one item, as free text, as a boolean, or both.
 #pragma once
 
@@ -20,8 +20,8 @@ namespace cbtl::textpref {
 using Descriptors = std::map<std::string, std::vector<std::string>>;
 
 struct Item {
-  std::string name;         // identity of the item within its domain, e.g. "Cosmos" or "ketchup"
-  Descriptors descriptors;  // e.g. {"author": {"Carl Sagan"}, "tags": {"nonfiction", "universe"}}
+  std::string name;         // identity of the item within its domain (the .cbtl entry name)
+  Descriptors descriptors;  // field -> values, e.g. {"colour": {"red"}, "tags": {"round", "small"}}
 
   bool operator==(const Item&) const = default;
 };

@@ -1,8 +1,8 @@
 // OfflineDescriptorModel.h — the offline descriptor model: Bayesian logistic regression over item descriptors.
 //
 // This is the embedded default text-preference backend: no network, no key, deterministic. It is NOT a language
-// model and knows nothing beyond the descriptors declared for the items: two books share evidence only through
-// descriptor values (or authors) they have in common.
+// model and knows nothing beyond the descriptors declared for the items: two items share evidence only through
+// descriptor values they have in common.
 //
 // Features of (item, context), all binary: a bias; the item's identity ("item=<name>"); one per descriptor value
 // ("<field>=<value>", lower-cased; fields in `ignoredFields`, e.g. title, are skipped); and, when the context is not

@@ -30,50 +30,7 @@ std::string substitute(const std::string& text, const std::map<std::string, std:
   return out;
 }
 
-std::string learningTemplate(std::string_view topic, std::string_view things) {
-  return fmt::format(
-      "You work out what a person prefers about {0} from how they reacted. Your description of their "
-      "preferences so far: {{theta}}. Their reactions, oldest first:\n{{feedback}}\nUsing all of these "
-      "reactions, write an updated description of their preferences about {0}, exactly in this form: "
-      "\"Liked {1} so far: [list]. Disliked {1} so far: [list]. Possible summaries of the preferences: "
-      "1. [summary] 2. [summary] 3. [summary].\" Reply with that description only and explain nothing.",
-      topic, things);
-}
-
 }  // namespace
-
-std::optional<PromptTemplates> builtinPrompts(std::string_view constraintName) {
-  PromptTemplates t;
-  if (constraintName == "userEnjoysBook") {
-    t.constraint =
-        "The book: {item}. What we know about the user: {theta}. You will rate how much this user would enjoy "
-        "the book. If the user's earlier reactions already mention this book, rate it from that reaction. "
-        "On a scale from 0 (the user would hate it) to 10 (the user would love it), how much would the user "
-        "enjoy this book?";
-    t.learning = learningTemplate("books", "books");
-  } else if (constraintName == "dipPreferred") {
-    t.constraint =
-        "Food on the plate: {context}. Dip offered: {item}. What we know about the user's dip preferences: "
-        "{theta}. On a scale from 0 (the user would not want it at all) to 10 (exactly the dip the user "
-        "wants), how much would the user want this dip with this food?";
-    t.learning = learningTemplate("dipping sauces for each food", "dips");
-  } else if (constraintName == "signalPreferred") {
-    t.constraint =
-        "Ready signal: {item} (how the user tells the feeding robot to bring the bite). Situation: {context}. "
-        "What we know about the user's preferences: {theta}. On a scale from 0 (the user would dislike it) to "
-        "10 (the user's favourite), how much would the user like to use this ready signal?";
-    t.learning = learningTemplate("ready signals for a feeding robot", "signals");
-  } else if (constraintName == "verbosityPreferred") {
-    t.constraint =
-        "Robot speech setting: {item} (whether the feeding robot talks to the user). Situation: {context}. "
-        "What we know about the user's preferences: {theta}. On a scale from 0 (the user would dislike it) to "
-        "10 (the user's favourite), how much would the user like this setting?";
-    t.learning = learningTemplate("how much a feeding robot speaks", "settings");
-  } else {
-    return std::nullopt;
-  }
-  return t;
-}
 
 PromptTemplates generatorPrompts(std::string_view question, std::string_view learningInstruction) {
   PromptTemplates t;
@@ -98,10 +55,6 @@ PromptTemplates generatorPrompts(std::string_view question, std::string_view lea
             : learningInstruction);
   }
   return t;
-}
-
-std::vector<std::string> builtinPromptNames() {
-  return {"userEnjoysBook", "dipPreferred", "signalPreferred", "verbosityPreferred"};
 }
 
 std::string ratingInstruction(RatingScale scale) {

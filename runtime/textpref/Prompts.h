@@ -1,4 +1,6 @@
 // Prompts.h — ConstraintPrompt and LearningPrompt templates (paper Appendix B), in this project's own words.
+// The engine holds only the generic framing; a domain's words are the `model text(...)` arguments of its .cbtl
+// file (docs/language.md), framed here by generatorPrompts.
 //
 // A template is plain text with placeholders, replaced verbatim:
 //   {item}      the item, as describeItem() writes it
@@ -12,11 +14,9 @@
 #include "runtime/textpref/Item.h"
 #include "runtime/textpref/RatingReader.h"
 
-#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
-#include <vector>
 
 namespace cbtl::textpref {
 
@@ -26,15 +26,11 @@ struct PromptTemplates {
   std::string initialTheta = "Unknown";  // theta before any feedback
 };
 
-// The built-in templates: "userEnjoysBook", "dipPreferred", "signalPreferred", "verbosityPreferred".
-std::optional<PromptTemplates> builtinPrompts(std::string_view constraintName);
-std::vector<std::string> builtinPromptNames();
-
 // Templates from a `.cbtl` generator's `model text(subject, prompt: "...", learning: "...")`. The generator's words
 // are a question about one subject and an instruction for the summary, without placeholders, so they are framed
 // here: the ConstraintPrompt shows the item, the context and theta before the question and asks for a rating from
-// 0 to 10; the LearningPrompt shows theta and the reactions before the instruction and asks for the same fixed
-// form as the built-in templates (liked, disliked, three possible summaries). A question that already contains
+// 0 to 10; the LearningPrompt shows theta and the reactions before the instruction and asks for a fixed form
+// (liked, disliked, three possible summaries). A question that already contains
 // "{item}", or an instruction that already contains "{feedback}", is a complete template and is used as written.
 // An empty question or instruction (both are optional in the language) gets a generic one.
 PromptTemplates generatorPrompts(std::string_view question, std::string_view learningInstruction);

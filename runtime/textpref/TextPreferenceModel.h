@@ -1,6 +1,6 @@
 // TextPreferenceModel.h — the interface every text-preference backend implements.
 //
-// A personalized constraint such as userEnjoysBook(book, theta) or dipPreferred(dip, theta) asks its model for
+// A personalized text constraint (a `.cbtl` generator with `model text(subject, ...)`) asks its model for
 // P(holds) of one item in one context. The runtime's general personalized-constraint model interface adapts this
 // one; the two implementations are LlmPreferenceModel (an OpenAI-compatible server) and OfflineDescriptorModel
 // (a Bayesian model over item descriptors, no network). Both answer with the same 11-bin RatingDistribution.
@@ -72,8 +72,8 @@ struct FallbackPolicy {
 // "fallback: <error kind>".
 Assessment assessOrFallback(const Result<Assessment>& result, const FallbackPolicy& fallback);
 
-// Relative scaling (the reference's Books rule): every probability is divided by the largest probability among
-// `available`, so the best available item gets P = 1 and zero entropy. Entropies are recomputed. If every
+// Relative scaling (`scale: relative`, the reference's rule): every probability is divided by the largest probability
+// among `available`, so the best available item gets P = 1 and zero entropy. Entropies are recomputed. If every
 // probability is 0 the input is returned unchanged.
 std::vector<Assessment> scaleRelativeToBest(std::span<const Assessment> available);
 

@@ -6,8 +6,9 @@
 // and, when split, whether the server continues a pre-filled "1" (the rating reader's follow-up needs that).
 // The verdict names the first failure (ProbeVerdict.h): transport error, HTTP status, quota, malformed reply, no
 // logprobs or low coverage. After a transport failure the remaining questions are not asked.
-// `cbtl llm books`: the simulated Books user's preference learned round by round by the offline descriptor model
-// (default, no server) or by a language-model server.
+// `cbtl llm books FILE`: the Books user (domains/books/BooksUser.h) learned round by round by the offline
+// descriptor model (default, no server) or by a language-model server. FILE is the Books program
+// (domains/books/books.cbtl): its Book entries are the items, and its text factor over Book supplies the prompts.
 // Exit codes: 0 ok/usable, 1 bad input or unusable server, 2 usage (CLI11), 70 internal error. The API key is read
 // from the environment variable named by --api-key-env and is never printed.
 #include "tools/cbtl/CommandRegistry.h"
@@ -17,8 +18,12 @@
 #include "runtime/textpref/ChatClient.h"
 #include "runtime/textpref/RatingReader.h"
 #include "runtime/textpref/Redaction.h"
-#include "runtime/textpref/SimulatedUsers.h"
 #include "runtime/textpref/TextBackend.h"
+
+#include "app/LoadedProgram.h"
+#include "app/SimulatorFacts.h"
+#include "domains/books/BookCatalog.h"
+#include "domains/books/BooksUser.h"
 
 #include <fmt/core.h>
 
@@ -159,6 +164,8 @@ int runProbe(const ProbeOptions& o) {
 }
 
 struct BooksOptions {
+  std::string file;
+  std::string stdlibDir;
   std::string backend = "offline-descriptor";
   std::string baseUrl = "http://127.0.0.1:8080/v1";
   std::string model = "gpt-4o-mini";
@@ -170,11 +177,21 @@ struct BooksOptions {
   int attempts = 3;
 };
 
-// Each round: assess the nine standard books, hand over the most uncertain one (highest entropy, the CBTL
-// exploration objective; ties go to the earlier book), collect the simulated user's reaction, learn. The
+// The program's `model text(...)` factor whose subject is a Book; null when there is none.
+const cbtl::ir::ModelFactor* bookTextFactor(const cbtl::ir::ConstraintGraph& graph) {
+  for (const auto& g : graph.generators)
+    for (const auto& f : g.factors)
+      if (f.kind == "text" && f.feature && f.feature->type.kind == "item" && f.feature->type.spelling == "Book")
+        return &f;
+  return nullptr;
+}
+
+// Each round: assess the program's books, hand over the most uncertain one (highest entropy, the CBTL
+// exploration objective; ties go to the earlier book), collect the Books user's reaction, learn. The
 // language-model backend also judges the ground truth with the hidden preference text, as the reference does.
 int runBooks(const BooksOptions& o) {
   using namespace cbtl::textpref;
+  namespace books = cbtl::domains::books;
   nlohmann::json json{{"backend", o.backend},       {"base_url", o.baseUrl},     {"model", o.model},
                       {"api_key_env", o.apiKeyEnv}, {"cache_dir", o.cacheDir},   {"cache_mode", o.cacheMode},
                       {"scale", o.scale},           {"max_attempts", o.attempts}};
@@ -183,31 +200,42 @@ int runBooks(const BooksOptions& o) {
     fmt::print(stderr, "cbtl llm books: {}\n", config.error().describe());
     return 1;
   }
+  const auto program = cbtl::app::LoadedProgram::load(o.file, o.stdlibDir);
+  if (!program->ok()) {
+    fmt::print(stderr, "{}cbtl llm books: '{}' cannot be loaded\n", program->errors(), o.file);
+    return 1;
+  }
+  const cbtl::ir::ModelFactor* factor = bookTextFactor(program->graph());
+  if (factor == nullptr) {
+    fmt::print(stderr, "cbtl llm books: {}: no `model text(...)` factor over a Book\n", o.file);
+    return 1;
+  }
+  const books::BookCatalog catalog = books::BookCatalog::fromProgram(cbtl::app::simulatorFacts(*program));
   TextBackend backend(config.value(), [](const std::string& w) { fmt::print(stderr, "{}\n", w); });
-  const PromptTemplates prompts = *builtinPrompts("userEnjoysBook");
+  const PromptTemplates prompts = generatorPrompts(factor->prompt, factor->learning);
   auto model = backend.makeModel(prompts);
-  SimulatedUser user = booksUser();
-  user.useLanguageModelJudge(backend.makeJudge(prompts));
-  const auto books = standardBooks();
+  books::BooksUser user = books::BooksUser::paperDefault();
+  user.taste().useLanguageModelJudge(backend.makeJudge(prompts));
+  const std::vector<books::Book>& shelf = catalog.books();
   fmt::print("backend: {}\n", model->backendId());
   for (int round = 1; round <= o.rounds; ++round) {
     std::size_t pick = 0;
     double bestEntropy = -1.0;
     fmt::print("round {}\n", round);
-    for (std::size_t i = 0; i < books.size(); ++i) {
-      const Assessment a = assessOrFallback(model->assess(books[i], {}), FallbackPolicy{0.5});
-      fmt::print("  {:<40} P={:.3f} H={:.3f} {}\n", books[i].name, a.probability, a.entropyBits, a.provenance);
+    for (std::size_t i = 0; i < shelf.size(); ++i) {
+      const Assessment a = assessOrFallback(model->assess(shelf[i].item, {}), FallbackPolicy{0.5});
+      fmt::print("  {:<40} P={:.3f} H={:.3f} {}\n", shelf[i].title, a.probability, a.entropyBits, a.provenance);
       if (a.entropyBits > bestEntropy + 1e-12) {
         bestEntropy = a.entropyBits;
         pick = i;
       }
     }
-    auto reaction = user.react(books[pick]);
+    auto reaction = user.react(shelf[pick]);
     if (!reaction) {
       fmt::print(stderr, "cbtl llm books: the simulated user could not be judged: {}\n", reaction.error().describe());
       return 1;
     }
-    fmt::print("  handed over {}: \"{}\"\n", books[pick].name, reaction.value().text);
+    fmt::print("  handed over {}: \"{}\"\n", shelf[pick].title, reaction.value().text);
     const FeedbackRecord record = reaction.value();
     if (Status s = model->learn(std::span(&record, 1)); !s.ok())
       fmt::print(stderr, "cbtl llm books: learning failed, theta unchanged: {}\n", s.error().describe());
@@ -242,6 +270,8 @@ void addLlmCommand(CLI::App& app, int& exitCode) {
   auto books = std::make_shared<BooksOptions>();
   auto* booksCmd = llm->add_subcommand(
       "books", "Learn the simulated Books user's preference with a text-preference backend (offline by default)");
+  booksCmd->add_option("file", books->file, "the Books program (domains/books/books.cbtl)")->required();
+  booksCmd->add_option("--stdlib", books->stdlibDir, "standard library folder (default: embedded)");
   booksCmd->add_option("--backend", books->backend, "offline-descriptor (no server) or openai-compatible")
       ->capture_default_str()
       ->check(CLI::IsMember({"offline-descriptor", "openai-compatible"}));

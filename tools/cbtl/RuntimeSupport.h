@@ -4,6 +4,7 @@
 #pragma once
 
 #include "app/LoadedProgram.h"
+#include "app/SimulatorFacts.h"
 #include "domains/DomainRegistry.h"
 #include "runtime/approach/Experiment.h"
 #include "runtime/solver/Solver.h"
@@ -35,9 +36,12 @@ inline std::unique_ptr<app::LoadedProgram> loadForRun(const std::string& command
   return lp;
 }
 
-inline approach::SimulatorFactory simulatorFactory(const std::string& domain) {
-  return [domain](const sim::SimulatorOptions& options, std::uint64_t seed) {
-    return domains::createSimulator(domain, options, seed);
+// Simulators of `domain` over the program's facts (its scene, loaded once, and item sets), shared by every
+// simulator the factory makes.
+inline approach::SimulatorFactory simulatorFactory(const std::string& domain, domains::ProgramFacts program) {
+  auto facts = std::make_shared<const domains::ProgramFacts>(std::move(program));
+  return [domain, facts](const sim::SimulatorOptions& options, std::uint64_t seed) {
+    return domains::createSimulator(domain, *facts, options, seed);
   };
 }
 
@@ -215,7 +219,8 @@ inline std::optional<approach::SimulatorFactory> domainSimulator(const std::stri
                                                                  const app::LoadedProgram& lp,
                                                                  const sim::SimulatorOptions& options) {
   const std::string& domain = lp.graph().domain;
-  if (domains::createSimulator(domain, options, 0) != nullptr) return simulatorFactory(domain);
+  domains::ProgramFacts facts = app::simulatorFacts(lp);
+  if (domains::createSimulator(domain, facts, options, 0) != nullptr) return simulatorFactory(domain, std::move(facts));
   fmt::print(stderr, "cbtl {}: error: {}: no simulator for domain '{}' (known:", command, lp.path(), domain);
   for (const auto& d : domains::knownDomains()) fmt::print(stderr, " {}", d);
   fmt::print(stderr, ")\n");

@@ -86,7 +86,7 @@ int runSolve(const SolveArgs& a) {
   model::UserModel user(lp->graph(), *textBackend);
   if (!a.profile.empty()) user.load(a.profile);
   std::vector<double> observation(lp->program().observationWidth(), 0.0);
-  if (auto world = domains::createSimulator(lp->graph().domain, {}, a.seed)) {
+  if (auto world = domains::createSimulator(lp->graph().domain, app::simulatorFacts(*lp), {}, a.seed)) {
     lp->syncWorld(*world);
     if (a.task.empty()) task = static_cast<int>(lp->taskFor(*world, static_cast<std::size_t>(task)));
     observation = approach::observationVector(lp->program(), world->observe());

@@ -5,6 +5,7 @@
 #include "domains/books/BookCatalog.h"
 #include "robot/actions/CallArguments.h"
 #include "tests/unit/domains/HomeTestSupport.h"
+#include "tests/unit/domains/ProgramFactsSupport.h"
 
 #include <gtest/gtest.h>
 
@@ -26,6 +27,9 @@ namespace world = cbtl::world;
 
 const world::Pose2 kBedBase{1.0, 0.2, 0.0};
 
+// books.cbtl's facts: the home scene and the Book catalogue.
+const cbtl::domains::ProgramFacts& books() { return cbtl::test::programFacts("books"); }
+
 bool contains(const std::vector<std::string>& v, const std::string& s) {
   return std::find(v.begin(), v.end(), s) != v.end();
 }
@@ -37,7 +41,7 @@ std::optional<Eigen::Vector3d> presentAt(BooksSimulator& sim, const std::string&
 }
 
 TEST(BooksSimulator, ResetIsDeterministic) {
-  BooksSimulator a({}, 21), b({}, 4);
+  BooksSimulator a(books(), {}, 21), b(books(), {}, 4);
   b.reset(21);
   EXPECT_EQ(a.observe().at("pickable").members, b.observe().at("pickable").members);
   EXPECT_EQ(a.observe().at("heldBody").text, b.observe().at("heldBody").text);
@@ -46,12 +50,11 @@ TEST(BooksSimulator, ResetIsDeterministic) {
 }
 
 TEST(BooksSimulator, ObservationsHaveTheDeclaredNamesAndKinds) {
-  BooksSimulator sim({}, 2);
+  BooksSimulator sim(books(), {}, 2);
   const auto o = sim.observe();
   ASSERT_EQ(o.size(), 3u);
   ASSERT_EQ(o.at("pickable").kind, Value::Kind::Names);
-  for (const std::string& e : o.at("pickable").members)
-    EXPECT_TRUE(cbtl::domains::books::bookOfEntry(e).has_value()) << e;
+  for (const std::string& e : o.at("pickable").members) EXPECT_NE(sim.catalog().byEntry(e), nullptr) << e;
   ASSERT_EQ(o.at("handPose").kind, Value::Kind::Vector);
   ASSERT_EQ(o.at("handPose").vector.size(), 7u);
   EXPECT_EQ(o.at("heldBody").kind, Value::Kind::Name);
@@ -63,7 +66,7 @@ TEST(BooksSimulator, ObservationsHaveTheDeclaredNamesAndKinds) {
 }
 
 TEST(BooksSimulator, EpisodesVaryTheShelfAndTheHeldBookWithValidStarts) {
-  BooksSimulator sim({}, 0);
+  BooksSimulator sim(books(), {}, 0);
   std::set<std::string> tasks;
   std::set<std::size_t> counts;
   for (std::uint64_t seed = 0; seed < 30; ++seed) {
@@ -75,9 +78,9 @@ TEST(BooksSimulator, EpisodesVaryTheShelfAndTheHeldBookWithValidStarts) {
     const std::string held = o.at("heldBody").text;
     EXPECT_EQ(sim.requestedTask(), held.empty() ? "handOverBook" : "stowThenHandOverBook");
     if (!held.empty()) {
-      const auto book = cbtl::domains::books::bookOfBody(held);
-      ASSERT_TRUE(book.has_value()) << held;
-      EXPECT_FALSE(contains(pickable, std::string(cbtl::domains::books::kBooks[*book].entry)));
+      const auto* book = sim.catalog().byBody(held);
+      ASSERT_NE(book, nullptr) << held;
+      EXPECT_FALSE(contains(pickable, book->entry));
     }
     tasks.insert(sim.requestedTask());
     EXPECT_TRUE(world::checkRobotCollisions(sim.world().workspace()).free()) << "seed " << seed;
@@ -87,7 +90,7 @@ TEST(BooksSimulator, EpisodesVaryTheShelfAndTheHeldBookWithValidStarts) {
 }
 
 TEST(BooksSimulator, AReachableHandoverOfALikedBookPleasesTheUser) {
-  BooksSimulator sim({}, 3);
+  BooksSimulator sim(books(), {}, 3);
   world::Rng rng(8);
   const auto point = presentAt(sim, "book_0", 0.2, rng);  // Cosmos, mid-shell
   ASSERT_TRUE(point.has_value());
@@ -118,7 +121,7 @@ TEST(BooksSimulator, AReachableHandoverOfALikedBookPleasesTheUser) {
 }
 
 TEST(BooksSimulator, AReachedDislikedBookIsTakenButDisappoints) {
-  BooksSimulator sim({}, 3);
+  BooksSimulator sim(books(), {}, 3);
   world::Rng rng(8);
   ASSERT_TRUE(presentAt(sim, "book_6", 0.2, rng).has_value());  // Moby Dick
   const StepResult r = sim.act(ActionCall{"handOver", {}});
@@ -130,7 +133,7 @@ TEST(BooksSimulator, AReachedDislikedBookIsTakenButDisappoints) {
 }
 
 TEST(BooksSimulator, AnUnreachableHandoverKeepsTheBookInHand) {
-  BooksSimulator sim({}, 3);
+  BooksSimulator sim(books(), {}, 3);
   world::Rng rng(8);
   ASSERT_TRUE(presentAt(sim, "book_0", 0.45, rng).has_value());  // beyond the 0.3 m shell
   const StepResult r = sim.act(ActionCall{"handOver", {}});
@@ -146,7 +149,7 @@ TEST(BooksSimulator, AnUnreachableHandoverKeepsTheBookInHand) {
 }
 
 TEST(BooksSimulator, HandingOverWithoutABookIsNotAHandover) {
-  BooksSimulator sim({}, 3);
+  BooksSimulator sim(books(), {}, 3);
   world::WorldState s = *sim.worldState();
   s.held.reset();
   sim.world().workspace().setState(s);
@@ -162,7 +165,7 @@ TEST(BooksSimulator, HandingOverWithoutABookIsNotAHandover) {
 }
 
 TEST(BooksSimulator, TakingTheLastBookRestocksTheShelves) {
-  BooksSimulator sim({}, 3);
+  BooksSimulator sim(books(), {}, 3);
   world::Rng rng(8);
   ASSERT_TRUE(presentAt(sim, "book_1", 0.2, rng).has_value());  // every other book is parked
   EXPECT_TRUE(sim.pickable().empty());
@@ -171,8 +174,31 @@ TEST(BooksSimulator, TakingTheLastBookRestocksTheShelves) {
   EXPECT_GE(sim.pickable().size(), 3u);
 }
 
+TEST(BooksSimulator, TheCatalogueIsTheProgramsBookEntries) {
+  BooksSimulator sim(books(), {}, 1);
+  const auto* set = cbtl::domains::firstItemSetOfType(books(), "Book");
+  ASSERT_NE(set, nullptr);
+  ASSERT_EQ(sim.catalog().size(), set->entries.size());
+  for (std::size_t i = 0; i < set->entries.size(); ++i) EXPECT_EQ(sim.catalog().books()[i].entry, set->entries[i].name);
+  const auto* cosmos = sim.catalog().byEntry("cosmos");
+  ASSERT_NE(cosmos, nullptr);
+  EXPECT_EQ(cosmos->title, "Cosmos");
+  EXPECT_EQ(cosmos->body, "book_0");
+  EXPECT_EQ(cosmos->item.descriptors.at("tags"),
+            (std::vector<std::string>{"nonfiction", "science", "astronomy", "universe"}));
+}
+
+TEST(BooksSimulator, WithoutASceneOrCatalogueItIsAClearError) {
+  EXPECT_THROW(BooksSimulator(cbtl::domains::ProgramFacts{}, {}, 1), std::invalid_argument);
+  cbtl::domains::ProgramFacts sceneOnly = books();
+  sceneOnly.itemSets.clear();
+  EXPECT_THROW(BooksSimulator(sceneOnly, {}, 1), std::invalid_argument);
+}
+
 TEST(BooksSimulator, EvaluationTwinSharesTheUserNotTheWorld) {
-  BooksSimulator sim({}, 3, BooksUser({"mobyDick"}, Interval{0.0, 1.0}));
+  const BooksUser mobyDickOnly(cbtl::textpref::SimulatedUser("moby", "I only like Moby Dick.", {{{"item=mobyDick"}}}),
+                               Interval{0.0, 1.0});
+  BooksSimulator sim(books(), {}, 3, mobyDickOnly);
   auto twin = sim.makeEvaluationTwin();
   auto* t = dynamic_cast<BooksSimulator*>(twin.get());
   ASSERT_NE(t, nullptr);

@@ -1,5 +1,7 @@
-// The Books user's hidden taste, range of motion and words.
+// The Books user's hidden taste (over books.cbtl's catalogue), range of motion and words.
 #include "domains/books/BooksUser.h"
+
+#include "tests/unit/domains/ProgramFactsSupport.h"
 
 #include <gtest/gtest.h>
 
@@ -7,17 +9,24 @@
 
 namespace {
 
+using cbtl::domains::books::BookCatalog;
 using cbtl::domains::books::BooksUser;
 using cbtl::domains::books::Interval;
 namespace world = cbtl::world;
 
+const BookCatalog& catalog() {
+  static const BookCatalog c = BookCatalog::fromProgram(cbtl::test::programFacts("books"));
+  return c;
+}
+
 TEST(BooksUser, PaperUserEnjoysCosmosAndPrideAndPrejudiceOnly) {
   const BooksUser u = BooksUser::paperDefault();
-  EXPECT_TRUE(u.enjoys("cosmos"));
-  EXPECT_TRUE(u.enjoys("prideAndPrejudice"));
-  for (const char* b : {"hitchhikersGuide", "henriettaLacks", "anneFrank", "intoTheWild", "mobyDick", "lordOfTheRings",
-                        "andThenThereWereNone"})
-    EXPECT_FALSE(u.enjoys(b)) << b;
+  ASSERT_EQ(catalog().size(), 9u);
+  std::vector<std::string> enjoyed;
+  for (const auto& b : catalog().books())
+    if (u.enjoys(b).value()) enjoyed.push_back(b.entry);
+  EXPECT_EQ(enjoyed, (std::vector<std::string>{"cosmos", "prideAndPrejudice"}));
+  EXPECT_NE(u.taste().hiddenPreference().find("romances"), std::string::npos);
 }
 
 TEST(BooksUser, ReachIsAClosedShellAroundTheOffsetHand) {
@@ -35,16 +44,27 @@ TEST(BooksUser, ReachIsAClosedShellAroundTheOffsetHand) {
 }
 
 TEST(BooksUser, WordsSayWhetherTheyReachedAndLikedIt) {
-  const BooksUser u = BooksUser::paperDefault();
-  EXPECT_EQ(u.reaction("cosmos", false), "I can't reach there.");
-  EXPECT_EQ(u.reaction("cosmos", true), "Thank you, I love Cosmos!");
-  EXPECT_EQ(u.reaction("mobyDick", true), "Thanks, but Moby Dick is not for me.");
+  const auto& cosmos = *catalog().byEntry("cosmos");
+  const auto& mobyDick = *catalog().byEntry("mobyDick");
+  EXPECT_EQ(BooksUser::reaction(cosmos, false, false), "I can't reach there.");
+  EXPECT_EQ(BooksUser::reaction(cosmos, true, true), "Thank you, I love Cosmos!");
+  EXPECT_EQ(BooksUser::reaction(mobyDick, true, false), "Thanks, but Moby Dick is not for me.");
 }
 
-TEST(BooksUser, RejectsUnknownBooksAndBadIntervals) {
-  EXPECT_THROW(BooksUser({"ulysses"}, Interval{0.1, 0.3}), std::invalid_argument);
-  EXPECT_THROW(BooksUser({"cosmos"}, Interval{0.3, 0.1}), std::invalid_argument);
-  EXPECT_THROW(BooksUser({"cosmos"}, Interval{-0.1, 0.3}), std::invalid_argument);
+TEST(BooksUser, ReactionsAreLabelledFeedbackOnTheProgramsItem) {
+  const BooksUser u = BooksUser::paperDefault();
+  const auto liked = u.react(*catalog().byEntry("prideAndPrejudice")).value();
+  EXPECT_EQ(liked.item.name, "prideAndPrejudice");
+  EXPECT_EQ(liked.liked, true);
+  EXPECT_EQ(liked.text, "Thank you, I love Pride and Prejudice!");
+  const auto disliked = u.react(*catalog().byEntry("mobyDick")).value();
+  EXPECT_EQ(disliked.liked, false);
+}
+
+TEST(BooksUser, RejectsBadIntervals) {
+  const auto taste = BooksUser::paperDefault().taste();
+  EXPECT_THROW(BooksUser(taste, Interval{0.3, 0.1}), std::invalid_argument);
+  EXPECT_THROW(BooksUser(taste, Interval{-0.1, 0.3}), std::invalid_argument);
 }
 
 }  // namespace

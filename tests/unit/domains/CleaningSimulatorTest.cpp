@@ -27,7 +27,7 @@ ActionCall wipe(const std::string& surface, const world::Pose2& base) {
 }
 
 TEST(CleaningSimulator, ResetIsDeterministic) {
-  CleaningSimulator a({}, 42), b({}, 7);
+  CleaningSimulator a(cbtl::test::homeFacts(), {}, 42), b(cbtl::test::homeFacts(), {}, 7);
   b.reset(42);
   const auto oa = a.observe(), ob = b.observe();
   EXPECT_EQ(oa.at("clearSurfaces").members, ob.at("clearSurfaces").members);
@@ -39,7 +39,7 @@ TEST(CleaningSimulator, ResetIsDeterministic) {
 }
 
 TEST(CleaningSimulator, ObservationsHaveTheDeclaredNamesAndKinds) {
-  CleaningSimulator sim({}, 1);
+  CleaningSimulator sim(cbtl::test::homeFacts(), {}, 1);
   const auto o = sim.observe();
   ASSERT_EQ(o.size(), 3u);
   EXPECT_EQ(o.at("clearSurfaces").kind, Value::Kind::Names);
@@ -52,7 +52,7 @@ TEST(CleaningSimulator, ObservationsHaveTheDeclaredNamesAndKinds) {
 }
 
 TEST(CleaningSimulator, EpisodesCoverOneSurfaceAndEveryHeldCaseWithValidStarts) {
-  CleaningSimulator sim({}, 0);
+  CleaningSimulator sim(cbtl::test::homeFacts(), {}, 0);
   std::set<std::string> tasks;
   for (std::uint64_t seed = 0; seed < 30; ++seed) {
     sim.reset(seed);
@@ -73,7 +73,7 @@ TEST(CleaningSimulator, EpisodesCoverOneSurfaceAndEveryHeldCaseWithValidStarts) 
 }
 
 TEST(CleaningSimulator, ABookOnASurfaceMakesItUnclear) {
-  CleaningSimulator sim({}, 3);
+  CleaningSimulator sim(cbtl::test::homeFacts(), {}, 3);
   world::Rng rng(1);
   ASSERT_TRUE(cbtl::test::holdAt(sim.world(), "duster", {0, 0, 0}));
   EXPECT_EQ(sim.clearSurfaces().size(), 7u);  // the duster in hand, every book parked
@@ -86,7 +86,7 @@ TEST(CleaningSimulator, ABookOnASurfaceMakesItUnclear) {
 }
 
 TEST(CleaningSimulator, AWipeOfAWelcomeSurfaceIsThanked) {
-  CleaningSimulator sim({}, 5);
+  CleaningSimulator sim(cbtl::test::homeFacts(), {}, 5);
   world::Rng rng(2);
   ASSERT_TRUE(cbtl::test::readyToWipe(sim.world(), "shelf_layer_1", {0, 0, 0}, rng));
   const StepResult r = sim.act(wipe("shelf_layer_1", {0, 0, 0}));
@@ -103,7 +103,7 @@ TEST(CleaningSimulator, AWipeOfAWelcomeSurfaceIsThanked) {
 }
 
 TEST(CleaningSimulator, AWipeOfAnUnwelcomeSurfaceIsAdmonished) {
-  CleaningSimulator sim({}, 5);
+  CleaningSimulator sim(cbtl::test::homeFacts(), {}, 5);
   world::Rng rng(2);
   ASSERT_TRUE(cbtl::test::readyToWipe(sim.world(), "shelf_layer_2", {0, 0, 0}, rng));
   const StepResult r = sim.act(wipe("shelf_layer_2", {0, 0, 0}));
@@ -117,9 +117,9 @@ TEST(CleaningSimulator, AWipeOfAnUnwelcomeSurfaceIsAdmonished) {
 
 TEST(CleaningSimulator, FetchingTheDusterThenWipingFollowsTheSkills) {
   // cleanSurface's plan shape: fetchDuster (base to the table, grasp, home) then wipeSurface.
-  CleaningSimulator sim({}, 0);
-  const world::World fresh(home::homeScene());  // home.xml's poses: the duster on the main table
-  const world::WorldState s = home::emptyRoom(fresh.workspace().state().objects);
+  CleaningSimulator sim(cbtl::test::homeFacts(), {}, 0);
+  const world::World fresh(cbtl::test::homeScene());  // home.xml's poses: the duster on the main table
+  const world::WorldState s = home::emptyRoom(*cbtl::test::homeScene(), fresh.workspace().state().objects);
   ASSERT_EQ(sim.world().workspace().setState(s), world::StateStatus::Ok);
   EXPECT_EQ(sim.requestedTask(), "cleanSurface");
   for (const ActionCall& call :
@@ -146,7 +146,7 @@ TEST(CleaningSimulator, FetchingTheDusterThenWipingFollowsTheSkills) {
 }
 
 TEST(CleaningSimulator, AFailedActionEndsTheTaskWithoutAJudgement) {
-  CleaningSimulator sim({}, 1);
+  CleaningSimulator sim(cbtl::test::homeFacts(), {}, 1);
   const world::Pose2 before = sim.worldState()->base;
   const StepResult r = sim.act(ActionCall{"moveBase", {Value::vec({0, 1.3, 0})}});  // into the back wall
   EXPECT_EQ(r.status, ActionStatus::Ignored);
@@ -159,7 +159,7 @@ TEST(CleaningSimulator, AFailedActionEndsTheTaskWithoutAJudgement) {
 }
 
 TEST(CleaningSimulator, UnknownAndIllFormedCallsAreRejected) {
-  CleaningSimulator sim({}, 1);
+  CleaningSimulator sim(cbtl::test::homeFacts(), {}, 1);
   StepResult r = sim.act(ActionCall{"movePot", {}});
   EXPECT_EQ(r.status, ActionStatus::UnknownAction);
   EXPECT_FALSE(r.consumedStep);
@@ -172,7 +172,7 @@ TEST(CleaningSimulator, UnknownAndIllFormedCallsAreRejected) {
 }
 
 TEST(CleaningSimulator, EvaluationTwinSharesTheUserNotTheWorld) {
-  CleaningSimulator sim({}, 9, CleaningUser({"shelfTop"}));
+  CleaningSimulator sim(cbtl::test::homeFacts(), {}, 9, CleaningUser({"shelfTop"}));
   auto twin = sim.makeEvaluationTwin();
   auto* t = dynamic_cast<CleaningSimulator*>(twin.get());
   ASSERT_NE(t, nullptr);

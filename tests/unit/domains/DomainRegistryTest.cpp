@@ -17,8 +17,8 @@ TEST(DomainRegistry, KnowsCooking) {
 }
 
 TEST(DomainRegistry, CreatesCookingSimulatorSeeded) {
-  auto a = createSimulator("cooking", {}, 7);
-  auto b = createSimulator("cooking", {}, 7);
+  auto a = createSimulator("cooking", {}, {}, 7);
+  auto b = createSimulator("cooking", {}, {}, 7);
   ASSERT_NE(a, nullptr);
   ASSERT_NE(b, nullptr);
   const auto obs = a->observe();
@@ -27,21 +27,8 @@ TEST(DomainRegistry, CreatesCookingSimulatorSeeded) {
 }
 
 TEST(DomainRegistry, UnknownDomainIsNull) {
-  EXPECT_EQ(createSimulator("no-such-domain", {}, 1), nullptr);
-  EXPECT_EQ(createSimulator("", {}, 1), nullptr);
-}
-
-}  // namespace
-
-namespace {
-
-TEST(DomainRegistry, CreatesTheHomeDomainsButNotTheRobotLibrary) {
-  const auto names = cbtl::domains::knownDomains();
-  for (const char* home : {"books", "cleaning"}) {
-    EXPECT_NE(std::find(names.begin(), names.end(), home), names.end()) << home;
-    EXPECT_NE(cbtl::domains::createSimulator(home, {}, 3), nullptr) << home;
-  }
-  EXPECT_EQ(std::find(names.begin(), names.end(), "robot"), names.end());
+  EXPECT_EQ(createSimulator("no-such-domain", {}, {}, 1), nullptr);
+  EXPECT_EQ(createSimulator("", {}, {}, 1), nullptr);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Feeding's movePlate / moveDrink (domains/feeding/TableSlide.h): the caregiver slides a body over the table.
 #include "domains/feeding/FeedingSimulator.h"
 #include "domains/feeding/TableSlide.h"
+#include "tests/unit/domains/ProgramFactsSupport.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +9,6 @@
 
 namespace {
 
-using cbtl::domains::feeding::feedingScene;
 using cbtl::domains::feeding::isTableSlide;
 using cbtl::domains::feeding::slideOnTable;
 using cbtl::sim::ActionCall;
@@ -17,7 +17,7 @@ using cbtl::world::builtins::ActionStatus;
 namespace world = cbtl::world;
 
 TEST(FeedingTableSlide, SlidesThePlateAndRefusesToStackTheDrinkOnIt) {
-  world::World w(feedingScene());
+  world::World w(cbtl::test::programSceneOf("feeding"));
   const world::Pose3 plate = *w.workspace().objectPose("plate");
   const auto moved = slideOnTable(w, ActionCall{"movePlate", {Value::vec({0.36, 0.40})}});
   ASSERT_TRUE(moved.done()) << moved.detail;
@@ -37,7 +37,7 @@ TEST(FeedingTableSlide, SlidesThePlateAndRefusesToStackTheDrinkOnIt) {
 }
 
 TEST(FeedingTableSlide, BadCallsChangeNothing) {
-  world::World w(feedingScene());
+  world::World w(cbtl::test::programSceneOf("feeding"));
   const world::Pose3 plate = *w.workspace().objectPose("plate");
   const auto illFormed = slideOnTable(w, ActionCall{"movePlate", {Value::name("table")}});
   EXPECT_FALSE(illFormed.wellFormed);

@@ -1,19 +1,38 @@
-// HomeTestSupport.h — arranging home-scene worlds for the Cleaning and Books tests.
+// HomeTestSupport.h — arranging home-scene worlds for the Cleaning and Books tests. The scene file is named
+// explicitly (CBTL_DOMAINS_DIR, the source tree's domains/), as a program's `world` line would.
 #pragma once
 
 #include "domains/home/HomeEpisode.h"
 #include "domains/home/HomeScene.h"
 #include "robot/actions/StandardGrasps.h"
 #include "robot/actions/WipeSweep.h"
+#include "robot/world/Scene.h"
 
 #include "robot/world/WorldOperations.h"
 
+#include <memory>
 #include <numbers>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace cbtl::test {
+
+// domains/home/home.xml, loaded once per test process; throws std::runtime_error when it cannot be loaded.
+inline std::shared_ptr<const world::Scene> homeScene() {
+  static const std::shared_ptr<const world::Scene> scene = [] {
+    const world::SceneLoadResult r = world::Scene::loadFile(std::string(CBTL_DOMAINS_DIR) + "/home/home.xml");
+    if (r.status != world::LoadStatus::Ok) throw std::runtime_error(r.message);
+    return r.scene;
+  }();
+  return scene;
+}
+
+// Program facts that name only the home scene (the Cleaning simulator reads no item set).
+inline domains::ProgramFacts homeFacts() {
+  return domains::ProgramFacts{std::string(CBTL_DOMAINS_DIR) + "/home/home.xml", homeScene(), {}};
+}
 
 // The robot at `base` holding `object` (duster: standard grasp; a book: carry grasp), arm at kHome, every
 // book except a held one parked; false if the state is rejected.

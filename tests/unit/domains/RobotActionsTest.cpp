@@ -6,6 +6,7 @@
 #include "robot/actions/RobotActions.h"
 #include "robot/actions/StandardGrasps.h"
 #include "robot/actions/SurfaceGeometry.h"
+#include "tests/unit/domains/HomeTestSupport.h"
 
 #include <gtest/gtest.h>
 
@@ -24,9 +25,9 @@ namespace world = cbtl::world;
 
 class RobotActionsTest : public ::testing::Test {
  protected:
-  RobotActionsTest() : w(home::homeScene()), rng(11) {
+  RobotActionsTest() : w(cbtl::test::homeScene()), rng(11) {
     world::WorldState s = w.workspace().state();
-    s.arm = home::initialArm();
+    s.arm = home::initialArm(*cbtl::test::homeScene());
     EXPECT_EQ(w.workspace().setState(s), world::StateStatus::Ok);
   }
 
@@ -227,7 +228,7 @@ TEST_F(RobotActionsTest, StepResultCarriesStatusAndMessage) {
 // The language's built-ins read the duster's standard grasp from home.xml's site duster_tool; it must be the
 // grasp the executor uses.
 TEST(StandardGrasps, TheSceneSiteIsTheDusterGrasp) {
-  cbtl::world::Workspace ws(cbtl::domains::home::homeScene());
+  cbtl::world::Workspace ws(cbtl::test::homeScene());
   const int site = ws.scene().siteId("duster_tool");
   ASSERT_GE(site, 0);
   const cbtl::world::Pose3 inBody = ws.objectPose("duster")->inverse() * ws.sitePose(site);

@@ -1,10 +1,10 @@
 // The wiping sweep: from a pre-wipe pose the duster covers a reachable surface and the base comes back;
 // without the duster on the surface, or without anything held, the sweep fails and nothing moves.
-#include "domains/home/HomeScene.h"
 #include "robot/actions/CallArguments.h"
 #include "robot/actions/RobotActions.h"
 #include "robot/actions/StandardGrasps.h"
 #include "robot/actions/WipeSweep.h"
+#include "tests/unit/domains/HomeTestSupport.h"
 
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@ using cbtl::world::builtins::ActionStatus;
 
 class WipeSweepTest : public ::testing::Test {
  protected:
-  WipeSweepTest() : w(home::homeScene()), rng(5) {}
+  WipeSweepTest() : w(cbtl::test::homeScene()), rng(5) {}
 
   // The robot at `base` holding the duster (standard grasp) with the arm at a collision-free IK solution of
   // the pre-wipe pose of `surface`; false when none is found.

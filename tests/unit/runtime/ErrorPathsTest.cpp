@@ -60,7 +60,7 @@ TEST(ErrorPaths, UnknownActionIsAnInternalError) {
   auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok()) << lp->errors();
   const approach::SimulatorFactory factory = [](const sim::SimulatorOptions& o, std::uint64_t seed) {
-    return std::make_unique<RejectingSimulator>(domains::createSimulator("cooking", o, seed));
+    return std::make_unique<RejectingSimulator>(domains::createSimulator("cooking", {}, o, seed));
   };
   EXPECT_THROW(approach::runExperiment(*lp, factory, tinyRun()), rt::InternalError);
 }
@@ -69,7 +69,7 @@ TEST(ErrorPaths, PeriodicResetEveryMustBePositive) {
   auto lp = app::LoadedProgram::load(test::cookingPath());
   ASSERT_TRUE(lp->ok()) << lp->errors();
   const approach::SimulatorFactory factory = [](const sim::SimulatorOptions& o, std::uint64_t seed) {
-    return domains::createSimulator("cooking", o, seed);
+    return domains::createSimulator("cooking", {}, o, seed);
   };
   for (std::int64_t every : {std::int64_t{0}, std::int64_t{-5}}) {
     approach::ExperimentConfig c = tinyRun();

@@ -13,8 +13,9 @@ using namespace cbtl;
 namespace {
 
 approach::SimulatorFactory cooking() {
-  return
-      [](const sim::SimulatorOptions& o, std::uint64_t seed) { return domains::createSimulator("cooking", o, seed); };
+  return [](const sim::SimulatorOptions& o, std::uint64_t seed) {
+    return domains::createSimulator("cooking", {}, o, seed);
+  };
 }
 
 approach::ExperimentConfig shortRun(approach::ApproachKind kind, std::uint64_t seed, const std::string& out = "") {

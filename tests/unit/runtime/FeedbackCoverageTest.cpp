@@ -4,6 +4,7 @@
 // its feature: the learner once had no observation and crashed on the first handover.)
 #include "tests/unit/runtime/TestPrograms.h"
 
+#include "app/SimulatorFacts.h"
 #include "domains/DomainRegistry.h"
 #include "runtime/approach/ValueBridge.h"
 #include "runtime/model/UserModel.h"
@@ -49,7 +50,7 @@ TEST_P(FeedbackCoverage, EveryDeclaredEventIsLearnedFromWithTheWorldsObservation
   auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + GetParam());
   ASSERT_TRUE(lp->ok()) << lp->errors();
   const rt::Program& program = lp->program();
-  auto world = domains::createSimulator(lp->graph().domain, {}, 1);
+  auto world = domains::createSimulator(lp->graph().domain, app::simulatorFacts(*lp), {}, 1);
   ASSERT_NE(world, nullptr);
   lp->syncWorld(*world);
   approach::StepWorld step;

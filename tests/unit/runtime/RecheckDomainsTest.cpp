@@ -2,6 +2,7 @@
 // never refuses one: the solver's acceptance and the independent check agree.
 #include "tests/unit/runtime/TestPrograms.h"
 
+#include "app/SimulatorFacts.h"
 #include "domains/DomainRegistry.h"
 #include "runtime/approach/Experiment.h"
 
@@ -45,8 +46,8 @@ TEST_P(RecheckEverywhere, EveryExecutedPlanIsRecheckedAndNoneIsRefused) {
   c.solverOptions.maxIters = robot ? 300 : 100000;
   c.solverOptions.numImprovements = robot ? 5 : 500;
   c.solverOptions.maxImprovementAttempts = robot ? 10 : 10000;
-  const auto factory = [domain](const sim::SimulatorOptions& o, std::uint64_t seed) {
-    return domains::createSimulator(domain, o, seed);
+  const auto factory = [domain, facts = app::simulatorFacts(*lp)](const sim::SimulatorOptions& o, std::uint64_t seed) {
+    return domains::createSimulator(domain, facts, o, seed);
   };
   const auto r = approach::runExperiment(*lp, factory, c);
   EXPECT_EQ(r.recheckViolations, 0) << r.firstRecheckViolation;

@@ -24,8 +24,9 @@ namespace fs = std::filesystem;
 namespace {
 
 approach::SimulatorFactory cooking() {
-  return
-      [](const sim::SimulatorOptions& o, std::uint64_t seed) { return domains::createSimulator("cooking", o, seed); };
+  return [](const sim::SimulatorOptions& o, std::uint64_t seed) {
+    return domains::createSimulator("cooking", {}, o, seed);
+  };
 }
 
 std::string tempDir(const std::string& name) {

@@ -3,6 +3,7 @@
 // user's feedback learned.
 #include "tests/unit/runtime/TestPrograms.h"
 
+#include "app/SimulatorFacts.h"
 #include "domains/DomainRegistry.h"
 #include "runtime/approach/Planner.h"
 #include "runtime/approach/ValueBridge.h"
@@ -76,7 +77,7 @@ std::map<std::string, int> served(const std::vector<RequestLog>& log) {
 TEST(RobotDomainsEndToEnd, FeedingServesEveryKindOfRequest) {
   auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/feeding/feeding.cbtl");
   ASSERT_TRUE(lp->ok()) << lp->errors();
-  auto world = domains::createSimulator("feeding", {}, 3);
+  auto world = domains::createSimulator("feeding", app::simulatorFacts(*lp), {}, 3);
   ASSERT_NE(world, nullptr);
   model::UserModel user(lp->graph());
   const auto log = runRequests(*lp, *world, 12, user);
@@ -98,7 +99,7 @@ TEST(RobotDomainsEndToEnd, CleaningWipesASurface) {
   auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/cleaning/cleaning.cbtl");
   ASSERT_TRUE(lp->ok()) << lp->errors();
   for (std::uint64_t seed : {1, 2, 6}) {
-    auto world = domains::createSimulator("cleaning", {}, seed);
+    auto world = domains::createSimulator("cleaning", app::simulatorFacts(*lp), {}, seed);
     ASSERT_NE(world, nullptr);
     model::UserModel user(lp->graph());
     const auto log = runRequests(*lp, *world, 1, user);
@@ -116,7 +117,7 @@ TEST(RobotDomainsEndToEnd, BooksSolvesAndReportsExecutionFailures) {
   auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/books/books.cbtl");
   ASSERT_TRUE(lp->ok()) << lp->errors();
   for (std::uint64_t seed : {1, 3}) {
-    auto world = domains::createSimulator("books", {}, seed);
+    auto world = domains::createSimulator("books", app::simulatorFacts(*lp), {}, seed);
     ASSERT_NE(world, nullptr);
     model::UserModel user(lp->graph());
     const auto log = runRequests(*lp, *world, 1, user);

@@ -53,7 +53,7 @@ TEST(ChatClient, NumberedOptionsWithoutRenormalisationMatchTheReferenceCode) {
   Harness h;
   // Option 9 is rating 8, option 11 is rating 10; 0.3 of the mass is on other tokens and counts as rating 0.
   h.server.push(replyRating({{"9", 0.5}, {"11", 0.2}, {"Sure", 0.3}}));
-  LlmPreferenceModel model(h.client(), referenceParityOptions(*builtinPrompts("userEnjoysBook")));
+  LlmPreferenceModel model(h.client(), referenceParityOptions(examplePrompts()));
   auto a = model.assess(testBook(), {});
   ASSERT_TRUE(a.ok()) << a.error().describe();
   EXPECT_NEAR(a.value().probability, 0.8 * 0.5 + 1.0 * 0.2, 1e-9);

@@ -57,7 +57,7 @@ TEST(Redaction, AServerEchoingTheKeyIsQuotedWithoutIt) {
   Harness h;
   h.server.setDefault(echoAuthorization(401));
   TextBackend backend(backendConfig(h), {}, h.sleeper());
-  auto model = backend.makeModel(*builtinPrompts("userEnjoysBook"));
+  auto model = backend.makeModel(examplePrompts());
   auto a = model->assess(testBook(), {});
   ::unsetenv(kKeyVariable);
   ASSERT_FALSE(a.ok());
@@ -82,7 +82,7 @@ TEST(FaultStats, EachFailureKindIsCountedWithTheFirstError) {
   h.server.push(reply(429, errorBody("You exceeded your current quota", "insufficient_quota", "insufficient_quota")));
   h.server.push(reply(404, errorBody("no such model", "invalid_request_error", "model_not_found")));
   TextBackend backend(backendConfig(h), {}, h.sleeper());
-  auto model = backend.makeModel(*builtinPrompts("userEnjoysBook"));
+  auto model = backend.makeModel(examplePrompts());
   for (int i = 0; i < 5; ++i) EXPECT_FALSE(model->assess(testBook(), {}).ok());
   const FaultReport r = backend.faultReport();
   EXPECT_EQ(r.backend, "openai");
@@ -109,7 +109,7 @@ TEST(FaultStats, LearningFailuresAreCountedApart) {
   Harness h;
   h.server.push(reply(200, textBody("   ")));  // an empty learning reply
   TextBackend backend(backendConfig(h), {}, h.sleeper());
-  auto model = backend.makeModel(*builtinPrompts("userEnjoysBook"));
+  auto model = backend.makeModel(examplePrompts());
   const FeedbackRecord record{testBook(), {}, "I liked it", true};
   EXPECT_FALSE(model->learn(std::span(&record, 1)).ok());
   const FaultReport r = backend.faultReport();
@@ -133,7 +133,7 @@ TEST(CircuitBreaker, OpensAfterConsecutiveTimeoutsAndStopsCallingTheServer) {
   TextBackend backend(
       backendConfig(h, /*attempts=*/1, /*breaker=*/2), [&](const std::string& w) { notices.push_back(w); },
       h.sleeper());
-  auto model = backend.makeModel(*builtinPrompts("userEnjoysBook"));
+  auto model = backend.makeModel(examplePrompts());
   std::vector<ErrorKind> kinds;
   for (int i = 0; i < 6; ++i) {
     auto a = model->assess(testBook(), {});
@@ -165,8 +165,8 @@ TEST(CircuitBreaker, AnAnswerResetsTheCount) {
   h.server.push(h.server.hang());
   h.server.push(replyRating({{"6", 1.0}}));
   TextBackend backend(backendConfig(h, 1, 2), {}, h.sleeper());
-  auto model = backend.makeModel(*builtinPrompts("userEnjoysBook"));
-  const PromptTemplates prompts = *builtinPrompts("userEnjoysBook");
+  auto model = backend.makeModel(examplePrompts());
+  const PromptTemplates prompts = examplePrompts();
   // Different items, so that the response cache does not answer.
   EXPECT_FALSE(model->assess(Item{"A", {}}, {}).ok());
   EXPECT_TRUE(model->assess(Item{"B", {}}, {}).ok());
@@ -219,7 +219,7 @@ TEST(RunReport, NamesTheBackendAndWritesLlmJson) {
   EXPECT_EQ(online["breaker_threshold"], 3);
 
   beginRunFaults(&backend);
-  EXPECT_FALSE(backend.makeModel(*builtinPrompts("userEnjoysBook"))->assess(testBook(), {}).ok());
+  EXPECT_FALSE(backend.makeModel(examplePrompts())->assess(testBook(), {}).ok());
   ScratchDir dir;
   ASSERT_TRUE(writeLlmReport(dir.path, &backend, runFaults(&backend)).ok());
   std::ifstream in(dir.path / kLlmReportFile);

@@ -1,9 +1,9 @@
-// The offline descriptor model: prior behaviour, learning, generalization through shared descriptors, the
-// Books user's ground truth, context pairs, and state files.
+// The offline descriptor model: prior behaviour, learning, generalization through shared descriptors, an
+// example reader's ground truth, context pairs, and state files (example data: ExampleItems.h).
 #include "tests/unit/textpref/TestSupport.h"
 
 #include "runtime/textpref/OfflineDescriptorModel.h"
-#include "runtime/textpref/SimulatedUsers.h"
+#include "tests/unit/textpref/ExampleItems.h"
 
 #include <fstream>
 
@@ -11,7 +11,7 @@ namespace cbtl::textpref::testing {
 namespace {
 
 Item findBook(const std::string& name) {
-  for (const auto& b : standardBooks())
+  for (const auto& b : exampleBooks())
     if (b.name == name) return b;
   ADD_FAILURE() << "no book " << name;
   return {};
@@ -75,14 +75,14 @@ TEST(OfflineDescriptorModel, ConfidenceGrowsWithRepeatedFeedback) {
   EXPECT_LT(b.entropyBits, a.entropyBits);
 }
 
-TEST(OfflineDescriptorModel, LearnsTheBooksUserFromFeedbackOnTheNineBooks) {
+TEST(OfflineDescriptorModel, LearnsTheExampleReaderFromFeedbackOnTheNineBooks) {
   OfflineDescriptorModel m;
-  const SimulatedUser user = booksUser();
+  const SimulatedUser user = exampleReader();
   std::vector<FeedbackRecord> feedback;
-  for (const auto& book : standardBooks()) feedback.push_back(user.react(book).value());
+  for (const auto& book : exampleBooks()) feedback.push_back(user.react(book).value());
   ASSERT_TRUE(m.learn(feedback).ok());
   EXPECT_EQ(m.labelledCount(), 9);
-  for (const auto& book : standardBooks()) {
+  for (const auto& book : exampleBooks()) {
     const bool enjoyed = user.enjoys(book).value();
     EXPECT_EQ(probability(m, book) >= 0.5, enjoyed) << book.name;
   }
@@ -120,15 +120,15 @@ TEST(OfflineDescriptorModel, TitlesAreNotFeatures) {
 
 TEST(OfflineDescriptorModel, ContextPairsSeparateTheSameDipAcrossFoods) {
   OfflineDescriptorModel m;
-  const auto meals = feedingMeals();  // fries, raw vegetables, wedges, carrots, tots
-  const SimulatedUser user = feedingDipUser();
+  const auto meals = exampleMeals();  // fries, raw vegetables, wedges, carrots, tots
+  const SimulatedUser user = exampleDipUser();
   std::vector<FeedbackRecord> feedback;
   for (int meal : {0, 1})
-    for (const auto& dip : feedingDips())
+    for (const auto& dip : exampleDips())
       feedback.push_back(user.react(dip, meals[static_cast<std::size_t>(meal)]).value());
   ASSERT_TRUE(m.learn(feedback).ok());
-  const Item bbq = feedingDips()[1];
-  const Item ranch = feedingDips()[2];
+  const Item bbq = exampleDips()[1];
+  const Item ranch = exampleDips()[2];
   // Unseen meals with the same food type: wedges (fried potato) and carrot sticks (raw vegetable).
   EXPECT_GT(probability(m, bbq, meals[2]), probability(m, bbq, meals[3]));
   EXPECT_GT(probability(m, ranch, meals[3]), probability(m, ranch, meals[2]));
@@ -146,7 +146,7 @@ TEST(OfflineDescriptorModel, StateFileRoundTrip) {
   OfflineDescriptorModel restored;
   ASSERT_TRUE(loadStateFile(restored, path).ok());
   EXPECT_EQ(restored.history(), m.history());
-  for (const auto& book : standardBooks()) EXPECT_NEAR(probability(restored, book), probability(m, book), 1e-12);
+  for (const auto& book : exampleBooks()) EXPECT_NEAR(probability(restored, book), probability(m, book), 1e-12);
 }
 
 TEST(OfflineDescriptorModel, CorruptOrForeignStateIsAClearError) {

@@ -97,10 +97,10 @@ namespace cbtl::textpref::testing {
 namespace {
 
 TEST(LlmBooksCommand, OfflineBackendRunsWithoutAServer) {
-  const CommandRun run = runCbtl("llm books --rounds 9");
+  const CommandRun run = runCbtl(std::string("llm books ") + CBTL_DOMAINS_DIR + "/books/books.cbtl --rounds 9");
   EXPECT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("backend: offline-descriptor-bayes-v1"), std::string::npos) << run.output;
-  EXPECT_NE(run.output.find("Liked items: Cosmos, Pride and Prejudice."), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("Liked items: cosmos, prideAndPrejudice."), std::string::npos) << run.output;
 }
 
 TEST(LlmBooksCommand, LanguageModelBackendAgainstTheLoopbackServer) {
@@ -112,11 +112,12 @@ TEST(LlmBooksCommand, LanguageModelBackendAgainstTheLoopbackServer) {
       res.set_content(textBody("Liked books so far: Cosmos."), "application/json");
       return;
     }
-    const bool liked = prompt.find("The book: Cosmos") != std::string::npos ||
-                       prompt.find("The book: Pride and Prejudice") != std::string::npos;
+    const bool liked = prompt.find("title: Cosmos)") != std::string::npos ||
+                       prompt.find("title: Pride and Prejudice)") != std::string::npos;
     res.set_content(ratingBody({{liked ? "10" : "0", 0.9}, {"5", 0.1}}), "application/json");
   });
-  const CommandRun run = runCbtl("llm books --backend openai-compatible --base-url " + server.baseUrl() +
+  const CommandRun run = runCbtl(std::string("llm books ") + CBTL_DOMAINS_DIR + "/books/books.cbtl" +
+                                 " --backend openai-compatible --base-url " + server.baseUrl() +
                                  " --model test-model --rounds 2 --attempts 1");
   EXPECT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("openai-compatible:test-model"), std::string::npos) << run.output;

@@ -8,7 +8,7 @@ namespace cbtl::textpref {
 namespace {
 
 TEST(Prompts, ConstraintPromptCarriesItemThetaAndTheScaleInstruction) {
-  const auto t = *builtinPrompts("userEnjoysBook");
+  const auto t = generatorPrompts("How much would the user enjoy this book?", "");
   const Item book{"Cosmos", {{"author", {"Carl Sagan"}}, {"genre", {"nonfiction", "science"}}}};
   const std::string digits = renderConstraintPrompt(t, book, {}, "Likes {feedback} astronomy", RatingScale::Digits);
   EXPECT_NE(digits.find("Cosmos (author: Carl Sagan; genre: nonfiction, science)"), std::string::npos);
@@ -20,8 +20,8 @@ TEST(Prompts, ConstraintPromptCarriesItemThetaAndTheScaleInstruction) {
   EXPECT_NE(options.find("option number"), std::string::npos);
 }
 
-TEST(Prompts, DipPromptShowsTheFood) {
-  const auto t = *builtinPrompts("dipPreferred");
+TEST(Prompts, ConstraintPromptShowsTheContext) {
+  const auto t = generatorPrompts("Would the user enjoy this dip with the food on their plate?", "");
   const Context meal{{{"food", {"french fries"}}}};
   const std::string text = renderConstraintPrompt(t, Item{"ketchup", {}}, meal, "Unknown", RatingScale::Digits);
   EXPECT_NE(text.find("food: french fries"), std::string::npos);
@@ -29,7 +29,7 @@ TEST(Prompts, DipPromptShowsTheFood) {
 }
 
 TEST(Prompts, LearningPromptListsEveryRecordInOrder) {
-  const auto t = *builtinPrompts("userEnjoysBook");
+  const auto t = generatorPrompts("", "Describe which books the user likes.");
   std::vector<FeedbackRecord> history{{Item{"Cosmos", {}}, {}, "Loved it", true},
                                       {Item{"Moby Dick", {}}, {}, "", false}};
   const std::string text = renderLearningPrompt(t, "Unknown", history);
@@ -41,15 +41,13 @@ TEST(Prompts, LearningPromptListsEveryRecordInOrder) {
   EXPECT_NE(text.find("Possible summaries"), std::string::npos);
 }
 
-TEST(Prompts, EveryBuiltinExists) {
-  for (const auto& name : builtinPromptNames()) {
-    const auto t = builtinPrompts(name);
-    ASSERT_TRUE(t.has_value()) << name;
-    EXPECT_NE(t->constraint.find("{item}"), std::string::npos) << name;
-    EXPECT_NE(t->constraint.find("{theta}"), std::string::npos) << name;
-    EXPECT_NE(t->learning.find("{feedback}"), std::string::npos) << name;
-  }
-  EXPECT_FALSE(builtinPrompts("noSuchConstraint").has_value());
+TEST(Prompts, GeneratorWordsAreFramedWithEveryPlaceholder) {
+  const auto t = generatorPrompts("Would the user like this?", "Summarize what they like.");
+  EXPECT_NE(t.constraint.find("{item}"), std::string::npos);
+  EXPECT_NE(t.constraint.find("{theta}"), std::string::npos);
+  EXPECT_NE(t.constraint.find("Would the user like this?"), std::string::npos);
+  EXPECT_NE(t.learning.find("{feedback}"), std::string::npos);
+  EXPECT_NE(t.learning.find("Summarize what they like."), std::string::npos);
 }
 
 TEST(FeedbackText, ReadsPolarityWithNegation) {

@@ -6,6 +6,7 @@
 
 #include "runtime/textpref/ChatClient.h"
 #include "runtime/textpref/LlmPreferenceModel.h"
+#include "runtime/textpref/Prompts.h"
 
 #include <gtest/gtest.h>
 
@@ -48,9 +49,15 @@ struct Harness {
   }
 };
 
+// The engine's generic framing of an example question (what a `.cbtl` generator's `model text(...)` supplies).
+inline PromptTemplates examplePrompts() {
+  return generatorPrompts("How much would the user enjoy reading this book?",
+                          "From the user's reactions, describe which books they like and which they dislike.");
+}
+
 inline LlmModelOptions bookOptions() {
   LlmModelOptions o;
-  o.prompts = *builtinPrompts("userEnjoysBook");
+  o.prompts = examplePrompts();
   o.seed = 3;
   return o;
 }

@@ -11,10 +11,10 @@ TEST(TextBackend, DefaultIsTheOfflineDescriptorModel) {
   auto config = textBackendConfigFromJson(nlohmann::json::object());
   ASSERT_TRUE(config.ok());
   TextBackend backend(config.value());
-  auto model = backend.makeModel(*builtinPrompts("userEnjoysBook"));
+  auto model = backend.makeModel(examplePrompts());
   ASSERT_NE(model, nullptr);
   EXPECT_EQ(model->backendId(), "offline-descriptor-bayes-v1");
-  EXPECT_EQ(backend.makeJudge(*builtinPrompts("userEnjoysBook")), nullptr);
+  EXPECT_EQ(backend.makeJudge(examplePrompts()), nullptr);
   EXPECT_EQ(backend.cache(), nullptr);
 }
 
@@ -33,8 +33,8 @@ TEST(TextBackend, LanguageModelBackendSharesOneCacheAcrossModels) {
   std::unique_ptr<TextPreferenceModel> first, second;
   {
     TextBackend backend(config.value(), {}, h.sleeper());
-    first = backend.makeModel(*builtinPrompts("userEnjoysBook"));
-    second = backend.makeModel(*builtinPrompts("userEnjoysBook"));
+    first = backend.makeModel(examplePrompts());
+    second = backend.makeModel(examplePrompts());
   }
   // The models outlive the backend object; the client and cache stay alive with them.
   auto a = first->assess(testBook(), {});

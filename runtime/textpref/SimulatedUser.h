@@ -1,4 +1,6 @@
-// SimulatedUsers.h — the hidden preferences of the Books user and the feeding user, and the items they judge.
+// SimulatedUser.h — a simulated user with a hidden text preference, the ground truth that experiments and
+// tools compare a text-preference model against. The users themselves (their hidden texts, rules and items)
+// belong to the domains that simulate them; this is only the mechanism.
 //
 // A SimulatedUser has a hidden preference text (what an LLM judge reads as theta) and a DescriptorRule (the same
 // preference written over item descriptors). Ground truth comes from the backend in use: with a language-model
@@ -48,22 +50,5 @@ class SimulatedUser {
   DescriptorRule rule_;
   std::shared_ptr<LlmPreferenceModel> judge_;
 };
-
-// The paper's nine standard books, with author, genre and topic descriptors (title is the name).
-std::vector<Item> standardBooks();
-// The Books user: enjoys only fictional romances and grand nonfiction about the universe (of the nine standard
-// books: Cosmos and Pride and Prejudice).
-SimulatedUser booksUser();
-
-// Feeding: the dips, ready signals and verbosity settings of the paper's web study, and the five meals' foods as
-// contexts ({"food": {name}, "food-type": {...}}).
-std::vector<Item> feedingDips();
-std::vector<Item> feedingReadySignals();
-std::vector<Item> feedingVerbosityLevels();
-std::vector<Context> feedingMeals();
-// The feeding user's three preferences, one simulated user per personalized constraint.
-SimulatedUser feedingDipUser();
-SimulatedUser feedingSignalUser();
-SimulatedUser feedingVerbosityUser();
 
 }  // namespace cbtl::textpref

@@ -1,0 +1,38 @@
+// ProgramFacts.h — what a domain simulator learns from the loaded program instead of compiling it in: the scene
+// of the program's `world "..."` line (its path and, when the caller has loaded it already, the loaded scene) and
+// the program's item sets (`items name : Type { ... }`, e.g. the Books catalogue).
+//
+// The program is the single source of these facts: the app fills them from what it compiled and bound
+// (app/SimulatorFacts.h), tests from the domain's .cbtl file or an explicit scene path. A robot domain's
+// simulator throws std::invalid_argument when the facts name no scene (a configuration error, not a crash;
+// home::programScene, domains/home/HomeScene.h).
+#pragma once
+
+#include "ir/ConstraintGraph.h"
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace cbtl::world {
+class Scene;
+}
+
+namespace cbtl::domains {
+
+struct ProgramFacts {
+  std::string scenePath;                      // the program's scene file, resolved; empty: the program has none
+  std::shared_ptr<const world::Scene> scene;  // that file, loaded and shared read-only; null: load scenePath
+  std::vector<ir::ItemSet> itemSets;          // the program's item sets, in declaration order
+};
+
+// The program's item set of entries of `itemType` that comes first (the one Program::render names values by);
+// null when there is none.
+inline const ir::ItemSet* firstItemSetOfType(const ProgramFacts& facts, std::string_view itemType) {
+  for (const ir::ItemSet& set : facts.itemSets)
+    if (set.itemType == itemType) return &set;
+  return nullptr;
+}
+
+}  // namespace cbtl::domains

@@ -62,15 +62,15 @@ BooksSimulator::BooksSimulator(const sim::SimulatorOptions& options, Shared shar
 }
 
 void BooksSimulator::stockShelves(world::WorldState& state, bool mayHold) {
-  const std::vector<std::size_t> books = home::shuffledIndices(rng_, home::kBookCount);
-  const std::vector<std::size_t> slots = home::shuffledIndices(rng_, home::kBookCount);
+  const std::vector<std::size_t> books = rng_.permutation(home::kBookCount);
+  const std::vector<std::size_t> slots = rng_.permutation(home::kBookCount);
   bool holds = false;
-  if (mayHold && home::uniform01(rng_) < kHeldProbability) {
+  if (mayHold && rng_.uniform() < kHeldProbability) {
     home::holdAtHome(state, home::bookBody(books[home::kBookCount - 1]));
     holds = true;
   }
   const std::size_t most = holds ? home::kBookCount - 1 : home::kBookCount;
-  const std::size_t count = 3 + home::uniformIndex(rng_, most - 3 + 1);
+  const std::size_t count = 3 + rng_.index(most - 3 + 1);
   for (std::size_t i = 0; i < count; ++i) {
     state.objects[home::bookBody(books[i])] = scenePoses_.at(home::bookBody(slots[i]));
   }

@@ -35,8 +35,8 @@ void CleaningSimulator::reset(std::uint64_t seed) {
   rng_.seed(seed);
   world_->utterances().clear();
   world::WorldState s = home::emptyRoom(*scene_, scenePoses_);
-  const std::vector<std::size_t> books = home::shuffledIndices(rng_, home::kBookCount);
-  const double held = home::uniform01(rng_);
+  const std::vector<std::size_t> books = rng_.permutation(home::kBookCount);
+  const double held = rng_.uniform();
   if (held >= 2.0 / 3.0) {
     home::holdAtHome(s, home::bookBody(books[1]));
   } else if (held >= 1.0 / 3.0) {
@@ -48,7 +48,7 @@ void CleaningSimulator::reset(std::uint64_t seed) {
   // Surfaces in a uniform order: the first one with room for the book is covered (the main table may have
   // none while the duster lies on it).
   const std::string obstacle = home::bookBody(books[0]);
-  for (std::size_t i : home::shuffledIndices(rng_, home::kHomeSurfaces.size())) {
+  for (std::size_t i : rng_.permutation(home::kHomeSurfaces.size())) {
     const std::string covered(home::kHomeSurfaces[i].geom);
     if (const auto pose = world::builtins::samplePlacement(*world_, obstacle, covered, kObstacleClearance, rng_)) {
       world_->workspace().setObjectPose(obstacle, *pose);

@@ -93,7 +93,7 @@ CookingSimulator::CookingSimulator(const sim::SimulatorOptions& options, std::ui
 
 CookingSimulator::CookingSimulator(const sim::SimulatorOptions& options, std::shared_ptr<CookingUser> user,
                                    bool shiftsUser, std::uint64_t seed)
-    : options_(options), user_(std::move(user)), shiftsUser_(shiftsUser), shiftRng_(mixSeed(seed)) {
+    : options_(options), user_(std::move(user)), shiftsUser_(shiftsUser), shiftRng_(rt::splitMix64(seed)) {
   validate(options_);
   reset(seed);
 }
@@ -105,17 +105,17 @@ void CookingSimulator::reset(std::uint64_t seed) {
 
 void CookingSimulator::restock() {
   Stock stock{};
-  for (Ingredient ingredient : kAllIngredients) stock[indexOf(ingredient)] = uniformReal(rng_, kStockLo, kStockHi);
+  for (Ingredient ingredient : kAllIngredients) stock[indexOf(ingredient)] = rng_.uniform(kStockLo, kStockHi);
   const double p = options_.unsatisfiableStockProbability;
   // No draw at all when the option is off, so the default stream is the same as without the feature.
-  if (p > 0 && uniform01(rng_) < p) {
+  if (p > 0 && rng_.uniform() < p) {
     const std::vector<Ingredient> required = user_->requiredIngredients();
     if (!required.empty()) {
-      const Ingredient scarce = required[uniformIndex(rng_, required.size())];
+      const Ingredient scarce = required[rng_.index(required.size())];
       const double userMin = user_->quantityMin(scarce).value_or(kSpecQuantityMin);
       double q = kSpecQuantityMin;
       if (userMin > kSpecQuantityMin) {
-        q = uniformReal(rng_, kSpecQuantityMin, userMin);
+        q = rng_.uniform(kSpecQuantityMin, userMin);
         if (q >= userMin) q = std::nextafter(userMin, kSpecQuantityMin);  // u < 1, but lo + (hi-lo)*u may round up
       }
       stock[indexOf(scarce)] = q;

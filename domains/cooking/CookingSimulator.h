@@ -18,16 +18,17 @@
 // step, world unchanged) with a message. Observation: "stock[salt]", "stock[pepper]", "stock[sugar]",
 // "stock[flour]" (numbers).
 //
-// Determinism: reset(seed) reseeds the world's std::mt19937_64 and draws a fresh kitchen; all draws go through
-// CookingRandom.h. Draw order of a restock: stock of salt, pepper, sugar, flour; then, only when
-// unsatisfiableStockProbability > 0, one coin, and if it comes up, one index and one quantity.
+// Determinism: reset(seed) reseeds the world's rt::Rng (runtime/core/Rng.h) and draws a fresh kitchen. Draw
+// order of a restock: stock of salt, pepper, sugar, flour (uniform(lo, hi) each); then, only when
+// unsatisfiableStockProbability > 0, one coin (uniform() < p), and if it comes up, one index (index(n)) and one
+// quantity (uniform(lo, hi)).
 //
 // Lifetime state (not touched by reset): the user and the count of consumed steps. A constructed simulator is a
 // *training world*: when shiftEvery > 0 it shifts the user (CookingUser::shift with U[shiftLo, shiftHi]) at the
-// end of every shiftEvery-th consumed step, drawing from its own shift RNG seeded from the construction seed, so
-// the k-th shift is the same whatever the robot did. The step whose end shifts the user reports
-// preferencesChanged when announceShifts. A meal served on that step is judged before the shift; the kitchen
-// restocked after it sees the shifted user.
+// end of every shiftEvery-th consumed step, drawing from its own shift RNG seeded from the construction seed
+// (rt::splitMix64 of it), so the k-th shift is the same whatever the robot did. The step whose end shifts the
+// user reports preferencesChanged when announceShifts. A meal served on that step is judged before the shift;
+// the kitchen restocked after it sees the shifted user.
 //
 // Unsatisfiable stock (paper Table 1): after every restock, with probability p one ingredient the user requires
 // (uniform over CookingUser::requiredIngredients) gets stock U(0.9, m), m = the user's current minimum quantity
@@ -35,9 +36,9 @@
 // the stock is then set to exactly 0.9 (the least the spec allows), which may leave the user satisfiable.
 #pragma once
 
-#include "domains/cooking/CookingRandom.h"
 #include "domains/cooking/CookingUser.h"
 #include "domains/cooking/CookingWorld.h"
+#include "runtime/core/Rng.h"
 #include "runtime/sim/DomainSimulator.h"
 
 #include <cstdint>
@@ -93,8 +94,8 @@ class CookingSimulator final : public sim::DomainSimulator {
   sim::SimulatorOptions options_;
   std::shared_ptr<CookingUser> user_;
   bool shiftsUser_ = true;
-  Rng rng_;       // the world: stock, unsatisfiable picks; reseeded by reset
-  Rng shiftRng_;  // the user's shifts; seeded once at construction
+  rt::Rng rng_;       // the world: stock, unsatisfiable picks; reseeded by reset
+  rt::Rng shiftRng_;  // the user's shifts; seeded once at construction
   CookingWorld world_;
   std::int64_t steps_ = 0;
 };

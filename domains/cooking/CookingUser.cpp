@@ -128,10 +128,10 @@ void CookingUser::rescale(Ingredient ingredient, double fTemperature, double fQu
   }
 }
 
-void CookingUser::shift(Rng& rng, double lo, double hi) {
+void CookingUser::shift(rt::Rng& rng, double lo, double hi) {
   for (Ingredient ingredient : requiredIngredients()) {
-    const double fTemperature = uniformReal(rng, lo, hi);
-    const double fQuantity = uniformReal(rng, lo, hi);
+    const double fTemperature = rng.uniform(lo, hi);
+    const double fQuantity = rng.uniform(lo, hi);
     rescale(ingredient, fTemperature, fQuantity);
   }
   ++shiftCount_;

@@ -11,8 +11,8 @@
 // is known, every required ingredient is present, and every critique is good on both axes.
 #pragma once
 
-#include "domains/cooking/CookingRandom.h"
 #include "domains/cooking/Ingredient.h"
+#include "runtime/core/Rng.h"
 
 #include <map>
 #include <optional>
@@ -92,8 +92,9 @@ class CookingUser {
   // (Range::scaledAboutZero) in every meal that requires it.
   void rescale(Ingredient ingredient, double fTemperature, double fQuantity);
   // One nonstationary shift: for each required ingredient in kAllIngredients order, draws a temperature
-  // factor then a quantity factor from U[lo, hi] (one word of `rng` each) and rescales. Counts the shift.
-  void shift(Rng& rng, double lo, double hi);
+  // factor then a quantity factor from U[lo, hi] (rng.uniform(lo, hi), one word each) and rescales. Counts the
+  // shift.
+  void shift(rt::Rng& rng, double lo, double hi);
   int shiftCount() const { return shiftCount_; }
 
  private:

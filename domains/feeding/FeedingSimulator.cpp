@@ -9,7 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
+#include <mutex>
 #include <stdexcept>
 
 namespace cbtl::domains::feeding {
@@ -76,9 +76,8 @@ FeedingSimulator::FeedingSimulator(std::shared_ptr<const world::Scene> scene, st
 }
 
 world::Pose2 FeedingSimulator::randomXY(double x0, double x1, double y0, double y1) {
-  std::uniform_real_distribution<double> ux(x0, x1), uy(y0, y1);
-  const double x = ux(rng_);
-  return world::Pose2{x, uy(rng_), 0.0};
+  const double x = rng_.uniform(x0, x1);
+  return world::Pose2{x, rng_.uniform(y0, y1), 0.0};
 }
 
 void FeedingSimulator::reset(std::uint64_t seed) {
@@ -92,12 +91,12 @@ void FeedingSimulator::reset(std::uint64_t seed) {
   s.objects["plate"].position.y() = plate.y;
   world_->workspace().setState(s);
   world_->utterances().clear();
-  cycle_ = home::uniformIndex(rng_, 4);
-  food_ = kFoods[home::uniformIndex(rng_, kFoods.size())];
+  cycle_ = rng_.index(4);
+  food_ = kFoods[rng_.index(kFoods.size())];
   std::vector<std::string> dips = kDips;
-  const std::size_t first = home::uniformIndex(rng_, dips.size());
+  const std::size_t first = rng_.index(dips.size());
   std::swap(dips[0], dips[first]);
-  const std::size_t second = 1 + home::uniformIndex(rng_, dips.size() - 1);
+  const std::size_t second = 1 + rng_.index(dips.size() - 1);
   std::swap(dips[1], dips[second]);
   dips_ = {dips[0], dips[1]};
   std::sort(dips_.begin(), dips_.end());

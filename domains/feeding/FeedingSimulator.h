@@ -26,7 +26,7 @@
 // horizontally, holding the utensil) and waitForReady(signal: ReadySignal), one step each.
 // Observations: plateXY, drinkXY (vec<2>), dipsOnTable (set of Dip entries), foodOnPlate (text).
 //
-// Determinism: reset(seed) reseeds the simulator's std::mt19937_64; the episode draws, in order, the plate
+// Determinism: reset(seed) reseeds the simulator's world::Rng; the episode draws, in order, the plate
 // position, the position in the request cycle, the food, the two dips on the table (and, for a prepare
 // request, the drink position). SimulatorOptions (preference shifts, unsatisfiable stock) do not apply.
 #pragma once

@@ -4,10 +4,8 @@
 #include "robot/actions/StandardGrasps.h"
 #include "robot/world/NamedConfigurations.h"
 
-#include <algorithm>
-#include <numeric>
-#include <random>
 #include <stdexcept>
+#include <string>
 
 namespace cbtl::domains::home {
 
@@ -34,20 +32,6 @@ void holdAtHome(world::WorldState& state, const std::string& object) {
   state.gripper = 0.0;
   const world::Pose3 toolInBody = object == "duster" ? actions::dusterToolInBody() : actions::bookToolInBody();
   state.held = world::Grasp{object, toolInBody.inverse()};
-}
-
-std::size_t uniformIndex(world::Rng& rng, std::size_t n) {
-  return std::uniform_int_distribution<std::size_t>(0, n - 1)(rng);
-}
-
-double uniform01(world::Rng& rng) { return std::uniform_real_distribution<double>(0.0, 1.0)(rng); }
-
-std::vector<std::size_t> shuffledIndices(world::Rng& rng, std::size_t n) {
-  std::vector<std::size_t> v(n);
-  std::iota(v.begin(), v.end(), std::size_t{0});
-  // Fisher-Yates with our own index draws (std::shuffle's algorithm is unspecified).
-  for (std::size_t i = n; i > 1; --i) std::swap(v[i - 1], v[uniformIndex(rng, i)]);
-  return v;
 }
 
 }  // namespace cbtl::domains::home

@@ -4,7 +4,7 @@
 // initial configuration (initialArm(): home.xml's conf_homeSceneInitial), the gripper open, the duster on
 // the main table where home.xml puts it, and every book parked outside the room (HomeScene.h parkedPose(k)
 // for book_k); the domain then puts books on surfaces and may put an object in the robot's hand.
-// Random draws use std::uniform_*_distribution over world::Rng (one platform's results are reproducible).
+// The domains' random draws are world::Rng's (rt::Rng: index, uniform, permutation; runtime/core/Rng.h).
 #pragma once
 
 #include "robot/world/WorldOperations.h"
@@ -12,7 +12,6 @@
 #include <cstddef>
 #include <map>
 #include <string>
-#include <vector>
 
 namespace cbtl::domains::home {
 
@@ -31,9 +30,5 @@ world::WorldState emptyRoom(const world::Scene& scene, const std::map<std::strin
 // Puts `object` in the robot's hand in `state`: arm at configs::kHome, gripper closed, grasped with the
 // duster's standard grasp or, for any other object, the book carry grasp (StandardGrasps.h).
 void holdAtHome(world::WorldState& state, const std::string& object);
-
-std::size_t uniformIndex(world::Rng& rng, std::size_t n);                  // uniform in [0, n); n > 0
-double uniform01(world::Rng& rng);                                         // uniform in [0, 1)
-std::vector<std::size_t> shuffledIndices(world::Rng& rng, std::size_t n);  // a uniform permutation of 0..n-1
 
 }  // namespace cbtl::domains::home

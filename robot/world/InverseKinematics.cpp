@@ -22,10 +22,7 @@ const char* toString(IkStatus s) {
 
 ArmConfig randomConfig(const Scene& scene, Rng& rng) {
   ArmConfig q{};
-  for (int i = 0; i < kArmDof; ++i) {
-    std::uniform_real_distribution<double> u(scene.armLower(i), scene.armUpper(i));
-    q[i] = u(rng);
-  }
+  for (int i = 0; i < kArmDof; ++i) q[i] = rng.uniform(scene.armLower(i), scene.armUpper(i));
   return q;
 }
 

@@ -79,10 +79,8 @@ void shortcutPath(const JointSpace& space, std::vector<Waypoint>& path, double r
   greedyPass(space, path, resolution, valid, checks);
   for (int a = 0; a < attempts && path.size() >= 2; ++a) {
     const std::size_t segments = path.size() - 1;
-    std::uniform_int_distribution<std::size_t> pick(0, segments - 1);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    std::size_t s1 = pick(rng), s2 = pick(rng);
-    double t1 = u(rng), t2 = u(rng);
+    std::size_t s1 = rng.index(segments), s2 = rng.index(segments);
+    double t1 = rng.uniform(), t2 = rng.uniform();
     if (s1 > s2 || (s1 == s2 && t1 > t2)) {
       std::swap(s1, s2);
       std::swap(t1, t2);

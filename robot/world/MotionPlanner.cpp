@@ -42,8 +42,8 @@ const char* toString(PlanStatus s) {
 
 namespace {
 
-// OMPL's process-wide set-up: a fixed global seed before any OMPL random generator exists (our samplers
-// draw from the caller's Rng, so the value only pins down OMPL internals), and warnings-only logging.
+// OMPL's process-wide set-up: a fixed global seed before any OMPL random generator exists (nothing on our
+// path draws from OMPL's generators, see MotionPlanner.h; the seed is a safeguard), and warnings-only logging.
 void initialiseOmpl() {
   static std::once_flag once;
   std::call_once(once, [] {
@@ -109,13 +109,12 @@ class SeededSampler : public ob::StateSampler {
   }
   void sampleGaussian(ob::State* state, const ob::State* mean, double stdDev) override {
     Waypoint w = toWaypoint(dims_, mean);
-    std::normal_distribution<double> n(0.0, stdDev);
-    for (std::size_t i = 0; i < dims_.size(); ++i) w[i] = clampDim(i, w[i] + n(rng_));
+    for (std::size_t i = 0; i < dims_.size(); ++i) w[i] = clampDim(i, w[i] + rng_.normal(0.0, stdDev));
     fromWaypoint(dims_, w, state);
   }
 
  private:
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+  double uniform(double lo, double hi) { return rng_.uniform(lo, hi); }
   double clampDim(std::size_t i, double v) const {
     return dims_[i].circular ? wrapAngle(v) : std::clamp(v, dims_[i].lo, dims_[i].hi);
   }
@@ -198,7 +197,7 @@ GenericResult planGeneric(const std::vector<Dim>& dims, const ValidityFn& valid,
   }
 
   auto space = makeSpace(dims);
-  const std::uint64_t samplerSeed = rng();
+  const std::uint64_t samplerSeed = rng.next();
   space->setStateSamplerAllocator([dims, samplerSeed](const ob::StateSpace* s) -> ob::StateSamplerPtr {
     return std::make_shared<SeededSampler>(s, dims, samplerSeed);
   });

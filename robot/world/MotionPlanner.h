@@ -6,9 +6,16 @@
 // joints. Every edge, including shortcuts, is checked at `resolution` (L∞: rad for joints, m/rad for the
 // base). States are valid when the robot (and held object) is collision-free (Collision.h) and joints are
 // within limits.
-// Determinism: every random choice comes from the Rng passed in (OMPL's samplers are replaced by samplers
-// over that Rng; nearest-neighbour search is exhaustive). OMPL's global seed is set once per process
-// before any planner exists, and OMPL logging is reduced to warnings.
+// Determinism: a plan depends only on its inputs and the state of the Rng passed in, never on what the
+// process planned before. Every random choice comes from that Rng: each planning call draws one word from it
+// to seed the state sampler that replaces OMPL's (all sampler instances of one call share that seed; uniform,
+// near and Gaussian draws are rt::Rng's), and shortcutting draws from the Rng itself. OMPL's own generators
+// (ompl::RNG members of StateSampler and RRTConnect, each seeded from OMPL's process-wide seed sequence, so
+// dependent on how many were created before) are never drawn from on this path: the samplers are ours,
+// RRTConnect draws only through its sampler, a single goal state is copied rather than sampled, and
+// nearest-neighbour search is exhaustive (NearestNeighborsLinear; GNAT would draw from OMPL's RNG). OMPL's
+// process-wide seed is still fixed (1, once, before any planner exists) so that a future OMPL version that
+// does draw internally is at least repeatable per process; OMPL logging is reduced to warnings.
 // Budgets are RRTConnect iterations, never wall-clock time.
 // Thread safety: the planner functions use only the Workspace passed in; call them concurrently with
 // one Workspace per thread.

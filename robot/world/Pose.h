@@ -5,17 +5,19 @@
 // radians about world z). ArmConfig holds the seven Gen3 joint angles q1..q7 in radians.
 #pragma once
 
+#include "runtime/core/Rng.h"
+
 #include <Eigen/Geometry>
 
 #include <array>
 #include <cstdint>
-#include <random>
 
 namespace cbtl::world {
 
-// The one random engine type of the robot world. Every random choice draws from an engine the caller
-// passes in, so the same seed reproduces the same result.
-using Rng = std::mt19937_64;
+// The robot world draws from the project's one generator (runtime/core/Rng.h: its draws are the same with
+// every standard library). Every random choice draws from an Rng the caller passes in, so the same seed
+// reproduces the same result.
+using Rng = rt::Rng;
 
 inline constexpr int kArmDof = 7;
 using ArmConfig = std::array<double, kArmDof>;

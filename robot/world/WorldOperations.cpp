@@ -104,17 +104,17 @@ std::optional<Pose3> samplePlacement(World& w, const std::string& object, const 
   const auto face = surfaceFace(w.workspace(), surface);
   const auto box = w.clearance().objectBox(object);
   if (!face || !box) return std::nullopt;
-  std::uniform_real_distribution<double> yawDist(-std::numbers::pi, std::numbers::pi);
   for (int i = 0; i < tries; ++i) {
-    const double yaw = yawDist(rng);
+    const double yaw = rng.uniform(-std::numbers::pi, std::numbers::pi);
     const double c = std::abs(std::cos(yaw)), s = std::abs(std::sin(yaw));
     const double fx = c * box->halfExtents.x() + s * box->halfExtents.y();
     const double fy = s * box->halfExtents.x() + c * box->halfExtents.y();
     if (fx > face->halfX || fy > face->halfY) continue;
-    std::uniform_real_distribution<double> ux(face->center.x() - face->halfX + fx, face->center.x() + face->halfX - fx);
-    std::uniform_real_distribution<double> uy(face->center.y() - face->halfY + fy, face->center.y() + face->halfY - fy);
+    // x before y, in separate statements (the order of evaluation of function arguments is unspecified).
+    const double x = rng.uniform(face->center.x() - face->halfX + fx, face->center.x() + face->halfX - fx);
+    const double y = rng.uniform(face->center.y() - face->halfY + fy, face->center.y() + face->halfY - fy);
     const Eigen::Quaterniond q(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
-    const Eigen::Vector3d boxCenter(ux(rng), uy(rng), face->center.z() + box->halfExtents.z());
+    const Eigen::Vector3d boxCenter(x, y, face->center.z() + box->halfExtents.z());
     const Pose3 pose{boxCenter - q * box->center, q};
     if (placementClear(w, object, pose, clearance)) return pose;
   }

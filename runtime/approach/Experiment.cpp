@@ -53,11 +53,9 @@ std::uint64_t evaluationTaskSeed(std::uint64_t seed, int task) {
 }
 
 std::uint64_t deriveSeed(std::uint64_t seed, std::uint64_t stream) {
-  // splitmix64 of the pair: well-mixed, independent streams from one run seed.
-  std::uint64_t z = seed + 0x9E3779B97F4A7C15ull * (stream + 1);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
+  // SplitMix64 at the stream's position in the sequence started at `seed`: well-mixed, independent streams
+  // from one run seed (stream 0 is splitMix64(seed)).
+  return rt::splitMix64(seed + 0x9E3779B97F4A7C15ull * stream);
 }
 
 namespace {

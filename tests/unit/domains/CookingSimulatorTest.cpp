@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
 #include <set>
 #include <stdexcept>
 
@@ -292,7 +293,7 @@ TEST(CookingSimulator, SameSeedSameStock) {
   EXPECT_EQ(a.world().stock(), b.world().stock());
   EXPECT_NE(a.world().stock(), c.world().stock());
   // The stock is the documented draw: U(10, 20) from the raw mt19937_64 words, salt first.
-  Rng raw(42);
+  std::mt19937_64 raw(42);
   for (Ingredient i : kAllIngredients) {
     EXPECT_EQ(a.world().stock(i), 10.0 + 10.0 * (static_cast<double>(raw() >> 11) * 0x1.0p-53));
   }

@@ -85,12 +85,12 @@ TEST(CookingUser, RangeScaling) {
 
 TEST(CookingUser, ShiftDrawsOneFactorPerIngredientPerAttribute) {
   CookingUser u = CookingUser::paperDefault();
-  Rng rng(3);
-  Rng replay(3);
+  cbtl::rt::Rng rng(3);
+  cbtl::rt::Rng replay(3);
   u.shift(rng, 0.9, 1.1);
   EXPECT_EQ(u.shiftCount(), 1);
   for (Ingredient i : {Ingredient::Salt, Ingredient::Pepper}) {
-    const double fT = uniformReal(replay, 0.9, 1.1), fQ = uniformReal(replay, 0.9, 1.1);
+    const double fT = replay.uniform(0.9, 1.1), fQ = replay.uniform(0.9, 1.1);
     const IngredientTaste& t = seasoningTaste(u, i);
     EXPECT_DOUBLE_EQ(t.temperature.centre(), 3.0 * fT);
     EXPECT_NEAR(t.temperature.halfWidth(), 0.2, 1e-12);

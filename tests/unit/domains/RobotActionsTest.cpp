@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <numbers>
+#include <random>
 
 namespace {
 
@@ -46,7 +47,7 @@ class RobotActionsTest : public ::testing::Test {
   }
 
   world::World w;
-  world::Rng rng;
+  world::Rng rng{std::mt19937_64::default_seed};  // the stream these tests were written with
   RobotActions actions;
 };
 

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 namespace {
 
 namespace actions = cbtl::actions;
@@ -42,7 +44,7 @@ class WipeSweepTest : public ::testing::Test {
   }
 
   world::World w;
-  world::Rng rng;
+  world::Rng rng{std::mt19937_64::default_seed};  // the stream these tests were written with
   actions::RobotActions actions;
 };
 

@@ -5,6 +5,8 @@
 #include "robot/world/MotionPlanner.h"
 #include "tests/unit/world/WorldTestSupport.h"
 
+#include <utility>
+
 namespace cbtl::world {
 namespace {
 
@@ -38,6 +40,18 @@ void expectPathFree(Workspace& ws, const std::vector<ArmConfig>& path, double sp
     const auto r = checkArm(ws, dense[i]);
     ASSERT_TRUE(r.free()) << "waypoint " << i << ": " << r.first << " / " << r.second;
   }
+}
+
+// A valid pair whose straight segment is blocked, so that planning must run RRTConnect.
+std::pair<ArmConfig, ArmConfig> blockedPair(Workspace& ws, Rng& rng) {
+  ArmConfig a, b;
+  do {
+    do a = randomConfig(ws.scene(), rng);
+    while (!checkArm(ws, a).free());
+    do b = randomConfig(ws.scene(), rng);
+    while (!checkArm(ws, b).free());
+  } while (armSegmentFree(ws, a, b, 0.005));
+  return {a, b};
 }
 
 TEST(WorldPlanner, RetractToAbovePlate) {
@@ -84,26 +98,29 @@ TEST(WorldPlanner, TinyBudgetIsExhausted) {
   Rng rng(2);
   PlanOptions o;
   o.maxIterations = 0;
-  // A valid pair whose straight segment is blocked, so that RRTConnect must run.
-  ArmConfig a, b;
-  do {
-    do a = randomConfig(ws.scene(), rng);
-    while (!checkArm(ws, a).free());
-    do b = randomConfig(ws.scene(), rng);
-    while (!checkArm(ws, b).free());
-  } while (armSegmentFree(ws, a, b, 0.005));
+  const auto [a, b] = blockedPair(ws, rng);
   const ArmPlan plan = planArm(ws, a, b, rng, o);
   EXPECT_EQ(plan.status, PlanStatus::BudgetExhausted);
   EXPECT_TRUE(plan.path.empty());
 }
 
 TEST(WorldPlanner, SameSeedSamePath) {
+  // The plan depends only on the Rng, not on what the process planned before (OMPL creates generators of
+  // its own, seeded from a process-wide sequence, and the planner never draws from them).
   Workspace ws(test::feedingScene());
-  Rng a(77), b(77);
-  const ArmPlan p1 = planArm(ws, configs::kRetract, test::feedingConf("abovePlate"), a);
-  const ArmPlan p2 = planArm(ws, configs::kRetract, test::feedingConf("abovePlate"), b);
+  Rng pairs(4);
+  const auto [start, goal] = blockedPair(ws, pairs);
+  Rng a(77), b(77), other(78);
+  const ArmPlan p1 = planArm(ws, start, goal, a);
   ASSERT_TRUE(p1.solved());
+  EXPECT_GT(p1.iterations, 0);
+  const ArmPlan between = planArm(ws, start, goal, other);
+  const ArmPlan p2 = planArm(ws, start, goal, b);
   EXPECT_EQ(p1.path, p2.path);
+  EXPECT_EQ(p1.iterations, p2.iterations);
+  EXPECT_EQ(a.next(), b.next());  // both consumed the same number of words
+  ASSERT_TRUE(between.solved());
+  EXPECT_NE(between.path, p1.path);  // the seed matters
 }
 
 TEST(WorldPlanner, BaseAroundTheTableInTheHomeScene) {

@@ -23,20 +23,83 @@ struct Span {
   std::uint32_t line = 0, column = 0, endLine = 0, endColumn = 0;
 };
 
+// The discriminators below are enums; their names (as `cbtlc emit` prints them and a graph reader parses
+// them) live in one table, ir/OpNames.h.
+
+// What a type is. Error: a type the checker could not determine.
+enum class TypeKind : std::uint8_t {
+  Error,
+  Real,
+  Int,
+  Bool,
+  Text,
+  Enum,
+  Item,
+  Vec,
+  SE2,
+  SE3,
+  Conf,
+  Set,
+  Tuple,
+  Range,
+  Void
+};
+
 // Types as canonical spellings ("real", "vec<2>", "Conf<gen3>", "set<Book>", "Dip"), plus the kind.
 struct TypeDesc {
-  std::string kind;  // real|int|bool|text|enum|item|vec|SE2|SE3|Conf|set|tuple|range|void
+  TypeKind kind = TypeKind::Void;
   std::string spelling;
 };
 
-// Expression trees. `op` names the node:
-//   num, str, bool, var (var id), obs (observation name; index child for families), const (name),
-//   enum (type + member), item (set + entry), param (index), local (binder name), call (callee, args),
-//   member (field), index, neg, not, + - * / % ^ == != < <= > >= and or => <=>, range, in,
-//   forall/exists (binder names; children: set, where-or-null-as-"true", body), if, tuple, list,
-//   family (family name + var ids of all members; child: index expression).
+// The node kinds of an expression tree, and which Expr fields each one uses (names in ir/OpNames.h).
+// Keep Invalid last: ir/OpNames.cpp checks its table against it.
+enum class Op : std::uint8_t {
+  Num,      // number; text: its spelling as written (empty for computed numbers)
+  Str,      // text: the string
+  Bool,     // number: 1 or 0
+  Var,      // id: the variable; text: its name
+  Obs,      // text: the observation; a family's: one child, the index
+  Const,    // text: the constant; a family's: one child, the index
+  Enum,     // extra: the enum type, text: the member
+  Item,     // extra: the item set, text: the entry
+  EnumSet,  // text: an enum type used as the set of its members
+  ItemSet,  // text: an item set used as the set of its entries
+  Param,    // id: the generator or function parameter's index; text: its name
+  Local,    // text: a quantifier's or loop's binder
+  Family,   // text: the variable family; vars: all its members; one child, the index
+  Call,     // text: the callee (a built-in or user function); children: the arguments
+  Member,   // text: the field; one child, the base
+  Index,    // children: the base, then the indices
+  Neg,      // one child
+  Not,      // one child
+  Add,      // Add .. Iff: the binary operators, two children
+  Sub,
+  Mul,
+  Div,
+  Mod,
+  Pow,
+  Eq,
+  Ne,
+  Lt,
+  Le,
+  Gt,
+  Ge,
+  And,
+  Or,
+  Implies,
+  Iff,
+  Range,    // children: lo, hi
+  In,       // children: the element, the set
+  Forall,   // names: the binders; children: the set, the `where` (Bool true when absent), the body
+  Exists,   // as Forall
+  If,       // children: condition, then, else
+  Tuple,    // children: the elements
+  List,     // children: the elements
+  Invalid,  // a name the compiler could not lower (text: the name)
+};
+
 struct Expr {
-  std::string op;
+  Op op = Op::Invalid;
   TypeDesc type;
   double number = 0;
   std::string text;                // str value, names, member, callee
@@ -101,24 +164,32 @@ struct Param {
   TypeDesc type;
 };
 
+enum class PatternKind : std::uint8_t { Glob, Regex };
+
 struct Pattern {
   std::string param;
   std::uint32_t paramIndex = 0;
-  std::string kind;  // glob | regex
+  PatternKind kind = PatternKind::Glob;
   std::string text;
   Span span;
 };
 
+enum class FactorKind : std::uint8_t { Interval, Threshold, Table, Text };
+// None: the factor is not a threshold (printed as the empty name).
+enum class ThresholdDirection : std::uint8_t { None, Above, Below };
+enum class TextScale : std::uint8_t { Absolute, Relative };
+enum class TextRating : std::uint8_t { Digits, Options };
+
 struct ModelFactor {
-  std::string label;                // factor name (defaults to the kind, numbered if repeated)
-  std::string kind;                 // interval | threshold | table | text
-  std::optional<Expr> feature;      // interval/threshold feature; table key; text subject
-  double lo = 0, hi = 0;            // interval/threshold prior bounds
-  std::string direction;            // threshold: above | below
-  std::string prompt, learning;     // text
-  std::string scale = "absolute";   // text: relative | absolute
-  std::string rating = "digits";    // text: digits | options
-  std::vector<std::string> params;  // generator parameters the factor reads
+  std::string label;  // factor name (defaults to the kind, numbered if repeated)
+  FactorKind kind = FactorKind::Interval;
+  std::optional<Expr> feature;                              // interval/threshold feature; table key; text subject
+  double lo = 0, hi = 0;                                    // interval/threshold prior bounds
+  ThresholdDirection direction = ThresholdDirection::None;  // threshold: Above | Below
+  std::string prompt, learning;                             // text
+  TextScale scale = TextScale::Absolute;                    // text
+  TextRating rating = TextRating::Digits;                   // text
+  std::vector<std::string> params;                          // generator parameters the factor reads
   Span span;
 };
 
@@ -150,8 +221,10 @@ struct Generator {
   Span span;
 };
 
+enum class ActionKind : std::uint8_t { Call, For, If, Block };
+
 struct Action {
-  std::string kind;  // call | for | if | block
+  ActionKind kind = ActionKind::Block;
   std::string name;
   std::vector<Expr> args;
   std::vector<std::string> binders;
@@ -224,9 +297,12 @@ struct Observation {
   Span span;
 };
 
+// Feedback: an event declaration (ConstraintGraph::feedback), not callable.
+enum class FunctionKind : std::uint8_t { Function, Sampler, Action, Feedback };
+
 struct Function {
   std::string name;
-  std::string kind;  // function | sampler | action
+  FunctionKind kind = FunctionKind::Function;
   bool isExtern = true;
   std::vector<std::string> typeParams;
   std::vector<Param> params;
@@ -249,7 +325,7 @@ struct ConstraintGraph {
   std::vector<ItemSet> itemSets;
   std::vector<Constant> constants;
   std::vector<Observation> observations;
-  std::vector<Function> feedback;  // kind "feedback": events with parameters
+  std::vector<Function> feedback;  // kind Feedback: events with parameters
   std::vector<Function> functions;
   std::vector<Variable> variables;
   std::vector<Constraint> constraints;

@@ -1,5 +1,7 @@
 #include "ir/GraphPrinter.h"
 
+#include "ir/OpNames.h"
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -23,8 +25,8 @@ json spanJson(const Span& s) {
 }
 
 json exprJson(const Expr& e) {
-  json j{{"op", e.op}, {"type", e.type.spelling}};
-  if (e.op == "num" || e.op == "bool") j["value"] = e.number;
+  json j{{"op", name(e.op)}, {"type", e.type.spelling}};
+  if (e.op == Op::Num || e.op == Op::Bool) j["value"] = e.number;
   if (!e.text.empty()) j["text"] = e.text;
   if (!e.extra.empty()) j["extra"] = e.extra;
   if (e.id >= 0) j["id"] = e.id;
@@ -41,7 +43,7 @@ json exprJson(const Expr& e) {
 json optExpr(const std::optional<Expr>& e) { return e ? exprJson(*e) : json(nullptr); }
 
 json actionJson(const Action& a) {
-  json j{{"kind", a.kind}, {"span", spanJson(a.span)}};
+  json j{{"kind", name(a.kind)}, {"span", spanJson(a.span)}};
   if (!a.name.empty()) j["name"] = a.name;
   if (!a.args.empty()) {
     json args = json::array();
@@ -64,14 +66,11 @@ json actionJson(const Action& a) {
   return j;
 }
 
-const char* infix(const std::string& op) {
-  static const char* ops[] = {"+",  "-", "*",  "/",   "%",  "^",  "==",  "!=", "<",
-                              "<=", ">", ">=", "and", "or", "=>", "<=>", "in", ".."};
-  for (const char* o : ops) {
-    if (op == o) return o;
-  }
-  if (op == "range") return "..";
-  return nullptr;
+// The spelling of an operator written between its two operands, or empty.
+std::string_view infix(Op op) {
+  if (isBinary(op) || op == Op::In) return name(op);
+  if (op == Op::Range) return "..";
+  return {};
 }
 
 std::string varName(VarId id, const ConstraintGraph& g) {
@@ -86,43 +85,64 @@ std::string exprText(const Expr& e, const ConstraintGraph& g) {
     for (std::size_t i = 0; i < e.children.size(); ++i) s += (i ? sep : "") + exprText(e.children[i], g);
     return s;
   };
-  if (e.op == "num") return e.text.empty() ? num(e.number) : e.text;
-  if (e.op == "str") return nlohmann::json(e.text).dump();
-  if (e.op == "bool") return e.number != 0 ? "true" : "false";
-  if (e.op == "var") return varName(static_cast<VarId>(e.id), g);
-  if (e.op == "enum" || e.op == "item") return e.extra + "." + e.text;
-  if (e.op == "param") return fmt::format("${}", e.text);
-  if (e.op == "local" || e.op == "enumset" || e.op == "itemset") return e.text;
-  if (e.op == "const" || e.op == "obs" || e.op == "family") {
-    return e.children.empty() ? e.text : fmt::format("{}[{}]", e.text, kids(", "));
+  switch (e.op) {
+    case Op::Num:
+      return e.text.empty() ? num(e.number) : e.text;
+    case Op::Str:
+      return nlohmann::json(e.text).dump();
+    case Op::Bool:
+      return e.number != 0 ? "true" : "false";
+    case Op::Var:
+      return varName(static_cast<VarId>(e.id), g);
+    case Op::Enum:
+    case Op::Item:
+      return e.extra + "." + e.text;
+    case Op::Param:
+      return fmt::format("${}", e.text);
+    case Op::Local:
+    case Op::EnumSet:
+    case Op::ItemSet:
+      return e.text;
+    case Op::Const:
+    case Op::Obs:
+    case Op::Family:
+      return e.children.empty() ? e.text : fmt::format("{}[{}]", e.text, kids(", "));
+    case Op::Call:
+      return fmt::format("{}({})", e.text, kids(", "));
+    case Op::Member:
+      return fmt::format("{}.{}", exprText(e.children[0], g), e.text);
+    case Op::Index: {
+      std::string s = exprText(e.children[0], g) + "[";
+      for (std::size_t i = 1; i < e.children.size(); ++i) s += (i > 1 ? ", " : "") + exprText(e.children[i], g);
+      return s + "]";
+    }
+    case Op::Neg:
+      return "-" + exprText(e.children[0], g);
+    case Op::Not:
+      return "not " + exprText(e.children[0], g);
+    case Op::Forall:
+    case Op::Exists: {
+      std::string names;
+      for (std::size_t i = 0; i < e.names.size(); ++i) names += (i ? ", " : "") + e.names[i];
+      std::string where =
+          e.children[1].op == Op::Bool && e.children[1].number != 0 ? "" : " where " + exprText(e.children[1], g);
+      return fmt::format("({} {} in {}{}: {})", name(e.op), names, exprText(e.children[0], g), where,
+                         exprText(e.children[2], g));
+    }
+    case Op::If:
+      return fmt::format("(if {} then {} else {})", exprText(e.children[0], g), exprText(e.children[1], g),
+                         exprText(e.children[2], g));
+    case Op::Tuple:
+      return "(" + kids(", ") + ")";
+    case Op::List:
+      return "[" + kids(", ") + "]";
+    default:
+      break;
   }
-  if (e.op == "call") return fmt::format("{}({})", e.text, kids(", "));
-  if (e.op == "member") return fmt::format("{}.{}", exprText(e.children[0], g), e.text);
-  if (e.op == "index") {
-    std::string s = exprText(e.children[0], g) + "[";
-    for (std::size_t i = 1; i < e.children.size(); ++i) s += (i > 1 ? ", " : "") + exprText(e.children[i], g);
-    return s + "]";
-  }
-  if (e.op == "neg") return "-" + exprText(e.children[0], g);
-  if (e.op == "not") return "not " + exprText(e.children[0], g);
-  if (e.op == "forall" || e.op == "exists") {
-    std::string names;
-    for (std::size_t i = 0; i < e.names.size(); ++i) names += (i ? ", " : "") + e.names[i];
-    std::string where =
-        e.children[1].op == "bool" && e.children[1].number != 0 ? "" : " where " + exprText(e.children[1], g);
-    return fmt::format("({} {} in {}{}: {})", e.op, names, exprText(e.children[0], g), where,
-                       exprText(e.children[2], g));
-  }
-  if (e.op == "if") {
-    return fmt::format("(if {} then {} else {})", exprText(e.children[0], g), exprText(e.children[1], g),
-                       exprText(e.children[2], g));
-  }
-  if (e.op == "tuple") return "(" + kids(", ") + ")";
-  if (e.op == "list") return "[" + kids(", ") + "]";
-  if (const char* op = infix(e.op); op != nullptr && e.children.size() == 2) {
+  if (const std::string_view op = infix(e.op); !op.empty() && e.children.size() == 2) {
     return fmt::format("({} {} {})", exprText(e.children[0], g), op, exprText(e.children[1], g));
   }
-  return fmt::format("<{}>", e.op);
+  return fmt::format("<{}>", name(e.op));
 }
 
 std::string toText(const ConstraintGraph& g) {
@@ -173,16 +193,17 @@ std::string toText(const ConstraintGraph& g) {
       o << (i ? ", " : "") << gen.params[i].name << ": " << gen.params[i].type.spelling;
     o << ")\n";
     for (const auto& p : gen.patterns)
-      o << fmt::format("  when {} ~ {} {}\n", p.param, p.kind, nlohmann::json(p.text).dump());
+      o << fmt::format("  when {} ~ {} {}\n", p.param, name(p.kind), nlohmann::json(p.text).dump());
     for (const auto& f : gen.factors) {
-      o << "  model " << f.label << " = " << f.kind;
+      o << "  model " << f.label << " = " << name(f.kind);
       if (f.feature) o << "(" << exprText(*f.feature, g);
-      if (f.kind == "interval" || f.kind == "threshold") o << ", " << num(f.lo) << " .. " << num(f.hi);
-      if (!f.direction.empty()) o << ", " << f.direction;
-      if (f.kind == "text") {
+      if (f.kind == FactorKind::Interval || f.kind == FactorKind::Threshold)
+        o << ", " << num(f.lo) << " .. " << num(f.hi);
+      if (f.direction != ThresholdDirection::None) o << ", " << name(f.direction);
+      if (f.kind == FactorKind::Text) {
         if (!f.prompt.empty()) o << ", prompt " << nlohmann::json(f.prompt).dump();
         if (!f.learning.empty()) o << ", learning " << nlohmann::json(f.learning).dump();
-        o << ", scale " << f.scale << ", rating " << f.rating;
+        o << ", scale " << name(f.scale) << ", rating " << name(f.rating);
       }
       o << ")\n";
     }
@@ -260,10 +281,8 @@ std::string toJson(const ConstraintGraph& g) {
   auto functionJson = [](const Function& f) {
     json params = json::array();
     for (const auto& p : f.params) params.push_back({{"name", p.name}, {"type", p.type.spelling}});
-    json fn{{"name", f.name},          {"kind", f.kind},
-            {"extern", f.isExtern},    {"type_params", f.typeParams},
-            {"params", params},        {"result", f.result.spelling},
-            {"span", spanJson(f.span)}};
+    json fn{{"name", f.name},   {"kind", name(f.kind)},        {"extern", f.isExtern},    {"type_params", f.typeParams},
+            {"params", params}, {"result", f.result.spelling}, {"span", spanJson(f.span)}};
     if (f.body) fn["body"] = exprJson(*f.body);
     return fn;
   };
@@ -278,7 +297,7 @@ std::string toJson(const ConstraintGraph& g) {
     j["variables"].push_back({{"id", v.id},
                               {"name", v.name},
                               {"type", v.type.spelling},
-                              {"kind", v.type.kind},
+                              {"kind", name(v.type.kind)},
                               {"bounds", bounds},
                               {"set", optExpr(v.domain.set)},
                               {"init", optExpr(v.init)},
@@ -320,21 +339,21 @@ std::string toJson(const ConstraintGraph& g) {
     for (const auto& p : gen.patterns) {
       patterns.push_back({{"param", p.param},
                           {"param_index", p.paramIndex},
-                          {"kind", p.kind},
+                          {"kind", name(p.kind)},
                           {"text", p.text},
                           {"span", spanJson(p.span)}});
     }
     for (const auto& f : gen.factors) {
       factors.push_back({{"label", f.label},
-                         {"kind", f.kind},
+                         {"kind", name(f.kind)},
                          {"feature", optExpr(f.feature)},
                          {"lo", f.lo},
                          {"hi", f.hi},
-                         {"direction", f.direction},
+                         {"direction", name(f.direction)},
                          {"prompt", f.prompt},
                          {"learning", f.learning},
-                         {"scale", f.scale},
-                         {"rating", f.rating},
+                         {"scale", name(f.scale)},
+                         {"rating", name(f.rating)},
                          {"params", f.params},
                          {"span", spanJson(f.span)}});
     }

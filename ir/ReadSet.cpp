@@ -6,9 +6,9 @@ namespace cbtl::ir {
 namespace {
 
 void walk(const ConstraintGraph& graph, const Expr& e, std::set<VarId>& out, std::set<std::string>& entered) {
-  if (e.op == "var" && e.id >= 0) out.insert(static_cast<VarId>(e.id));
+  if (e.op == Op::Var && e.id >= 0) out.insert(static_cast<VarId>(e.id));
   for (VarId v : e.vars) out.insert(v);
-  if (e.op == "call" && entered.insert(e.text).second) {
+  if (e.op == Op::Call && entered.insert(e.text).second) {
     for (const auto& f : graph.functions) {
       if (f.name == e.text && !f.isExtern && f.body) walk(graph, *f.body, out, entered);
     }

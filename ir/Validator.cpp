@@ -29,7 +29,7 @@ std::vector<std::string> validate(const ConstraintGraph& g) {
           fmt::format("constraint {}: hyperedge differs from the variables its expression reads", c.name));
     }
     if (c.span.line == 0) problems.push_back(fmt::format("constraint {} has no span", c.name));
-    if (c.expr.type.kind != "bool" && c.expr.type.kind != "error") {
+    if (c.expr.type.kind != TypeKind::Bool && c.expr.type.kind != TypeKind::Error) {
       problems.push_back(fmt::format("constraint {} is {}, not bool", c.name, c.expr.type.spelling));
     }
   }
@@ -80,8 +80,8 @@ std::vector<std::string> validate(const ConstraintGraph& g) {
     for (const auto& p : gen.patterns) {
       std::string error;
       std::size_t at = 0;
-      const bool ok =
-          p.kind == "glob" ? parseGlob(p.text, error, at).has_value() : compileRegex(p.text, error).has_value();
+      const bool ok = p.kind == PatternKind::Glob ? parseGlob(p.text, error, at).has_value()
+                                                  : compileRegex(p.text, error).has_value();
       if (!ok)
         problems.push_back(fmt::format("generator {}: pattern {} does not compile: {}", gen.name, p.text, error));
       if (p.paramIndex >= gen.params.size())

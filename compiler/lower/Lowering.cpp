@@ -4,6 +4,7 @@
 #include "compiler/sema/GeneratorChecker.h"
 #include "compiler/sema/Type.h"
 #include "compiler/sema/TypeChecker.h"
+#include "ir/OpNames.h"
 #include "ir/Pattern.h"
 #include "ir/ReadSet.h"
 
@@ -27,10 +28,51 @@ struct CVal {
 };
 
 ir::TypeDesc typeDesc(const Type* t) {
-  if (t == nullptr) return {"void", "void"};
-  static const char* kinds[] = {"error", "real", "int",  "bool", "text",  "enum",  "item", "vec",
-                                "SE2",   "SE3",  "Conf", "set",  "tuple", "range", "void"};
+  if (t == nullptr) return {ir::TypeKind::Void, "void"};
+  // In TypeKind's order.
+  static const ir::TypeKind kinds[] = {ir::TypeKind::Error, ir::TypeKind::Real,  ir::TypeKind::Int,  ir::TypeKind::Bool,
+                                       ir::TypeKind::Text,  ir::TypeKind::Enum,  ir::TypeKind::Item, ir::TypeKind::Vec,
+                                       ir::TypeKind::SE2,   ir::TypeKind::SE3,   ir::TypeKind::Conf, ir::TypeKind::Set,
+                                       ir::TypeKind::Tuple, ir::TypeKind::Range, ir::TypeKind::Void};
   return {kinds[static_cast<int>(t->kind)], t->spelling};
+}
+
+ir::Op irOp(BinaryOp op) {
+  switch (op) {
+    case BinaryOp::Add:
+      return ir::Op::Add;
+    case BinaryOp::Sub:
+      return ir::Op::Sub;
+    case BinaryOp::Mul:
+      return ir::Op::Mul;
+    case BinaryOp::Div:
+      return ir::Op::Div;
+    case BinaryOp::Mod:
+      return ir::Op::Mod;
+    case BinaryOp::Pow:
+      return ir::Op::Pow;
+    case BinaryOp::Eq:
+      return ir::Op::Eq;
+    case BinaryOp::Ne:
+      return ir::Op::Ne;
+    case BinaryOp::Lt:
+      return ir::Op::Lt;
+    case BinaryOp::Le:
+      return ir::Op::Le;
+    case BinaryOp::Gt:
+      return ir::Op::Gt;
+    case BinaryOp::Ge:
+      return ir::Op::Ge;
+    case BinaryOp::And:
+      return ir::Op::And;
+    case BinaryOp::Or:
+      return ir::Op::Or;
+    case BinaryOp::Implies:
+      return ir::Op::Implies;
+    case BinaryOp::Iff:
+      return ir::Op::Iff;
+  }
+  return ir::Op::Invalid;
 }
 
 class Lowerer {
@@ -298,18 +340,18 @@ class Lowerer {
     ir::Expr x;
     x.type = typeDesc(t);
     if (v.kind == CVal::Kind::Int) {
-      x.op = "num";
+      x.op = ir::Op::Num;
       x.number = static_cast<double>(v.number);
       x.text = v.text;
     } else if (v.kind == CVal::Kind::Enum) {
-      x.op = "enum";
+      x.op = ir::Op::Enum;
       x.extra = v.decl->name.name;
       x.text = v.text;
     } else if (v.kind == CVal::Kind::Text) {
-      x.op = "str";
+      x.op = ir::Op::Str;
       x.text = v.text;
     } else {
-      x.op = "item";
+      x.op = ir::Op::Item;
       x.extra = v.decl->name.name;
       x.text = v.text;
     }
@@ -321,37 +363,37 @@ class Lowerer {
   ir::Expr lower(const Expr* e, Ctx& ctx) {
     ir::Expr x;
     if (e == nullptr) {
-      x.op = "bool";
+      x.op = ir::Op::Bool;
       x.number = 1;
-      x.type = {"bool", "bool"};
+      x.type = {ir::TypeKind::Bool, "bool"};
       return x;
     }
     x.type = typeDesc(e->type);
     switch (e->kind) {
       case ExprKind::Number:
-        x.op = "num";
+        x.op = ir::Op::Num;
         x.number = e->number;
         x.text = e->text;
         return x;
       case ExprKind::String:
-        x.op = "str";
+        x.op = ir::Op::Str;
         x.text = e->text;
         return x;
       case ExprKind::Bool:
-        x.op = "bool";
+        x.op = ir::Op::Bool;
         x.number = e->boolean ? 1 : 0;
         return x;
       case ExprKind::Name:
       case ExprKind::Member:
         if (e->kind == ExprKind::Member && e->ref.kind != RefKind::EnumMember && e->ref.kind != RefKind::ItemEntry) {
-          x.op = "member";
+          x.op = ir::Op::Member;
           x.text = e->text;
           x.children.push_back(lower(e->operands[0].get(), ctx));
           return x;
         }
         return lowerName(*e, ctx, x);
       case ExprKind::Call: {
-        x.op = "call";
+        x.op = ir::Op::Call;
         x.text = e->operands[0]->text;
         const auto* callee = static_cast<const CallableDecl*>(e->ref.decl);
         for (const auto* a : orderedArgs(callee, e->args)) x.children.push_back(lower(a->value.get(), ctx));
@@ -363,27 +405,27 @@ class Lowerer {
                                              base->ref.kind == RefKind::Observation)) {
           return lowerFamilyIndex(*e, ctx, x);
         }
-        x.op = "index";
+        x.op = ir::Op::Index;
         for (const auto& op : e->operands) x.children.push_back(lower(op.get(), ctx));
         return x;
       }
       case ExprKind::Unary:
-        x.op = e->unaryOp == UnaryOp::Neg ? "neg" : "not";
+        x.op = e->unaryOp == UnaryOp::Neg ? ir::Op::Neg : ir::Op::Not;
         x.children.push_back(lower(e->operands[0].get(), ctx));
         return x;
       case ExprKind::Binary:
-        x.op = toString(e->binaryOp);
+        x.op = irOp(e->binaryOp);
         x.children.push_back(lower(e->operands[0].get(), ctx));
         x.children.push_back(lower(e->operands[1].get(), ctx));
         return x;
       case ExprKind::Range:
       case ExprKind::In:
-        x.op = e->kind == ExprKind::Range ? "range" : "in";
+        x.op = e->kind == ExprKind::Range ? ir::Op::Range : ir::Op::In;
         x.children.push_back(lower(e->operands[0].get(), ctx));
         x.children.push_back(lower(e->operands[1].get(), ctx));
         return x;
       case ExprKind::Quantifier: {
-        x.op = e->quant == QuantKind::Forall ? "forall" : "exists";
+        x.op = e->quant == QuantKind::Forall ? ir::Op::Forall : ir::Op::Exists;
         for (const auto& n : e->binder->names) x.names.push_back(n->name.name);
         x.children.push_back(lower(e->binder->set.get(), ctx));
         x.children.push_back(lower(e->operands[0].get(), ctx));
@@ -391,12 +433,12 @@ class Lowerer {
         return x;
       }
       case ExprKind::If:
-        x.op = "if";
+        x.op = ir::Op::If;
         for (const auto& op : e->operands) x.children.push_back(lower(op.get(), ctx));
         return x;
       case ExprKind::Tuple:
       case ExprKind::List:
-        x.op = e->kind == ExprKind::Tuple ? "tuple" : "list";
+        x.op = e->kind == ExprKind::Tuple ? ir::Op::Tuple : ir::Op::List;
         for (const auto& op : e->operands) x.children.push_back(lower(op.get(), ctx));
         return x;
     }
@@ -428,7 +470,7 @@ class Lowerer {
     const NameRef& r = e.ref;
     switch (r.kind) {
       case RefKind::Variable: {
-        x.op = "var";
+        x.op = ir::Op::Var;
         x.text = e.text;
         x.id = varId(r.decl, "", ctx);
         return x;
@@ -439,14 +481,14 @@ class Lowerer {
           x = *ctx.skillParams[r.index];
           return x;
         }
-        x.op = "param";
+        x.op = ir::Op::Param;
         x.id = r.index;
         x.text = e.text;
         return x;
       }
       case RefKind::Const: {
         const auto* c = static_cast<const ConstDecl*>(r.decl);
-        x.op = "const";
+        x.op = ir::Op::Const;
         x.text = c->name.name;
         return x;
       }
@@ -469,15 +511,15 @@ class Lowerer {
         return x;
       }
       case RefKind::EnumType:
-        x.op = "enumset";
+        x.op = ir::Op::EnumSet;
         x.text = r.decl->name.name;
         return x;
       case RefKind::ItemSet:
-        x.op = "itemset";
+        x.op = ir::Op::ItemSet;
         x.text = r.decl->name.name;
         return x;
       case RefKind::Observation:
-        x.op = "obs";
+        x.op = ir::Op::Obs;
         x.text = r.decl->name.name;
         return x;
       case RefKind::Binder: {
@@ -486,17 +528,17 @@ class Lowerer {
           x = constNode(it->second, e.type);
           return x;
         }
-        x.op = "local";
+        x.op = ir::Op::Local;
         x.text = e.text;
         return x;
       }
       case RefKind::Builtin:
-        x.op = "num";
+        x.op = ir::Op::Num;
         x.number = M_PI;
         x.text = "pi";
         return x;
       default:
-        x.op = "invalid";
+        x.op = ir::Op::Invalid;
         x.text = e.text;
         return x;
     }
@@ -513,19 +555,19 @@ class Lowerer {
       if (v) {
         auto it = members.find(v->text);
         if (it != members.end()) {
-          x.op = "var";
+          x.op = ir::Op::Var;
           x.text = fmt::format("{}[{}]", base->text, v->text);
           x.id = it->second;
           return x;
         }
       }
-      x.op = "family";
+      x.op = ir::Op::Family;
       x.text = base->text;
       for (const auto& [k, id] : members) x.vars.push_back(id);
       x.children.push_back(lower(index, ctx));
       return x;
     }
-    x.op = base->ref.kind == RefKind::Const ? "const" : "obs";
+    x.op = base->ref.kind == RefKind::Const ? ir::Op::Const : ir::Op::Obs;
     x.text = base->text;
     x.children.push_back(lower(index, ctx));
     return x;
@@ -568,7 +610,7 @@ class Lowerer {
   }
 
   static void collectVars(const ir::Expr& x, std::set<ir::VarId>& out) {
-    if (x.op == "var" && x.id >= 0) out.insert(static_cast<ir::VarId>(x.id));
+    if (x.op == ir::Op::Var && x.id >= 0) out.insert(static_cast<ir::VarId>(x.id));
     for (ir::VarId v : x.vars) out.insert(v);
     for (const auto& c : x.children) collectVars(c, out);
   }
@@ -670,7 +712,7 @@ class Lowerer {
       case DeclKind::Feedback: {
         ir::Function f;
         f.name = d.name.name;
-        f.kind = "feedback";
+        f.kind = ir::FunctionKind::Feedback;
         for (const auto& p : static_cast<const FeedbackDecl&>(d).params)
           f.params.push_back({p.name.name, typeDesc(p.type.resolved)});
         f.span = span(d.range);
@@ -683,11 +725,13 @@ class Lowerer {
         const auto& c = static_cast<const CallableDecl&>(d);
         ir::Function f;
         f.name = c.name.name;
-        f.kind = d.kind == DeclKind::Function ? "function" : d.kind == DeclKind::Sampler ? "sampler" : "action";
+        f.kind = d.kind == DeclKind::Function  ? ir::FunctionKind::Function
+                 : d.kind == DeclKind::Sampler ? ir::FunctionKind::Sampler
+                                               : ir::FunctionKind::Action;
         f.isExtern = c.isExtern;
         for (const auto& tp : c.typeParams) f.typeParams.push_back(tp.name);
         for (const auto& p : c.params) f.params.push_back({p.name.name, typeDesc(p.type.resolved)});
-        f.result = c.result ? typeDesc(c.result->resolved) : ir::TypeDesc{"void", "void"};
+        f.result = c.result ? typeDesc(c.result->resolved) : ir::TypeDesc{ir::TypeKind::Void, "void"};
         // The body is lowered once the global variables exist (lowerFunctionBodies): it may read them.
         if (c.body) pendingBodies_.emplace_back(g_.functions.size(), &c);
         f.span = span(d.range);
@@ -740,7 +784,7 @@ class Lowerer {
 
   void reportEmptyRange(const VarDecl& v, const ir::Domain& d) {
     for (const auto& b : d.bounds) {
-      if (b.lo && b.hi && b.lo->op == "num" && b.hi->op == "num" && b.lo->number > b.hi->number) {
+      if (b.lo && b.hi && b.lo->op == ir::Op::Num && b.hi->op == ir::Op::Num && b.lo->number > b.hi->number) {
         diags_.error("E0311", v.domain->range,
                      fmt::format("the domain of '{}' is empty: {} > {}", v.name.name, b.lo->number, b.hi->number));
       }
@@ -805,7 +849,7 @@ class Lowerer {
   }
 
   static bool readsObservation(const ir::Expr& e) {
-    if (e.op == "obs") return true;
+    if (e.op == ir::Op::Obs) return true;
     for (const auto& c : e.children)
       if (readsObservation(c)) return true;
     return false;
@@ -814,22 +858,22 @@ class Lowerer {
   // `var in set` or, with a field, `var.field in set` (set: a range or a set expression).
   static ir::Expr domainTest(const ir::Variable& var, const std::optional<std::string>& field, ir::Expr set) {
     ir::Expr ref;
-    ref.op = "var";
+    ref.op = ir::Op::Var;
     ref.type = var.type;
     ref.text = var.name;
     ref.id = static_cast<std::int64_t>(var.id);
     if (field) {
       ir::Expr member;
-      member.op = "member";
-      member.type.kind = "real";
+      member.op = ir::Op::Member;
+      member.type.kind = ir::TypeKind::Real;
       member.type.spelling = "real";
       member.text = *field;
       member.children.push_back(std::move(ref));
       ref = std::move(member);
     }
     ir::Expr in;
-    in.op = "in";
-    in.type.kind = "bool";
+    in.op = ir::Op::In;
+    in.type.kind = ir::TypeKind::Bool;
     in.type.spelling = "bool";
     in.children.push_back(std::move(ref));
     in.children.push_back(std::move(set));
@@ -879,8 +923,8 @@ class Lowerer {
               lowerRequire(r, ctx, out, base, cond->operands[1].get(), s, total);
             } else {
               ir::Expr imp;
-              imp.op = "=>";
-              imp.type = {"bool", "bool"};
+              imp.op = ir::Op::Implies;
+              imp.type = {ir::TypeKind::Bool, "bool"};
               imp.children.push_back(lower(where, ctx));
               imp.children.push_back(lower(cond->operands[1].get(), ctx));
               out.push_back(addConstraint(base + s, std::move(imp), ctx.scope, r.range));
@@ -965,21 +1009,21 @@ class Lowerer {
     // (`= plateXY`) may lie outside the declared domain, while the solver tries the initial values first.
     for (std::size_t i = firstVar; i < vars.size(); ++i) {
       const ir::Variable& var = g_.variables[vars[i]];
-      const bool observedSet = var.domain.set && var.domain.set->op == "obs";
+      const bool observedSet = var.domain.set && var.domain.set->op == ir::Op::Obs;
       const bool observedInit = var.init && readsObservation(*var.init);
       std::optional<ir::Expr> cond;
       if (observedSet || (observedInit && var.domain.set)) {
         cond = domainTest(var, std::nullopt, *var.domain.set);
       } else if (observedInit && !var.domain.bounds.empty()) {
         static const std::vector<std::string> kVec = {"x", "y", "z"}, kSe2 = {"x", "y", "yaw"};
-        const std::vector<std::string>& fields = var.type.kind == "SE2" ? kSe2 : kVec;
+        const std::vector<std::string>& fields = var.type.kind == ir::TypeKind::SE2 ? kSe2 : kVec;
         for (std::size_t c = 0; c < var.domain.bounds.size(); ++c) {
           const ir::Bound& b = var.domain.bounds[c];
           if (!b.lo || !b.hi) continue;  // a one-sided bound cannot be written as a range test
           if (var.domain.bounds.size() > 1 && c >= fields.size()) break;
           ir::Expr range;
-          range.op = "range";
-          range.type.kind = "range";
+          range.op = ir::Op::Range;
+          range.type.kind = ir::TypeKind::Range;
           range.type.spelling = "range";
           range.children = {*b.lo, *b.hi};
           std::optional<std::string> field;
@@ -989,7 +1033,7 @@ class Lowerer {
             cond = std::move(test);
           } else {
             ir::Expr both;
-            both.op = "and";
+            both.op = ir::Op::And;
             both.type = test.type;
             both.children.push_back(std::move(*cond));
             both.children.push_back(std::move(test));
@@ -1036,7 +1080,7 @@ class Lowerer {
     a.span = span(s.range);
     switch (s.kind) {
       case ActionStmtKind::Call: {
-        a.kind = "call";
+        a.kind = ir::ActionKind::Call;
         a.name = s.callee.name;
         const auto* callee =
             s.calleeRef.kind == RefKind::Action ? static_cast<const CallableDecl*>(s.calleeRef.decl) : nullptr;
@@ -1044,19 +1088,19 @@ class Lowerer {
         break;
       }
       case ActionStmtKind::For:
-        a.kind = "for";
+        a.kind = ir::ActionKind::For;
         for (const auto& n : s.forBinder->names) a.binders.push_back(n->name.name);
         a.set = lower(s.forBinder->set.get(), ctx);
         for (const auto& b : s.body) a.body.push_back(lowerAction(*b, ctx));
         break;
       case ActionStmtKind::If:
-        a.kind = "if";
+        a.kind = ir::ActionKind::If;
         a.condition = lower(s.condition.get(), ctx);
         for (const auto& b : s.body) a.body.push_back(lowerAction(*b, ctx));
         for (const auto& b : s.elseBody) a.elseBody.push_back(lowerAction(*b, ctx));
         break;
       case ActionStmtKind::Block:
-        a.kind = "block";
+        a.kind = ir::ActionKind::Block;
         for (const auto& b : s.body) a.body.push_back(lowerAction(*b, ctx));
         break;
     }
@@ -1088,7 +1132,7 @@ class Lowerer {
       sctx.skill = inst.skillDecl;
       for (const auto& a : inst.args) {
         ir::Expr x = lower(a.value.get(), ctx);
-        if (x.op == "var") si.params.push_back(static_cast<ir::VarId>(x.id));
+        if (x.op == ir::Op::Var) si.params.push_back(static_cast<ir::VarId>(x.id));
         sctx.skillParams.push_back(std::move(x));
       }
       std::vector<ir::VarId> vars;
@@ -1125,7 +1169,8 @@ class Lowerer {
     for (const auto& prm : p.params) g.params.push_back({prm.name.name, typeDesc(prm.type.resolved)});
     for (const auto& pat : p.patterns) {
       g.patterns.push_back({pat.param.name, static_cast<std::uint32_t>(std::max(0, pat.paramIndex)),
-                            pat.kind == PatternKind::Glob ? "glob" : "regex", pat.pattern, span(pat.patternRange)});
+                            pat.kind == PatternKind::Glob ? ir::PatternKind::Glob : ir::PatternKind::Regex, pat.pattern,
+                            span(pat.patternRange)});
     }
     for (const auto& c : p.captures) g.captures.push_back(c.name);
     for (const auto& k : p.perKeys) g.perKeys.push_back(k.name);
@@ -1133,7 +1178,8 @@ class Lowerer {
     for (const auto& f : p.factors) {
       ir::ModelFactor mf;
       mf.label = generatorFactorName(p, f);
-      mf.kind = f.kind.name;
+      // The generator checker accepts only the kinds, directions, scales and ratings OpNames spells.
+      mf.kind = ir::factorKindFromName(f.kind.name).value_or(ir::FactorKind::Interval);
       mf.span = span(f.range);
       std::vector<const Arg*> positional;
       for (const auto& a : f.args) {
@@ -1144,9 +1190,9 @@ class Lowerer {
         else if (a.name.name == "learning")
           mf.learning = a.value->text;
         else if (a.name.name == "scale")
-          mf.scale = a.value->text;
+          mf.scale = ir::textScaleFromName(a.value->text).value_or(ir::TextScale::Absolute);
         else if (a.name.name == "rating")
-          mf.rating = a.value->text;
+          mf.rating = ir::textRatingFromName(a.value->text).value_or(ir::TextRating::Digits);
       }
       if (!positional.empty()) {
         mf.feature = lower(positional[0]->value.get(), none);
@@ -1156,7 +1202,9 @@ class Lowerer {
         mf.lo = constNumber(positional[1]->value->operands[0].get());
         mf.hi = constNumber(positional[1]->value->operands[1].get());
       }
-      if (positional.size() >= 3) mf.direction = positional[2]->value->text;
+      if (positional.size() >= 3)
+        mf.direction =
+            ir::thresholdDirectionFromName(positional[2]->value->text).value_or(ir::ThresholdDirection::None);
       g.factors.push_back(std::move(mf));
     }
     for (const auto& c : p.guards) {
@@ -1165,7 +1213,7 @@ class Lowerer {
         g.guard = std::move(e);
       } else {
         ir::Expr both;
-        both.op = "and";
+        both.op = ir::Op::And;
         both.type = e.type;
         both.children.push_back(std::move(*g.guard));
         both.children.push_back(std::move(e));

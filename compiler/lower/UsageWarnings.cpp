@@ -32,8 +32,8 @@ void matchedByGenerators(const ir::ConstraintGraph& g, std::set<ir::VarId>& out)
       std::optional<std::regex> re;
       std::string error;
       std::size_t at = 0;
-      if (pat != nullptr && pat->kind == "glob") glob = parseGlob(pat->text, error, at);
-      if (pat != nullptr && pat->kind == "regex") re = compileRegex(pat->text, error);
+      if (pat != nullptr && pat->kind == ir::PatternKind::Glob) glob = parseGlob(pat->text, error, at);
+      if (pat != nullptr && pat->kind == ir::PatternKind::Regex) re = compileRegex(pat->text, error);
       for (const auto& v : g.variables) {
         if (v.type.spelling != gen.params[i].type.spelling) continue;
         std::map<std::string, std::string> bindings;
@@ -48,8 +48,9 @@ void matchedByGenerators(const ir::ConstraintGraph& g, std::set<ir::VarId>& out)
 // True when the solver can draw a value for the variable without a sampler: finite types, Conf<R> (joint
 // limits), and any variable whose declaration bounds every component or lists its values.
 bool hasBoundedDomain(const ir::Variable& v) {
-  const std::string& k = v.type.kind;
-  if (k == "bool" || k == "enum" || k == "item" || k == "Conf") return true;
+  const ir::TypeKind k = v.type.kind;
+  if (k == ir::TypeKind::Bool || k == ir::TypeKind::Enum || k == ir::TypeKind::Item || k == ir::TypeKind::Conf)
+    return true;
   if (v.domain.set) return true;
   if (v.domain.bounds.empty()) return false;
   for (const auto& b : v.domain.bounds) {

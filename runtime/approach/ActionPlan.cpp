@@ -1,6 +1,7 @@
 #include "runtime/approach/ActionPlan.h"
 
 #include "runtime/approach/ValueBridge.h"
+#include "runtime/core/ProgramCompiler.h"
 
 #include <fmt/format.h>
 
@@ -12,7 +13,8 @@ namespace {
 
 struct Compiler {
   rt::Program& program;
-  rt::Program::Scope scope;
+  rt::ProgramCompiler expressions;
+  rt::ProgramCompiler::Scope scope;
   std::uint32_t top = 0;
 
   CompiledAction compile(const ir::Action& a) {
@@ -20,29 +22,30 @@ struct Compiler {
     c.kind = a.kind;
     c.name = a.name;
     const std::string at = rt::Program::where(a.span);
-    if (a.kind == "call") {
+    if (a.kind == ir::ActionKind::Call) {
       const ir::Function* f = nullptr;
       for (const auto& fn : program.graph().functions) {
         if (fn.name == a.name) f = &fn;
       }
-      if (f == nullptr || f->kind != "action") throw rt::RuntimeError(at, fmt::format("'{}' is not an action", a.name));
+      if (f == nullptr || f->kind != ir::FunctionKind::Action)
+        throw rt::RuntimeError(at, fmt::format("'{}' is not an action", a.name));
       for (std::size_t i = 0; i < a.args.size(); ++i) {
-        c.args.push_back(program.compile(a.args[i], scope));
+        c.args.push_back(expressions.compile(a.args[i], scope));
         c.argTypes.push_back(program.typeOf(a.args[i].type));
       }
       return c;
     }
-    if (a.kind == "for") {
+    if (a.kind == ir::ActionKind::For) {
       if (a.binders.size() != 1 || !a.set) throw rt::RuntimeError(at, "a 'for' in a skill takes one binder and a set");
       c.binderSlot = top++;
       const ir::Expr& set = *a.set;
-      if (set.op == "range") {
-        c.lo = program.compile(set.children[0], scope);
-        c.hi = program.compile(set.children[1], scope);
-      } else if (set.op == "enumset") {
+      if (set.op == ir::Op::Range) {
+        c.lo = expressions.compile(set.children[0], scope);
+        c.hi = expressions.compile(set.children[1], scope);
+      } else if (set.op == ir::Op::EnumSet) {
         const auto* e = program.findEnum(set.text);
         c.memberCount = e ? static_cast<std::uint32_t>(e->members.size()) : 0;
-      } else if (set.op == "itemset") {
+      } else if (set.op == ir::Op::ItemSet) {
         const auto* s = program.findItemSet(set.text);
         c.memberCount = s ? static_cast<std::uint32_t>(s->entries.size()) : 0;
       } else {
@@ -54,7 +57,7 @@ struct Compiler {
       scope.locals = saved;
       return c;
     }
-    if (a.kind == "if" && a.condition) c.condition = program.compile(*a.condition, scope);
+    if (a.kind == ir::ActionKind::If && a.condition) c.condition = expressions.compile(*a.condition, scope);
     for (const auto& b : a.body) c.body.push_back(compile(b));
     for (const auto& b : a.elseBody) c.elseBody.push_back(compile(b));
     return c;
@@ -68,7 +71,7 @@ void run(const rt::Program& program, const std::vector<CompiledAction>& actions,
   const auto& pool = program.pool();
   for (const auto& a : actions) {
     if (out.size() >= kMaxCalls) return;
-    if (a.kind == "call") {
+    if (a.kind == ir::ActionKind::Call) {
       sim::ActionCall call;
       call.name = a.name;
       double v[rt::kMaxValueWidth];
@@ -77,7 +80,7 @@ void run(const rt::Program& program, const std::vector<CompiledAction>& actions,
         call.args.push_back(toSimValue(program, a.argTypes[i], v));
       }
       out.push_back(std::move(call));
-    } else if (a.kind == "for") {
+    } else if (a.kind == ir::ActionKind::For) {
       double lo = 0, hi = static_cast<double>(a.memberCount) - 1;
       if (a.lo) {
         lo = pool.evalScalar(*a.lo, ctx);
@@ -89,7 +92,7 @@ void run(const rt::Program& program, const std::vector<CompiledAction>& actions,
         ctx.frame[a.binderSlot] = i;
         run(program, a.body, ctx, out);
       }
-    } else if (a.kind == "if") {
+    } else if (a.kind == ir::ActionKind::If) {
       run(program, (!a.condition || pool.evalBool(*a.condition, ctx)) ? a.body : a.elseBody, ctx, out);
     } else {
       run(program, a.body, ctx, out);
@@ -100,7 +103,7 @@ void run(const rt::Program& program, const std::vector<CompiledAction>& actions,
 }  // namespace
 
 TaskActions::TaskActions(rt::Program& program, const ir::Task& task) {
-  Compiler c{program, {}, 0};
+  Compiler c{program, rt::ProgramCompiler(program), {}, 0};
   c.scope.frameTop = &c.top;
   for (const auto& inst : task.instances) {
     for (const auto& a : inst.actions) actions_.push_back(c.compile(a));

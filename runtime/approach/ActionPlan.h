@@ -14,7 +14,7 @@
 namespace cbtl::approach {
 
 struct CompiledAction {
-  std::string kind;  // call | for | if | block
+  ir::ActionKind kind = ir::ActionKind::Block;
   std::string name;
   std::vector<std::uint32_t> args;
   std::vector<rt::ValueType> argTypes;

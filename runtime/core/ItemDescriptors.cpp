@@ -17,15 +17,16 @@ const std::vector<textpref::Item>* findIn(const std::map<std::string, std::vecto
 }  // namespace
 
 std::vector<std::string> ItemDescriptors::fieldStrings(const ir::Expr& value, const RenderConstant& renderOther) {
-  const std::string& op = value.op;
-  if (op == "str" || op == "enum" || op == "item") return {value.text};
-  if (op == "bool") return {value.number != 0 ? "true" : "false"};
-  if (op == "num") {
+  const ir::Op op = value.op;
+  if (op == ir::Op::Str || op == ir::Op::Enum || op == ir::Op::Item) return {value.text};
+  if (op == ir::Op::Bool) return {value.number != 0 ? "true" : "false"};
+  if (op == ir::Op::Num) {
     // The same spelling Program::render gives the value at run time.
-    if (value.type.kind == "int") return {fmt::format("{}", static_cast<long long>(std::llround(value.number)))};
+    if (value.type.kind == ir::TypeKind::Int)
+      return {fmt::format("{}", static_cast<long long>(std::llround(value.number)))};
     return {fmt::format("{:.6g}", value.number)};
   }
-  if (op == "list") {
+  if (op == ir::Op::List) {
     std::vector<std::string> out;
     for (const auto& element : value.children) {
       auto strings = fieldStrings(element, renderOther);
@@ -40,9 +41,9 @@ std::vector<std::string> ItemDescriptors::fieldStrings(const ir::Expr& value, co
 ItemDescriptors::ItemDescriptors(const ir::ConstraintGraph& graph, const RenderConstant& renderOther) {
   for (const auto& g : graph.generators) {
     for (const auto& f : g.factors) {
-      if (f.kind != "text" || !f.feature) continue;
+      if (f.kind != ir::FactorKind::Text || !f.feature) continue;
       const ir::TypeDesc& t = f.feature->type;
-      if (t.kind == "enum" && !enums_.count(t.spelling)) {
+      if (t.kind == ir::TypeKind::Enum && !enums_.count(t.spelling)) {
         std::vector<textpref::Item> items;
         for (const auto& e : graph.enums) {
           if (e.name != t.spelling) continue;
@@ -50,7 +51,7 @@ ItemDescriptors::ItemDescriptors(const ir::ConstraintGraph& graph, const RenderC
           break;
         }
         enums_.emplace(t.spelling, std::move(items));
-      } else if (t.kind == "item" && !itemTypes_.count(t.spelling)) {
+      } else if (t.kind == ir::TypeKind::Item && !itemTypes_.count(t.spelling)) {
         std::vector<textpref::Item> items;
         for (const auto& set : graph.itemSets) {
           if (set.itemType != t.spelling) continue;

@@ -1,5 +1,7 @@
 #include "runtime/core/Personalization.h"
 
+#include "runtime/core/ProgramCompiler.h"
+
 #include "ir/Pattern.h"
 
 #include <fmt/format.h>
@@ -31,7 +33,7 @@ std::vector<PersonalInstance> personalize(Program& program, const ir::Task& task
       if (p.paramIndex >= arity) continue;
       std::string error;
       std::size_t at = 0;
-      if (p.kind == "regex") {
+      if (p.kind == ir::PatternKind::Regex) {
         auto re = compileRegex(p.text, error);
         if (!re) throw RuntimeError(Program::where(p.span), "bad pattern: " + error);
         matchers[p.paramIndex].regexes.push_back(*re);
@@ -84,22 +86,23 @@ std::vector<PersonalInstance> personalize(Program& program, const ir::Task& task
     if (arity > 0) extend(0);
   }
   // Compile each instance's guard, features and model key against its own variables.
+  ProgramCompiler compiler(program);
   for (auto& inst : out) {
     const ir::Generator& g = graph.generators[inst.generator];
-    Program::Scope scope;
+    ProgramCompiler::Scope scope;
     std::uint32_t top = 0;
     scope.frameTop = &top;
     for (std::size_t k = 0; k < inst.vars.size(); ++k) {
       ir::Expr read;
-      read.op = "var";
+      read.op = ir::Op::Var;
       read.id = inst.vars[k];
       read.type = graph.variables.at(inst.vars[k]).type;
       read.text = graph.variables.at(inst.vars[k]).name;
-      scope.params.push_back(program.compile(read, scope));
+      scope.params.push_back(compiler.compile(read, scope));
     }
-    if (g.guard) inst.guard = program.compile(*g.guard, scope);
+    if (g.guard) inst.guard = compiler.compile(*g.guard, scope);
     for (const auto& f : g.factors) {
-      inst.features.push_back(f.feature ? program.compile(*f.feature, scope) : UINT32_MAX);
+      inst.features.push_back(f.feature ? compiler.compile(*f.feature, scope) : UINT32_MAX);
       inst.featureTypes.push_back(f.feature ? program.typeOf(f.feature->type) : ValueType{});
     }
     for (const auto& keyName : g.perKeys) {

@@ -1,9 +1,10 @@
 // Program.h — a constraint graph prepared for execution: the value layout of every variable and
-// observation, interned strings, and every constraint, sampler, cost and generator expression compiled
-// once into an ExprPool.
+// observation, interned strings, type facts, and every constraint, sampler, cost and generator expression
+// compiled once into an ExprPool (by runtime/core/ProgramCompiler.h).
 //
 // Built once per graph; read-only afterwards, so any number of solvers may share it. Everything the solve
-// loop touches is an index or an offset.
+// loop touches is an index or an offset. Expressions compiled later (personalized instances, actions) go
+// through a ProgramCompiler over the same program before it is shared.
 #pragma once
 
 #include "runtime/core/Builtins.h"
@@ -113,8 +114,8 @@ class Program {
   const std::vector<CompiledGenerator>& generators() const { return generators_; }
   const std::vector<std::uint32_t>& costs() const { return costs_; }
   // Frame slots any expression compiled so far may touch (quantifier binders, event arguments): an
-  // EvalContext's frame must hold at least this many. Grows when more expressions are compiled
-  // (personalized instances, actions), so read it after preparing everything.
+  // EvalContext's frame must hold at least this many. Grows when a ProgramCompiler compiles more
+  // expressions (personalized instances, actions), so read it after preparing everything.
   std::size_t frameSize() const { return frameSize_; }
   // The widest sampler output and argument list of the program: the solver's buffers for a draw.
   std::size_t maxSamplerOutWidth() const { return maxSamplerOut_; }
@@ -133,17 +134,12 @@ class Program {
   const ir::ItemSet* findItemSetOfType(const std::string& itemType) const;
   const ir::ItemSet* findItemSet(const std::string& name) const;
   const ir::Task* findTask(const std::string& name) const;
-
-  // Compiles an expression. `params` maps a generator parameter index to a node that yields it (instance
-  // variables or frame reads); `locals` maps binder names to frame offsets (extended as binders appear).
-  struct Scope {
-    std::vector<std::uint32_t> params;
-    std::map<std::string, std::uint32_t> locals;
-    std::uint32_t* frameTop = nullptr;  // next free frame slot; binders allocate from here
-  };
-  // Throws RuntimeError (located) for a value wider than kMaxValueWidth or a call whose arguments exceed
-  // kMaxCallArgsWidth.
-  std::uint32_t compile(const ir::Expr& e, Scope& scope);
+  const ir::Constant* findConstant(const std::string& name) const;
+  const ir::Function* findFunction(const std::string& name) const;
+  const ir::Observation* findObservation(const std::string& name) const;
+  // The index of an enum member or item entry (`typeName`: the enum, the item set or the item type);
+  // nullopt when it is not one.
+  std::optional<double> memberIndex(const std::string& typeName, const std::string& member) const;
 
   // Renders a value (width doubles) for people: enum member names, strings, vectors "(x, y)".
   std::string render(const ValueType& t, const double* v) const;
@@ -154,23 +150,11 @@ class Program {
   static std::string where(const ir::Span& s);
 
  private:
+  // The compiler appends to pool_ and grows frameSize_; everything else it reads through the accessors.
+  friend class ProgramCompiler;
+
   void layoutVariables();
   void layoutObservations();
-  void compileInitialValues();
-  void compileConstraints();
-  void compileDomainChecks();
-  void compileSamplers();
-  void compileGenerators();
-  std::uint32_t compileExpr(const ir::Expr& e, Scope& scope);
-  std::uint32_t constNode(std::vector<double> values, std::uint16_t width);
-  std::uint32_t compileConstRef(const ir::Expr& e, Scope& scope);
-  std::uint32_t compileCall(const ir::Expr& e, Scope& scope);
-  std::uint32_t compileQuantifier(const ir::Expr& e, Scope& scope, std::size_t binder);
-  std::uint32_t compileIn(const ir::Expr& e, Scope& scope);
-  std::vector<double> constantValue(const ir::Expr& e);
-  std::vector<std::string> constantStrings(const ir::Expr& e);
-  std::vector<double> setMembers(const ir::Expr& set, ValueType& elem, Scope& scope);
-  double memberIndex(const std::string& typeName, const std::string& member) const;
 
   const ir::ConstraintGraph& graph_;
   Builtins builtins_;
@@ -190,8 +174,6 @@ class Program {
   ItemDescriptors itemDescriptors_;
   std::map<std::string, const ir::Constant*> constants_;
   std::map<std::string, const ir::Function*> functions_;
-  const ir::Span* currentSpan_ = nullptr;
-  int inlineDepth_ = 0;
   std::size_t frameSize_ = 1;
   std::size_t maxSamplerOut_ = 0, maxSamplerArgs_ = 0;
 };

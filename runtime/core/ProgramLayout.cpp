@@ -96,53 +96,69 @@ const ir::Task* Program::findTask(const std::string& name) const {
 
 ValueType Program::typeOf(const ir::TypeDesc& t) const {
   ValueType v;
-  const std::string& k = t.kind;
-  if (k == "real")
-    v.kind = ValueKind::Real;
-  else if (k == "int")
-    v.kind = ValueKind::Int;
-  else if (k == "bool")
-    v.kind = ValueKind::Bool;
-  else if (k == "text")
-    v.kind = ValueKind::Text;
-  else if (k == "enum") {
-    v.kind = ValueKind::Enum;
-    v.typeName = t.spelling;
-  } else if (k == "item") {
-    v.kind = ValueKind::Item;
-    v.typeName = t.spelling;
-  } else if (k == "vec") {
-    v.kind = ValueKind::Vec;
-    const int n = angleParam(t.spelling);
-    v.width = static_cast<std::uint16_t>(n > 0 ? n : 1);
-  } else if (k == "SE2") {
-    v.kind = ValueKind::SE2;
-    v.width = 3;
-  } else if (k == "SE3") {
-    v.kind = ValueKind::SE3;
-    v.width = 7;
-  } else if (k == "Conf") {
-    v.kind = ValueKind::Conf;
-    v.typeName = innerName(t.spelling);
-    v.width = 7;
-    for (const auto& r : graph_.robots) {
-      if (r.name == v.typeName) v.width = static_cast<std::uint16_t>(r.dof);
+  switch (t.kind) {
+    case ir::TypeKind::Real:
+      v.kind = ValueKind::Real;
+      break;
+    case ir::TypeKind::Int:
+      v.kind = ValueKind::Int;
+      break;
+    case ir::TypeKind::Bool:
+      v.kind = ValueKind::Bool;
+      break;
+    case ir::TypeKind::Text:
+      v.kind = ValueKind::Text;
+      break;
+    case ir::TypeKind::Enum:
+      v.kind = ValueKind::Enum;
+      v.typeName = t.spelling;
+      break;
+    case ir::TypeKind::Item:
+      v.kind = ValueKind::Item;
+      v.typeName = t.spelling;
+      break;
+    case ir::TypeKind::Vec: {
+      v.kind = ValueKind::Vec;
+      const int n = angleParam(t.spelling);
+      v.width = static_cast<std::uint16_t>(n > 0 ? n : 1);
+      break;
     }
-  } else if (k == "set") {
-    v.kind = ValueKind::Set;
-    v.width = 0;
-    v.typeName = innerName(t.spelling);
-  } else if (k == "range") {
-    v.kind = ValueKind::Range;
-    v.width = 0;
-  } else {
-    v.kind = ValueKind::Void;
-    v.width = 0;
+    case ir::TypeKind::SE2:
+      v.kind = ValueKind::SE2;
+      v.width = 3;
+      break;
+    case ir::TypeKind::SE3:
+      v.kind = ValueKind::SE3;
+      v.width = 7;
+      break;
+    case ir::TypeKind::Conf:
+      v.kind = ValueKind::Conf;
+      v.typeName = innerName(t.spelling);
+      v.width = 7;
+      for (const auto& r : graph_.robots) {
+        if (r.name == v.typeName) v.width = static_cast<std::uint16_t>(r.dof);
+      }
+      break;
+    case ir::TypeKind::Set:
+      v.kind = ValueKind::Set;
+      v.width = 0;
+      v.typeName = innerName(t.spelling);
+      break;
+    case ir::TypeKind::Range:
+      v.kind = ValueKind::Range;
+      v.width = 0;
+      break;
+    case ir::TypeKind::Error:  // no value at run time
+    case ir::TypeKind::Tuple:
+    case ir::TypeKind::Void:
+      v.kind = ValueKind::Void;
+      v.width = 0;
+      break;
   }
   return v;
 }
 
-double Program::memberIndex(const std::string& typeName, const std::string& member) const {
+std::optional<double> Program::memberIndex(const std::string& typeName, const std::string& member) const {
   if (const auto* e = findEnum(typeName)) {
     for (std::size_t i = 0; i < e->members.size(); ++i) {
       if (e->members[i] == member) return static_cast<double>(i);
@@ -155,8 +171,7 @@ double Program::memberIndex(const std::string& typeName, const std::string& memb
       if (s->entries[i].name == member) return static_cast<double>(i);
     }
   }
-  throw RuntimeError(currentSpan_ ? where(*currentSpan_) : "",
-                     fmt::format("'{}' is not a member of '{}'", member, typeName));
+  return std::nullopt;
 }
 
 bool Program::parseName(const ValueType& t, const std::string& name, double& out) const {
@@ -164,12 +179,9 @@ bool Program::parseName(const ValueType& t, const std::string& name, double& out
     out = strings_.intern(name);
     return true;
   }
-  try {
-    out = memberIndex(t.typeName, name);
-    return true;
-  } catch (const RuntimeError&) {
-    return false;
-  }
+  const auto index = memberIndex(t.typeName, name);
+  if (index) out = *index;
+  return index.has_value();
 }
 
 std::string Program::render(const ValueType& t, const double* v) const {
@@ -219,18 +231,6 @@ void Program::layoutVariables() {
     s.offset = static_cast<std::uint32_t>(assignmentWidth_);
     assignmentWidth_ += s.type.width;
   }
-}
-
-void Program::compileInitialValues() {
-  for (const auto& v : graph_.variables) {
-    if (!v.init) continue;
-    currentSpan_ = &v.span;
-    Scope scope;
-    std::uint32_t top = 0;
-    scope.frameTop = &top;
-    inits_.emplace_back(v.id, compile(*v.init, scope));
-  }
-  currentSpan_ = nullptr;
 }
 
 std::vector<double> Program::initialAssignment(const std::vector<double>& observation) const {
@@ -293,8 +293,8 @@ void Program::layoutObservations() {
       obsWidth_ += t.width;
       continue;
     }
-    const auto* e = o.indexSet->op == "enumset" ? findEnum(o.indexSet->text) : nullptr;
-    const auto* items = o.indexSet->op == "itemset" ? findItemSet(o.indexSet->text) : nullptr;
+    const auto* e = o.indexSet->op == ir::Op::EnumSet ? findEnum(o.indexSet->text) : nullptr;
+    const auto* items = o.indexSet->op == ir::Op::ItemSet ? findItemSet(o.indexSet->text) : nullptr;
     std::vector<std::string> members;
     if (e != nullptr) members = e->members;
     if (items != nullptr) {

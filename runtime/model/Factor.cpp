@@ -1,5 +1,7 @@
 #include "runtime/model/Factor.h"
 
+#include "ir/OpNames.h"
+
 #include <fmt/format.h>
 
 #include <stdexcept>
@@ -8,14 +10,21 @@ namespace cbtl::model {
 
 Factor Factor::fromSpec(const ir::ModelFactor& spec, double fallback,
                         const std::shared_ptr<const textpref::TextBackend>& textBackend) {
-  if (spec.kind == "interval") return Factor(spec.label, IntervalModel(spec.lo, spec.hi));
-  if (spec.kind == "threshold") {
-    const auto dir = spec.direction == "below" ? ThresholdModel::Direction::Below : ThresholdModel::Direction::Above;
-    return Factor(spec.label, ThresholdModel(spec.lo, spec.hi, dir));
+  switch (spec.kind) {
+    case ir::FactorKind::Interval:
+      return Factor(spec.label, IntervalModel(spec.lo, spec.hi));
+    case ir::FactorKind::Threshold: {
+      const auto dir = spec.direction == ir::ThresholdDirection::Below ? ThresholdModel::Direction::Below
+                                                                       : ThresholdModel::Direction::Above;
+      return Factor(spec.label, ThresholdModel(spec.lo, spec.hi, dir));
+    }
+    case ir::FactorKind::Table:
+      return Factor(spec.label, TableModel{});
+    case ir::FactorKind::Text:
+      return Factor(spec.label, TextFactor(spec, fallback, textBackend));
   }
-  if (spec.kind == "table") return Factor(spec.label, TableModel{});
-  if (spec.kind == "text") return Factor(spec.label, TextFactor(spec, fallback, textBackend));
-  throw std::invalid_argument(fmt::format("model kind '{}' of factor '{}' is not supported", spec.kind, spec.label));
+  throw std::invalid_argument(
+      fmt::format("model kind {} of factor '{}' is not supported", static_cast<int>(spec.kind), spec.label));
 }
 
 double Factor::probability(double feature) const {

@@ -26,7 +26,7 @@ class Factor {
 
   // A fresh (prior) factor as the generator declares it. A text factor gets its model from `textBackend`
   // (null: the offline default) and falls back to the generator's `fallback`. Throws std::invalid_argument for a
-  // model kind the runtime does not know (Program rejects those before a user model is made).
+  // `kind` that is no FactorKind enumerator.
   static Factor fromSpec(const ir::ModelFactor& spec, double fallback = 0.5,
                          const std::shared_ptr<const textpref::TextBackend>& textBackend = nullptr);
 

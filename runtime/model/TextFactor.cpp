@@ -17,8 +17,9 @@ TextFactor::TextFactor(const ir::ModelFactor& spec, double fallback,
                        std::shared_ptr<const textpref::TextBackend> backend)
     : backend_(backend ? std::move(backend) : defaultTextBackend()),
       prompts_(textpref::generatorPrompts(spec.prompt, spec.learning)),
-      rating_(spec.rating == "options" ? textpref::RatingScale::NumberedOptions : textpref::RatingScale::Digits),
-      scale_(spec.scale == "relative" ? Scale::Relative : Scale::Absolute),
+      rating_(spec.rating == ir::TextRating::Options ? textpref::RatingScale::NumberedOptions
+                                                     : textpref::RatingScale::Digits),
+      scale_(spec.scale == ir::TextScale::Relative ? Scale::Relative : Scale::Absolute),
       fallback_(fallback),
       model_(backend_->makeModel(prompts_, rating_)) {}
 

@@ -1,5 +1,7 @@
 #include "runtime/model/UserModel.h"
 
+#include "ir/OpNames.h"
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
@@ -112,10 +114,11 @@ void loadFactor(Factor& f, const ir::ModelFactor& spec, const json& j, const std
                 const std::string& fpath) {
   auto fail = [&](const std::string& path, const std::string& what) { failAt(source, path, what); };
   if (!j.is_object()) fail(fpath, "expected an object");
-  if (!j.contains("kind") || !j["kind"].is_string() || j["kind"].get<std::string>() != spec.kind) {
+  const std::string_view kind = ir::name(spec.kind);
+  if (!j.contains("kind") || !j["kind"].is_string() || j["kind"].get<std::string>() != kind) {
     const std::string saved = j.contains("kind") ? j["kind"].dump() : std::string("nothing");
-    fail(fpath + ".kind", fmt::format("expected \"{}\" (the program declares a {} model), the profile has {}",
-                                      spec.kind, spec.kind, saved));
+    fail(fpath + ".kind",
+         fmt::format("expected \"{}\" (the program declares a {} model), the profile has {}", kind, kind, saved));
   }
   if (auto* textFactor = std::get_if<TextFactor>(&f.model())) {
     if (!j.contains("backend") || !j["backend"].is_string()) fail(fpath + ".backend", "expected the text backend's id");
@@ -183,7 +186,7 @@ void checkKey(const ir::ConstraintGraph& graph, const ir::Generator& g, const st
     for (const auto& p : g.params) {
       if (p.name == name) type = &p.type;
     }
-    freeText = freeText || type == nullptr || type->kind == "text";
+    freeText = freeText || type == nullptr || type->kind == ir::TypeKind::Text;
     types.push_back(type);
   }
   if (parts.size() < g.perKeys.size() || (parts.size() > g.perKeys.size() && !freeText)) {
@@ -194,13 +197,13 @@ void checkKey(const ir::ConstraintGraph& graph, const ir::Generator& g, const st
   if (parts.size() != g.perKeys.size()) return;  // a free-text part holds a '|': the parts cannot be told apart
   for (std::size_t i = 0; i < parts.size(); ++i) {
     if (types[i] == nullptr) continue;  // a capture: any text
-    const std::string& kind = types[i]->kind;
+    const ir::TypeKind kind = types[i]->kind;
     const std::string& part = parts[i];
     std::string problem;
-    if (kind == "bool" && part != "true" && part != "false") problem = "true or false";
-    if (kind == "int" && (part.empty() || part.find_first_not_of("-0123456789") != std::string::npos))
+    if (kind == ir::TypeKind::Bool && part != "true" && part != "false") problem = "true or false";
+    if (kind == ir::TypeKind::Int && (part.empty() || part.find_first_not_of("-0123456789") != std::string::npos))
       problem = "an integer";
-    if (kind == "enum") {
+    if (kind == ir::TypeKind::Enum) {
       const ir::Enum* e = findEnum(graph, types[i]->spelling);
       if (e != nullptr && std::find(e->members.begin(), e->members.end(), part) == e->members.end())
         problem = fmt::format("a member of {} ({})", e->name, fmt::join(e->members, ", "));

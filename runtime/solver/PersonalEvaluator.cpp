@@ -16,7 +16,7 @@ PersonalEvaluator::PersonalEvaluator(const rt::Program& program, const std::vect
     c.keyValues.assign(dynamic, std::nan(""));
     const auto& factors = program_.generators().at(inst.generator).factors;
     for (std::size_t k = 0; k < factors.size(); ++k) {
-      if (factors[k].source->kind != "text") continue;
+      if (factors[k].source->kind != ir::FactorKind::Text) continue;
       c.text.resize(factors.size());
       c.text[k].domain = program_.itemDescriptors().domain(inst.featureTypes[k]);
     }

@@ -12,16 +12,16 @@ Span at(std::uint32_t line) { return Span{"t.cbtl", line, 1, line, 2}; }
 
 Expr var(VarId id) {
   Expr e;
-  e.op = "var";
+  e.op = Op::Var;
   e.id = id;
-  e.type = {"real", "real"};
+  e.type = {TypeKind::Real, "real"};
   return e;
 }
 
 Expr less(Expr a, Expr b) {
   Expr e;
-  e.op = "<";
-  e.type = {"bool", "bool"};
+  e.op = Op::Lt;
+  e.type = {TypeKind::Bool, "bool"};
   e.children.push_back(std::move(a));
   e.children.push_back(std::move(b));
   return e;
@@ -34,7 +34,7 @@ ConstraintGraph validGraph() {
     Variable v;
     v.id = i;
     v.name = i == 0 ? "x" : "y";
-    v.type = {"real", "real"};
+    v.type = {TypeKind::Real, "real"};
     v.span = at(i + 1);
     g.variables.push_back(v);
   }
@@ -56,8 +56,8 @@ ConstraintGraph validGraph() {
   g.costs.push_back(cost);
   Generator gen;
   gen.name = "g";
-  gen.params.push_back({"p", {"real", "real"}});
-  gen.patterns.push_back({"p", 0, "glob", "*x", at(4)});
+  gen.params.push_back({"p", {TypeKind::Real, "real"}});
+  gen.patterns.push_back({"p", 0, PatternKind::Glob, "*x", at(4)});
   g.generators.push_back(gen);
   Task t;
   t.name = "main";
@@ -147,7 +147,7 @@ TEST(Validator, ConstraintOutsideItsTask) {
 TEST(Validator, GeneratorsHaveArityAndCompilingPatterns) {
   ConstraintGraph g = validGraph();
   g.generators[0].patterns[0].text = "{unclosed";
-  g.generators[0].patterns.push_back({"q", 3, "regex", "(", at(5)});
+  g.generators[0].patterns.push_back({"q", 3, PatternKind::Regex, "(", at(5)});
   auto p = validate(g);
   EXPECT_TRUE(mentions(p, "pattern {unclosed does not compile"));
   EXPECT_TRUE(mentions(p, "pattern ( does not compile"));

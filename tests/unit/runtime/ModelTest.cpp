@@ -122,18 +122,18 @@ TEST(Entropy, Bits) {
 TEST(Factor, FromSpecBuildsEachKind) {
   cbtl::ir::ModelFactor spec;
   spec.label = "t";
-  spec.kind = "interval";
+  spec.kind = cbtl::ir::FactorKind::Interval;
   spec.lo = 0;
   spec.hi = 1;
   Factor f = Factor::fromSpec(spec);
   f.observe(0.5, true);
   EXPECT_EQ(f.probability(0.5), 1.0);
-  spec.kind = "threshold";
-  spec.direction = "below";
+  spec.kind = cbtl::ir::FactorKind::Threshold;
+  spec.direction = cbtl::ir::ThresholdDirection::Below;
   Factor g = Factor::fromSpec(spec);
   g.observe(0.5, false);
   EXPECT_EQ(g.probability(0.6), 0.0);
-  spec.kind = "table";
+  spec.kind = cbtl::ir::FactorKind::Table;
   Factor h = Factor::fromSpec(spec);
   EXPECT_TRUE(h.isTable());
   h.observe("a", true);

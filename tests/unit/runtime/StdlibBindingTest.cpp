@@ -127,7 +127,7 @@ TEST(StdlibBinding, BuiltinsReadAndWriteTheirDeclaredWidths) {
   constexpr double kSentinel = 12345.678;
   std::size_t checked = 0;
   for (const auto& f : lp->graph().functions) {
-    if (!f.isExtern || f.kind == "action" || !f.typeParams.empty()) continue;
+    if (!f.isExtern || f.kind == ir::FunctionKind::Action || !f.typeParams.empty()) continue;
     std::vector<double> args;
     std::vector<std::uint16_t> widths;
     for (const auto& p : f.params) {
@@ -140,7 +140,7 @@ TEST(StdlibBinding, BuiltinsReadAndWriteTheirDeclaredWidths) {
     const std::size_t resultWidth = program.typeOf(f.result).width;
     std::vector<double> out(resultWidth + 8, kSentinel);
     bool produced = true;
-    if (f.kind == "sampler") {
+    if (f.kind == ir::FunctionKind::Sampler) {
       const auto impl = b.sampler(f.name);
       ASSERT_NE(impl, nullptr) << f.name;
       rt::Rng rng(1);

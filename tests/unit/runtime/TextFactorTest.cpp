@@ -132,25 +132,25 @@ TEST(TextFactor, SubjectsBecomeItemsWithTheirDeclaredDescriptors) {
 
   // Literal field values of every kind; an empty list gives no strings (the field is left out of the item).
   ir::Expr n;
-  n.op = "num";
-  n.type.kind = "int";
+  n.op = ir::Op::Num;
+  n.type.kind = ir::TypeKind::Int;
   n.number = 3;
   EXPECT_EQ(rt::ItemDescriptors::fieldStrings(n, {}), std::vector<std::string>{"3"});
-  n.type.kind = "real";
+  n.type.kind = ir::TypeKind::Real;
   n.number = 0.25;
   EXPECT_EQ(rt::ItemDescriptors::fieldStrings(n, {}), std::vector<std::string>{"0.25"});
   ir::Expr empty;
-  empty.op = "list";
+  empty.op = ir::Op::List;
   EXPECT_TRUE(rt::ItemDescriptors::fieldStrings(empty, {}).empty());
 }
 
 TEST(TextFactor, FromSpecMakesATextFactorAndRejectsUnknownKinds) {
   ir::ModelFactor spec;
   spec.label = "taste";
-  spec.kind = "text";
+  spec.kind = ir::FactorKind::Text;
   spec.prompt = "Would the user like it?";
-  spec.scale = "relative";
-  spec.rating = "options";
+  spec.scale = ir::TextScale::Relative;
+  spec.rating = ir::TextRating::Options;
   model::Factor f = model::Factor::fromSpec(spec, 0.2);
   ASSERT_TRUE(f.isText());
   EXPECT_FALSE(f.isTable());
@@ -163,7 +163,7 @@ TEST(TextFactor, FromSpecMakesATextFactorAndRejectsUnknownKinds) {
   EXPECT_TRUE(f.observe(domain[0], false).ok());
   EXPECT_LT(f.probability(domain[0], {}), 0.5);
   EXPECT_NEAR(f.probability(domain[1], domain), 1.0, 1e-9);
-  spec.kind = "bogus";
+  spec.kind = static_cast<ir::FactorKind>(200);  // no enumerator: what a corrupted graph could hold
   EXPECT_THROW(model::Factor::fromSpec(spec), std::invalid_argument);
 }
 
@@ -418,8 +418,8 @@ TEST(TextFactor, BooksAndFeedingLoadAndTheirTextModelsWork) {
     ASSERT_LT(g, user.size()) << d.generator;
     const auto& spec = user.generator(g).spec();
     ASSERT_EQ(spec.factors.size(), 1u);
-    EXPECT_EQ(spec.factors[0].scale, "relative");
-    EXPECT_EQ(spec.factors[0].rating, "options");
+    EXPECT_EQ(spec.factors[0].scale, ir::TextScale::Relative);
+    EXPECT_EQ(spec.factors[0].rating, ir::TextRating::Options);
     rt::ItemDescriptors items(lp->graph(), {});
     const auto* domain = items.domain(rt::ValueType{rt::ValueKind::Item, 1, spec.factors[0].feature->type.spelling});
     ASSERT_NE(domain, nullptr);

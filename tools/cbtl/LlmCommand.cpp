@@ -181,7 +181,8 @@ struct BooksOptions {
 const cbtl::ir::ModelFactor* bookTextFactor(const cbtl::ir::ConstraintGraph& graph) {
   for (const auto& g : graph.generators)
     for (const auto& f : g.factors)
-      if (f.kind == "text" && f.feature && f.feature->type.kind == "item" && f.feature->type.spelling == "Book")
+      if (f.kind == cbtl::ir::FactorKind::Text && f.feature && f.feature->type.kind == cbtl::ir::TypeKind::Item &&
+          f.feature->type.spelling == "Book")
         return &f;
   return nullptr;
 }

@@ -1,15 +1,18 @@
 #include "app/LoadedProgram.h"
 
+#include "app/ScenePath.h"
 #include "compiler/diag/DiagnosticRenderer.h"
 #include "compiler/driver/Pipeline.h"
+#include "ir/GraphJsonReader.h"
+#include "ir/Validator.h"
 #include "robot/bind/WorldBuiltins.h"
 #include "robot/world/Scene.h"
 #include "runtime/sim/DomainSimulator.h"
 
 #include <fmt/format.h>
 
-#include <filesystem>
 #include <fstream>
+#include <sstream>
 
 namespace cbtl::app {
 
@@ -33,8 +36,15 @@ bool syncRobotWorld(const rt::Program& program, const sim::DomainSimulator& simu
 std::unique_ptr<LoadedProgram> LoadedProgram::load(const std::string& path, const std::string& stdlibDir,
                                                    rt::Builtins builtins) {
   auto lp = std::unique_ptr<LoadedProgram>(new LoadedProgram(path));
-  if (!std::ifstream(path).good()) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in.good()) {
     lp->setErrors(fmt::format("error: cannot read file '{}'\n", path));
+    return lp;
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (ir::looksLikeGraphJson(text.str())) {
+    lp->prepareEmitted(text.str(), std::move(builtins));
     return lp;
   }
   lp->tu_ = std::make_shared<TranslationUnit>(compileOptions(stdlibDir));
@@ -46,6 +56,10 @@ std::unique_ptr<LoadedProgram> LoadedProgram::load(const std::string& path, cons
 std::unique_ptr<LoadedProgram> LoadedProgram::fromSource(const std::string& path, std::string text,
                                                          const std::string& stdlibDir, rt::Builtins builtins) {
   auto lp = std::unique_ptr<LoadedProgram>(new LoadedProgram(path));
+  if (ir::looksLikeGraphJson(text)) {
+    lp->prepareEmitted(text, std::move(builtins));
+    return lp;
+  }
   lp->tu_ = std::make_shared<TranslationUnit>(compileOptions(stdlibDir));
   const PipelineResult r = compileSource(*lp->tu_, path, std::move(text));
   lp->prepareCompiled(r.outcome == PipelineOutcome::Ok, r.lastPass, std::move(builtins));
@@ -61,22 +75,57 @@ void LoadedProgram::prepareCompiled(bool compiled, const std::string& lastPass, 
     return;
   }
   const ir::ConstraintGraph& graph = tu_->graph;
-  WorldSync sync;
-  if (!graph.world.empty()) {
-    namespace fs = std::filesystem;
-    setWorldPath((fs::path(path()).parent_path() / graph.world).lexically_normal().string());
-    const world::SceneLoadResult scene = world::Scene::loadFile(worldPath());
-    if (scene.status != world::LoadStatus::Ok) {
-      setErrors(fmt::format("error: {}: world scene '{}': {}\n", path(), graph.world, scene.message));
+  // The graph lives in the translation unit: share it (and keep the unit alive) without copying.
+  prepareGraph(std::shared_ptr<const ir::ConstraintGraph>(tu_, &graph),
+               graph.world.empty() ? "" : sceneOfSource(path(), graph.world), std::move(builtins));
+}
+
+void LoadedProgram::prepareEmitted(const std::string& text, rt::Builtins builtins) {
+  ir::GraphReadResult read = ir::readGraphJson(text);
+  if (!read.ok()) {
+    setErrors(fmt::format("error: {}\n", read.describe(path())));
+    return;
+  }
+  // The reader checked the layout; the validator checks what the compiler guarantees about the content.
+  const std::vector<std::string> problems = ir::validate(read.graph);
+  if (!problems.empty()) {
+    std::string errors;
+    for (const auto& p : problems) errors += fmt::format("error: {}: not a valid constraint graph: {}\n", path(), p);
+    setErrors(std::move(errors));
+    return;
+  }
+  auto graph = std::make_shared<const ir::ConstraintGraph>(std::move(read.graph));
+  std::string scene;
+  if (!graph->world.empty()) {
+    const SceneLookup lookup = sceneOfEmittedGraph(path(), *graph);
+    if (lookup.path.empty()) {
+      std::string tried;
+      for (const auto& candidate : lookup.tried) tried += (tried.empty() ? "" : ", ") + candidate;
+      setErrors(fmt::format("error: {}: world scene '{}' not found (looked for {})\n", path(), graph->world, tried));
       return;
     }
-    scene_ = scene.scene;
+    scene = lookup.path;
+  }
+  prepareGraph(std::move(graph), scene, std::move(builtins));
+}
+
+void LoadedProgram::prepareGraph(std::shared_ptr<const ir::ConstraintGraph> graph, const std::string& scene,
+                                 rt::Builtins builtins) {
+  WorldSync sync;
+  if (!graph->world.empty()) {
+    setWorldPath(scene);
+    const world::SceneLoadResult loaded = world::Scene::loadFile(worldPath());
+    if (loaded.status != world::LoadStatus::Ok) {
+      setErrors(fmt::format("error: {}: world scene '{}': {}\n", path(), graph->world, loaded.message));
+      return;
+    }
+    scene_ = loaded.scene;
     builtins = bind::withWorld(std::move(builtins), scene_);
     sync = syncRobotWorld;
   }
-  // The graph lives in the translation unit: share it (and keep the unit alive) without copying.
-  prepare(std::shared_ptr<const ir::ConstraintGraph>(tu_, &graph), std::move(builtins), std::move(sync));
-  if (ok() || !graph.world.empty()) return;
+  const bool hasWorld = !graph->world.empty();
+  prepare(std::move(graph), std::move(builtins), std::move(sync));
+  if (ok() || hasWorld) return;
   // A robot-world built-in in a file without a scene: say what is missing, not just what failed.
   for (const auto& name : bind::worldBuiltinNames()) {
     if (errors().find("'" + name + "' has no implementation") != std::string::npos) {

@@ -1,8 +1,15 @@
-// LoadedProgram.h — the one place that joins the wings: a .cbtl file compiled by the front end, its world
-// scene bound to the language's robot built-ins, and the graph prepared for execution by the runtime.
+// LoadedProgram.h — the one place that joins the wings: a .cbtl file compiled by the front end (or a graph
+// that `cbtlc emit --format json` wrote, read back without the front end), its world scene bound to the
+// language's robot built-ins, and the graph prepared for execution by the runtime.
 //
-// Loading never throws for bad input: the compiler's diagnostics (rendered, with locations), a missing or bad
-// scene, or the runtime's RuntimeError end up in `errors()` and leave `ok()` false.
+// Which of the two a file is, its content says, not its name: text whose first character (after white space)
+// is '{' is an emitted graph (ir::looksLikeGraphJson; no .cbtl program can start so), anything else is .cbtl
+// source. An emitted graph's `world` scene is looked for as app/ScenePath.h describes; the standard library
+// was compiled into the graph, so `stdlibDir` does not apply to it.
+//
+// Loading never throws for bad input: the compiler's diagnostics (rendered, with locations), the JSON reader's
+// error (with the JSON Pointer of the offending field) or the validator's problems, a missing or bad scene,
+// or the runtime's RuntimeError end up in `errors()` and leave `ok()` false.
 #pragma once
 
 #include "compiler/driver/TranslationUnit.h"
@@ -35,7 +42,11 @@ class LoadedProgram : public approach::PreparedProgram {
  private:
   explicit LoadedProgram(std::string path) : PreparedProgram(std::move(path)) {}
   void prepareCompiled(bool compiled, const std::string& lastPass, rt::Builtins builtins);
-  // Shared with the base's graph pointer, so the graph outlives everything prepared from it.
+  void prepareEmitted(const std::string& text, rt::Builtins builtins);
+  // Binds the scene (when the graph has a world) and prepares the graph for execution.
+  void prepareGraph(std::shared_ptr<const ir::ConstraintGraph> graph, const std::string& scene, rt::Builtins builtins);
+  // Shared with the base's graph pointer, so the graph outlives everything prepared from it; null for an
+  // emitted graph, which the base owns alone.
   std::shared_ptr<TranslationUnit> tu_;
   std::shared_ptr<const world::Scene> scene_;
 };

@@ -25,7 +25,7 @@ json spanJson(const Span& s) {
 }
 
 json exprJson(const Expr& e) {
-  json j{{"op", name(e.op)}, {"type", e.type.spelling}};
+  json j{{"op", name(e.op)}, {"type", e.type.spelling}, {"type_kind", name(e.type.kind)}};
   if (e.op == Op::Num || e.op == Op::Bool) j["value"] = e.number;
   if (!e.text.empty()) j["text"] = e.text;
   if (!e.extra.empty()) j["extra"] = e.extra;
@@ -239,8 +239,8 @@ std::string toText(const ConstraintGraph& g) {
 
 std::string toJson(const ConstraintGraph& g) {
   json j;
-  j["format"] = "cbtl-constraint-graph";
-  j["version"] = 1;
+  j["format"] = kGraphJsonFormat;
+  j["version"] = kGraphJsonVersion;
   j["domain"] = g.domain;
   j["world"] = g.world;
   j["robots"] = json::array();
@@ -251,16 +251,21 @@ std::string toJson(const ConstraintGraph& g) {
   j["item_types"] = json::array();
   for (const auto& t : g.itemTypes) {
     json fields = json::array();
-    for (const auto& f : t.fields) fields.push_back({{"name", f.name}, {"type", f.type.spelling}});
+    for (const auto& f : t.fields)
+      fields.push_back({{"name", f.name}, {"type", f.type.spelling}, {"type_kind", name(f.type.kind)}});
     j["item_types"].push_back({{"name", t.name}, {"fields", fields}, {"span", spanJson(t.span)}});
   }
   j["item_sets"] = json::array();
   for (const auto& s : g.itemSets) {
     json entries = json::array();
     for (const auto& e : s.entries) {
-      json fields = json::object();
-      for (const auto& [name, value] : e.fields) fields[name] = exprJson(value);
-      entries.push_back({{"name", e.name}, {"fields", fields}});
+      // A JSON object's keys come out sorted: "field_order" keeps the order the entry was written in.
+      json fields = json::object(), order = json::array();
+      for (const auto& [name, value] : e.fields) {
+        fields[name] = exprJson(value);
+        order.push_back(name);
+      }
+      entries.push_back({{"name", e.name}, {"fields", fields}, {"field_order", order}});
     }
     j["item_sets"].push_back(
         {{"name", s.name}, {"item_type", s.itemType}, {"entries", entries}, {"span", spanJson(s.span)}});
@@ -269,20 +274,31 @@ std::string toJson(const ConstraintGraph& g) {
   for (const auto& c : g.constants) {
     j["constants"].push_back({{"name", c.name},
                               {"type", c.type.spelling},
+                              {"type_kind", name(c.type.kind)},
                               {"index_set", c.indexSet},
                               {"value", exprJson(c.value)},
                               {"span", spanJson(c.span)}});
   }
   j["observations"] = json::array();
   for (const auto& o : g.observations) {
-    j["observations"].push_back(
-        {{"name", o.name}, {"type", o.type.spelling}, {"index_set", optExpr(o.indexSet)}, {"span", spanJson(o.span)}});
+    j["observations"].push_back({{"name", o.name},
+                                 {"type", o.type.spelling},
+                                 {"type_kind", name(o.type.kind)},
+                                 {"index_set", optExpr(o.indexSet)},
+                                 {"span", spanJson(o.span)}});
   }
   auto functionJson = [](const Function& f) {
     json params = json::array();
-    for (const auto& p : f.params) params.push_back({{"name", p.name}, {"type", p.type.spelling}});
-    json fn{{"name", f.name},   {"kind", name(f.kind)},        {"extern", f.isExtern},    {"type_params", f.typeParams},
-            {"params", params}, {"result", f.result.spelling}, {"span", spanJson(f.span)}};
+    for (const auto& p : f.params)
+      params.push_back({{"name", p.name}, {"type", p.type.spelling}, {"type_kind", name(p.type.kind)}});
+    json fn{{"name", f.name},
+            {"kind", name(f.kind)},
+            {"extern", f.isExtern},
+            {"type_params", f.typeParams},
+            {"params", params},
+            {"result", f.result.spelling},
+            {"result_kind", name(f.result.kind)},
+            {"span", spanJson(f.span)}};
     if (f.body) fn["body"] = exprJson(*f.body);
     return fn;
   };
@@ -335,7 +351,8 @@ std::string toJson(const ConstraintGraph& g) {
   j["generators"] = json::array();
   for (const auto& gen : g.generators) {
     json params = json::array(), patterns = json::array(), factors = json::array(), rules = json::array();
-    for (const auto& p : gen.params) params.push_back({{"name", p.name}, {"type", p.type.spelling}});
+    for (const auto& p : gen.params)
+      params.push_back({{"name", p.name}, {"type", p.type.spelling}, {"type_kind", name(p.type.kind)}});
     for (const auto& p : gen.patterns) {
       patterns.push_back({{"param", p.param},
                           {"param_index", p.paramIndex},

@@ -1,6 +1,12 @@
 // GraphPrinter.h — dumps of the ConstraintGraph: human text, JSON (the serialisation the runtime
 // reads), and Graphviz DOT (variables as ellipses, constraints as boxes, one edge per incidence).
 // All three are deterministic: same graph, same bytes.
+//
+// The JSON is complete: ir/GraphJsonReader.h reads it back into the same graph (every field, the kind of
+// every type included), so `cbtl` can run an emitted graph without the front end. Its top-level "format"
+// tag and "version" say which revision of the layout a file has; the version grows whenever a field the
+// reader needs is added or a field changes meaning (version 2 added the type kinds and the entries'
+// "field_order").
 #pragma once
 
 #include "ir/ConstraintGraph.h"
@@ -8,6 +14,9 @@
 #include <string>
 
 namespace cbtl::ir {
+
+inline constexpr const char* kGraphJsonFormat = "cbtl-constraint-graph";
+inline constexpr int kGraphJsonVersion = 2;
 
 std::string toText(const ConstraintGraph& g);
 std::string toJson(const ConstraintGraph& g);

@@ -1,6 +1,6 @@
 // RuntimeSupport.h — what `cbtl run`, `cbtl experiment` and `cbtl solve` share: the trial options, loading a .cbtl file
-// for execution with its errors printed, the domain simulators by name, and the text-preference backend of `model
-// text(...)` factors.
+// (or the JSON graph `cbtlc emit --format json` wrote from one, app/LoadedProgram.h) for execution with its errors
+// printed, the domain simulators by name, and the text-preference backend of `model text(...)` factors.
 #pragma once
 
 #include "app/LoadedProgram.h"
@@ -152,7 +152,7 @@ struct TrialArgs {
 // Ranges: --steps >= 0; --eval-every, --eval-tasks, --max-eval-steps, --shift-every, --periodic-reset-every >= 1;
 // --epsilon and --unsatisfiable-stock in [0, 1]. A value outside is a usage error (exit 2) naming the option.
 inline void addTrialOptions(CLI::App* cmd, TrialArgs& a) {
-  cmd->add_option("file", a.file, "the domain's .cbtl file")->required();
+  cmd->add_option("file", a.file, "the domain's .cbtl file, or its graph from `cbtlc emit --format json`")->required();
   cmd->add_option("--steps", a.steps, "training steps")->capture_default_str()->check(integerIn(0));
   cmd->add_option("--eval-every", a.evalEvery, "evaluate every K steps")->capture_default_str()->check(integerIn(1));
   cmd->add_option("--eval-tasks", a.evalTasks, "held-out tasks per evaluation")
@@ -179,7 +179,7 @@ inline void addTrialOptions(CLI::App* cmd, TrialArgs& a) {
                   "probability that a restock cannot satisfy the user (Cooking)")
       ->capture_default_str()
       ->check(realIn(0, 1));
-  cmd->add_option("--stdlib", a.stdlibDir, "standard library folder (default: embedded)");
+  cmd->add_option("--stdlib", a.stdlibDir, "standard library folder (default: embedded; not used by an emitted graph)");
   addSolverOptions(cmd, a.solver);
   addTextBackendOptions(cmd, a.text);
 }

@@ -132,7 +132,8 @@ void addSolve(CLI::App& app, int& exitCode) {
   auto args = std::make_shared<SolveArgs>();
   CLI::App* cmd =
       app.add_subcommand("solve", "solve one CSP of a task and print its solution and plan, or why there is none");
-  cmd->add_option("file", args->file, "the domain's .cbtl file")->required();
+  cmd->add_option("file", args->file, "the domain's .cbtl file, or its graph from `cbtlc emit --format json`")
+      ->required();
   cmd->add_option("--task", args->task, "task to solve (default: the first)");
   cmd->add_option("--seed", args->seed, "seed of the world and the solver")
       ->capture_default_str()
@@ -145,7 +146,8 @@ void addSolve(CLI::App& app, int& exitCode) {
   cmd->add_flag("--replan", args->replan, "if unsatisfiable, replan without personalized constraints");
   cmd->add_flag("--explain", args->explain,
                 "which constraints rejected candidates, how often, and where they are declared");
-  cmd->add_option("--stdlib", args->stdlibDir, "standard library folder (default: embedded)");
+  cmd->add_option("--stdlib", args->stdlibDir,
+                  "standard library folder (default: embedded; not used by an emitted graph)");
   cbtl::cli::addSolverOptions(cmd, args->solver);
   cbtl::cli::addTextBackendOptions(cmd, args->text);
   cmd->callback([args, &exitCode]() { cbtl::cli::runCommand("solve", exitCode, [&] { return runSolve(*args); }); });

@@ -1,0 +1,172 @@
+// The JSON reader's errors: each kind, with the JSON Pointer of the offending field. The documents are the
+// printer's output for a small graph, edited one field at a time.
+#include "ir/GraphJsonReader.h"
+#include "ir/GraphPrinter.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace cbtl::ir {
+namespace {
+
+using nlohmann::json;
+
+Expr num(double v) { return Expr{Op::Num, {TypeKind::Real, "real"}, v}; }
+Expr var(VarId id) {
+  Expr e{Op::Var, {TypeKind::Real, "real"}};
+  e.id = id;
+  return e;
+}
+
+ConstraintGraph smallGraph() {
+  ConstraintGraph g;
+  g.domain = "test";
+  Variable x;
+  x.name = "x";
+  x.type = {TypeKind::Real, "real"};
+  x.domain.bounds.push_back({num(0), num(1)});
+  x.scope = "global";
+  x.span = {"t.cbtl", 2, 1, 2, 20};
+  g.variables.push_back(x);
+  Constraint c;
+  c.name = "small";
+  c.vars = {0};
+  c.expr = Expr{Op::Lt, {TypeKind::Bool, "bool"}};
+  c.expr.children = {var(0), num(0.5)};
+  c.scope = "global";
+  c.span = {"t.cbtl", 3, 1, 3, 20};
+  g.constraints.push_back(c);
+  Task t;
+  t.name = "main";
+  t.vars = {0};
+  t.constraints = {0};
+  t.implicit = true;
+  g.tasks.push_back(t);
+  return g;
+}
+
+json document() { return json::parse(toJson(smallGraph())); }
+
+GraphReadResult readEdited(const json& doc) { return readGraphJson(doc.dump()); }
+
+TEST(GraphJsonReader, ReadsWhatThePrinterWrites) {
+  const GraphReadResult r = readGraphJson(toJson(smallGraph()));
+  ASSERT_TRUE(r.ok()) << r.describe("t.json");
+  EXPECT_EQ(toJson(r.graph), toJson(smallGraph()));
+  EXPECT_EQ(r.graph.constraints[0].expr.children[0].type.kind, TypeKind::Real);
+}
+
+TEST(GraphJsonReader, NotJson) {
+  const GraphReadResult r = readGraphJson("{\"format\": ");
+  EXPECT_EQ(r.outcome, GraphReadOutcome::NotJson);
+  EXPECT_EQ(r.pointer, "");
+  EXPECT_EQ(r.describe("g.json").rfind("g.json: not valid JSON", 0), 0u) << r.describe("g.json");
+}
+
+TEST(GraphJsonReader, WrongFormatTag) {
+  json doc = document();
+  doc["format"] = "cbtl-profile";
+  const GraphReadResult r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::WrongFormat);
+  EXPECT_EQ(r.pointer, "/format");
+  EXPECT_EQ(readGraphJson("[1, 2]").outcome, GraphReadOutcome::WrongFormat);
+  doc.erase("format");
+  EXPECT_EQ(readEdited(doc).outcome, GraphReadOutcome::WrongFormat);
+}
+
+TEST(GraphJsonReader, WrongVersion) {
+  json doc = document();
+  doc["version"] = 1;
+  const GraphReadResult r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::WrongVersion);
+  EXPECT_EQ(r.describe("g.json"),
+            "g.json: /version: version 1 is not supported (this reader reads version 2; emit the graph again with "
+            "cbtlc)");
+}
+
+TEST(GraphJsonReader, MissingField) {
+  json doc = document();
+  doc["tasks"][0].erase("name");
+  const GraphReadResult r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::MissingField);
+  EXPECT_EQ(r.describe("g.json"), "g.json: /tasks/0/name: missing field");
+  doc = document();
+  doc["constraints"][0]["expr"]["children"][1].erase("value");
+  EXPECT_EQ(readEdited(doc).pointer, "/constraints/0/expr/children/1/value");
+}
+
+TEST(GraphJsonReader, WrongType) {
+  json doc = document();
+  doc["variables"][0]["span"]["line"] = "two";
+  GraphReadResult r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::WrongType);
+  EXPECT_EQ(r.describe("g.json"), "g.json: /variables/0/span/line: expected an integer, found a string");
+  doc = document();
+  doc["variables"][0]["span"]["line"] = -3;
+  r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::WrongType);
+  EXPECT_EQ(r.pointer, "/variables/0/span/line");
+  doc = document();
+  doc["tasks"] = json::object();
+  EXPECT_EQ(readEdited(doc).pointer, "/tasks");
+}
+
+TEST(GraphJsonReader, UnknownName) {
+  json doc = document();
+  doc["constraints"][0]["expr"]["op"] = "foo";
+  GraphReadResult r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::UnknownName);
+  EXPECT_EQ(r.describe("graph.json"), "graph.json: /constraints/0/expr/op: unknown operation 'foo'");
+  doc = document();
+  doc["variables"][0]["kind"] = "complex";
+  r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::UnknownName);
+  EXPECT_EQ(r.describe("g.json"), "g.json: /variables/0/kind: unknown type kind 'complex'");
+}
+
+TEST(GraphJsonReader, OutOfRange) {
+  json doc = document();
+  doc["tasks"][0]["constraints"][0] = 3;
+  GraphReadResult r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::OutOfRange);
+  EXPECT_EQ(r.describe("g.json"), "g.json: /tasks/0/constraints/0: constraint 3 does not exist (the graph has 1)");
+  doc = document();
+  doc["constraints"][0]["expr"]["children"][0]["id"] = 7;
+  r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::OutOfRange);
+  EXPECT_EQ(r.pointer, "/constraints/0/expr/children/0/id");
+  doc = document();
+  doc["constraints"][0]["vars"][0] = 1;
+  EXPECT_EQ(readEdited(doc).pointer, "/constraints/0/vars/0");
+}
+
+TEST(GraphJsonReader, Inconsistent) {
+  json doc = document();
+  doc["constraints"][0]["expr"]["children"].erase(1);
+  GraphReadResult r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::Inconsistent);
+  EXPECT_EQ(r.describe("g.json"), "g.json: /constraints/0/expr/children: '<' takes 2 operands, not 1");
+  doc = document();
+  doc["variables"][0]["id"] = 4;
+  r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::Inconsistent);
+  EXPECT_EQ(r.pointer, "/variables/0/id");
+}
+
+TEST(GraphJsonReader, DeepNestingIsAnErrorNotACrash) {
+  json doc = document();
+  json e = json::parse(R"({"op": "num", "type": "real", "type_kind": "real", "value": 1})");
+  for (int i = 0; i < 1100; ++i) e = json{{"op", "neg"}, {"type", "real"}, {"type_kind", "real"}, {"children", {e}}};
+  doc["constraints"][0]["expr"] = e;
+  EXPECT_EQ(readEdited(doc).outcome, GraphReadOutcome::Inconsistent);
+}
+
+TEST(GraphJsonReader, SniffsTheFormatByItsFirstCharacter) {
+  EXPECT_TRUE(looksLikeGraphJson("\xEF\xBB\xBF \n {\"format\": 1}"));
+  EXPECT_FALSE(looksLikeGraphJson("// ARGS: emit\ndomain d;"));
+  EXPECT_FALSE(looksLikeGraphJson("domain d;"));
+  EXPECT_FALSE(looksLikeGraphJson("   "));
+}
+
+}  // namespace
+}  // namespace cbtl::ir

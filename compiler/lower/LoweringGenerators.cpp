@@ -1,0 +1,143 @@
+// lower: personalized generators. A generator is kept whole in the graph (the runtime instantiates it
+// per matching variable); its patterns, model factors, guards and learning rules are lowered as written,
+// and W0401 warns about a parameter whose pattern matches no variable of any task.
+#include "compiler/lower/LoweringInternal.h"
+
+#include "compiler/sema/GeneratorChecker.h"
+#include "ir/OpNames.h"
+#include "ir/Pattern.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace cbtl::detail {
+namespace {
+
+// A number literal, possibly negated: the generator checker accepts nothing else as a factor's range.
+double constNumber(const Expr* e) {
+  if (e == nullptr) return 0;
+  if (e->kind == ExprKind::Unary && e->unaryOp == UnaryOp::Neg) return -constNumber(e->operands[0].get());
+  return e->number;
+}
+
+}  // namespace
+
+void Lowerer::lowerGenerator(const PersonalDecl& p) {
+  ir::Generator g;
+  g.name = p.name.name;
+  g.span = span(p.range);
+  for (const auto& prm : p.params) g.params.push_back({prm.name.name, typeDesc(prm.type.resolved)});
+  for (const auto& pat : p.patterns) {
+    g.patterns.push_back({pat.param.name, static_cast<std::uint32_t>(std::max(0, pat.paramIndex)),
+                          pat.kind == PatternKind::Glob ? ir::PatternKind::Glob : ir::PatternKind::Regex, pat.pattern,
+                          span(pat.patternRange)});
+  }
+  for (const auto& c : p.captures) g.captures.push_back(c.name);
+  for (const auto& k : p.perKeys) g.perKeys.push_back(k.name);
+  Ctx none;
+  for (const auto& f : p.factors) g.factors.push_back(lowerFactor(p, f, none));
+  // Several `if` guards are conjoined, in source order.
+  for (const auto& c : p.guards) {
+    ir::Expr e = lower(c.get(), none);
+    if (!g.guard) {
+      g.guard = std::move(e);
+    } else {
+      ir::Expr both;
+      both.op = ir::Op::And;
+      both.type = e.type;
+      both.children.push_back(std::move(*g.guard));
+      both.children.push_back(std::move(e));
+      g.guard = std::move(both);
+    }
+  }
+  if (!p.accepts.empty()) g.accept = p.accepts[0]->number;
+  if (!p.fallbacks.empty()) g.fallback = p.fallbacks[0]->number;
+  for (const auto& rule : p.learnRules) g.learnRules.push_back(lowerLearnRule(p, rule, none));
+  warnIfUnmatched(p, g);
+  g_.generators.push_back(std::move(g));
+}
+
+ir::ModelFactor Lowerer::lowerFactor(const PersonalDecl& p, const ModelFactor& f, Ctx& none) {
+  ir::ModelFactor mf;
+  mf.label = generatorFactorName(p, f);
+  // The generator checker accepts only the kinds, directions, scales and ratings OpNames spells.
+  mf.kind = ir::factorKindFromName(f.kind.name).value_or(ir::FactorKind::Interval);
+  mf.span = span(f.range);
+  std::vector<const Arg*> positional;
+  for (const auto& a : f.args) {
+    if (a.name.name.empty())
+      positional.push_back(&a);
+    else if (a.name.name == "prompt")
+      mf.prompt = a.value->text;
+    else if (a.name.name == "learning")
+      mf.learning = a.value->text;
+    else if (a.name.name == "scale")
+      mf.scale = ir::textScaleFromName(a.value->text).value_or(ir::TextScale::Absolute);
+    else if (a.name.name == "rating")
+      mf.rating = ir::textRatingFromName(a.value->text).value_or(ir::TextRating::Digits);
+  }
+  // Positional arguments: the feature, then its range, then a threshold's direction.
+  if (!positional.empty()) {
+    mf.feature = lower(positional[0]->value.get(), none);
+    for (int i : paramsRead(positional[0]->value.get())) mf.params.push_back(p.params[i].name.name);
+  }
+  if (positional.size() >= 2 && positional[1]->value->kind == ExprKind::Range) {
+    mf.lo = constNumber(positional[1]->value->operands[0].get());
+    mf.hi = constNumber(positional[1]->value->operands[1].get());
+  }
+  if (positional.size() >= 3)
+    mf.direction = ir::thresholdDirectionFromName(positional[2]->value->text).value_or(ir::ThresholdDirection::None);
+  return mf;
+}
+
+ir::LearnRule Lowerer::lowerLearnRule(const PersonalDecl& p, const LearnRule& rule, Ctx& none) {
+  ir::LearnRule r;
+  r.event = rule.event.name;
+  r.span = span(rule.range);
+  for (const auto& b : rule.binders) {
+    const std::string& n = b->name.name;
+    r.binders.push_back(n.empty() ? "_" : n);
+    // A binder named like a parameter or a pattern's capture binds it; any other name is a local.
+    bool binds = false;
+    for (const auto& prm : p.params) binds = binds || prm.name.name == n;
+    for (const auto& c : p.captures) binds = binds || c.name == n;
+    r.binds.push_back(binds && !n.empty() ? n : "");
+  }
+  for (const auto& l : rule.labels) r.labels.push_back({l.factor.name, lower(l.value.get(), none)});
+  if (rule.condition) r.condition = lower(rule.condition.get(), none);
+  return r;
+}
+
+void Lowerer::warnIfUnmatched(const PersonalDecl& p, const ir::Generator& g) {
+  for (std::size_t i = 0; i < p.params.size(); ++i) {
+    const ir::TypeDesc want = g.params[i].type;
+    const PatternClause* pat = nullptr;
+    for (const auto& pc : p.patterns) {
+      if (pc.paramIndex == static_cast<int>(i)) pat = &pc;
+    }
+    std::optional<GlobPattern> glob;
+    std::optional<std::regex> re;
+    std::string error;
+    std::size_t at = 0;
+    if (pat && pat->kind == PatternKind::Glob) glob = parseGlob(pat->pattern, error, at);
+    if (pat && pat->kind == PatternKind::Regex) re = compileRegex(pat->pattern, error);
+    bool any = false;
+    for (const auto& v : g_.variables) {
+      if (v.type.spelling != want.spelling) continue;
+      std::map<std::string, std::string> b;
+      if (pat == nullptr || (glob && matchGlob(*glob, v.name, b)) || (re && std::regex_match(v.name, *re))) {
+        any = true;
+        break;
+      }
+    }
+    if (!any) {
+      Diagnostic& d = diags_.warning("W0401", pat ? pat->patternRange : p.params[i].name.range,
+                                     fmt::format("no {} variable of any task matches parameter '{}' of generator '{}'",
+                                                 want.spelling, p.params[i].name.name, p.name.name));
+      d.help("`cbtlc emit FILE` lists every variable's name and type");
+    }
+  }
+}
+
+}  // namespace cbtl::detail

@@ -3,8 +3,10 @@
 #include "app/ScenePath.h"
 #include "compiler/diag/DiagnosticRenderer.h"
 #include "compiler/driver/Pipeline.h"
+#include "domains/DomainRegistry.h"
 #include "ir/GraphJsonReader.h"
 #include "ir/Validator.h"
+#include "robot/actions/RobotActions.h"
 #include "robot/bind/WorldBuiltins.h"
 #include "robot/world/Scene.h"
 #include "runtime/sim/DomainSimulator.h"
@@ -124,7 +126,13 @@ void LoadedProgram::prepareGraph(std::shared_ptr<const ir::ConstraintGraph> grap
     sync = syncRobotWorld;
   }
   const bool hasWorld = !graph->world.empty();
+  const std::string domain = graph->domain;
   prepare(std::move(graph), std::move(builtins), std::move(sync));
+  if (ok() && hasWorld) {
+    // Plans are dry-run with the executor the domain's simulator acts with.
+    bind::setWorldExecutor(program().host(),
+                           std::make_shared<actions::RobotActions>(domains::domainActions(domain, *scene_)));
+  }
   if (ok() || hasWorld) return;
   // A robot-world built-in in a file without a scene: say what is missing, not just what failed.
   for (const auto& name : bind::worldBuiltinNames()) {

@@ -10,6 +10,7 @@
 #include "domains/cooking/CookingSimulator.h"
 #endif
 #if defined(CBTL_HAVE_DOMAIN_FEEDING)
+#include "domains/feeding/FeedingActions.h"
 #include "domains/feeding/FeedingSimulator.h"
 #endif
 
@@ -73,6 +74,15 @@ std::unique_ptr<sim::DomainSimulator> createSimulator(const std::string& domain,
   for (const Entry& e : entries()) {
     if (domain == e.name) return e.make(program, options, seed);
   }
+  return nullptr;
+}
+
+std::shared_ptr<const actions::DomainActions> domainActions(const std::string& domain, const world::Scene& scene) {
+#if defined(CBTL_HAVE_DOMAIN_FEEDING)
+  if (domain == "feeding") return feeding::FeedingActions::forScene(scene);
+#endif
+  (void)domain;
+  (void)scene;
   return nullptr;
 }
 

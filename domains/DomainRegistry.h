@@ -13,6 +13,13 @@
 #include <string>
 #include <vector>
 
+namespace cbtl::actions {
+class DomainActions;
+}
+namespace cbtl::world {
+class Scene;
+}
+
 namespace cbtl::domains {
 
 // A new simulator for `domain` (e.g. "cooking") over the program's facts, constructed with `options` and reset
@@ -20,6 +27,10 @@ namespace cbtl::domains {
 // invalid options or facts (a robot domain without a scene: std::invalid_argument).
 std::unique_ptr<sim::DomainSimulator> createSimulator(const std::string& domain, const ProgramFacts& program,
                                                       const sim::SimulatorOptions& options, std::uint64_t seed);
+
+// The domain's own actions on the robot world (robot/actions/RobotActions.h DomainActions) for the runtime's
+// world model, the same ones its simulator executes; null when the domain has none (or none was built).
+std::shared_ptr<const actions::DomainActions> domainActions(const std::string& domain, const world::Scene& scene);
 
 // The names createSimulator accepts, sorted.
 std::vector<std::string> knownDomains();

@@ -6,6 +6,7 @@
 #include "robot/actions/CallArguments.h"
 #include "robot/actions/SurfaceGeometry.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace cbtl::domains::books {
@@ -40,14 +41,15 @@ BooksSimulator::BooksSimulator(const ProgramFacts& program, const sim::Simulator
                      Shared{home::programScene(program, "books"),
                             std::make_shared<const BookCatalog>(BookCatalog::fromProgram(program)),
                             std::make_shared<const BooksUser>(std::move(user))},
-                     seed) {}
+                     seed, false) {}
 
-BooksSimulator::BooksSimulator(const sim::SimulatorOptions& options, Shared shared, std::uint64_t seed)
+BooksSimulator::BooksSimulator(const sim::SimulatorOptions& options, Shared shared, std::uint64_t seed, bool evaluation)
     : options_(options),
       scene_(std::move(shared.scene)),
       catalog_(std::move(shared.catalog)),
       user_(std::move(shared.user)),
-      world_(std::make_unique<world::World>(scene_)) {
+      world_(std::make_unique<world::World>(scene_)),
+      evaluation_(evaluation) {
   scenePoses_ = world_->workspace().state().objects;
   for (const Book& b : catalog_->books()) {
     if (!scenePoses_.count(b.body)) {
@@ -62,15 +64,16 @@ BooksSimulator::BooksSimulator(const sim::SimulatorOptions& options, Shared shar
 }
 
 void BooksSimulator::stockShelves(world::WorldState& state, bool mayHold) {
-  const std::vector<std::size_t> books = rng_.permutation(home::kBookCount);
+  std::vector<std::size_t> books = rng_.permutation(home::kBookCount);
   const std::vector<std::size_t> slots = rng_.permutation(home::kBookCount);
-  bool holds = false;
-  if (mayHold && rng_.uniform() < kHeldProbability) {
-    home::holdAtHome(state, home::bookBody(books[home::kBookCount - 1]));
-    holds = true;
+  if (mayHold && rng_.uniform() < kHeldProbability) home::holdCarried(state, home::bookBody(books.back()));
+  // A book in the robot's hand stays there; the others may go on the furniture.
+  if (state.held) {
+    books.erase(std::remove_if(books.begin(), books.end(),
+                               [&](std::size_t b) { return home::bookBody(b) == state.held->object; }),
+                books.end());
   }
-  const std::size_t most = holds ? home::kBookCount - 1 : home::kBookCount;
-  const std::size_t count = 3 + rng_.index(most - 3 + 1);
+  const std::size_t count = 3 + rng_.index(books.size() - 3 + 1);
   for (std::size_t i = 0; i < count; ++i) {
     state.objects[home::bookBody(books[i])] = scenePoses_.at(home::bookBody(slots[i]));
   }
@@ -80,9 +83,30 @@ void BooksSimulator::reset(std::uint64_t seed) {
   rng_.seed(seed);
   world_->utterances().clear();
   world::WorldState s = home::emptyRoom(*scene_, scenePoses_);
-  stockShelves(s, true);
+  if (evaluation_)
+    stockForEvaluation(s);
+  else
+    stockShelves(s, true);
   if (world_->workspace().setState(s) != world::StateStatus::Ok) {
     throw std::logic_error("books: the episode's start state is invalid");  // a bug in this file
+  }
+}
+
+void BooksSimulator::stockForEvaluation(world::WorldState& state) {
+  const std::vector<std::size_t> order = rng_.permutation(catalog_->books().size());
+  const std::vector<std::size_t> slots = rng_.permutation(home::kBookCount);
+  std::vector<const Book*> enjoyed, others;
+  for (std::size_t i : order) {
+    const Book& b = catalog_->books()[i];
+    (enjoysBook(*user_, b) ? enjoyed : others).push_back(&b);
+  }
+  if (enjoyed.size() > kEvalEnjoyed) enjoyed.resize(kEvalEnjoyed);
+  if (others.size() > kEvalOthers) others.resize(kEvalOthers);
+  std::size_t slot = 0;
+  for (const auto* group : {&enjoyed, &others}) {
+    for (const Book* b : *group) {
+      if (slot < slots.size()) state.objects[b->body] = scenePoses_.at(home::bookBody(slots[slot++]));
+    }
   }
 }
 
@@ -112,7 +136,7 @@ std::string BooksSimulator::requestedTask() const {
 }
 
 StepResult BooksSimulator::act(const sim::ActionCall& call) {
-  const auto done = actions_.execute(*world_, call, rng_);
+  const auto done = actions_.execute(*world_, call);
   if (!done) {
     StepResult r;
     r.status = sim::ActionStatus::UnknownAction;
@@ -158,11 +182,12 @@ StepResult BooksSimulator::handOver(StepResult r) {
     s.gripper = 1.0;
     s.objects[body] = home::parkedPose(parkingSlot(body));
     ws.setState(s);
-    if (pickable().empty()) {
-      s = ws.state();
-      stockShelves(s, false);
-      ws.setState(s);
-    }
+  }
+  if (pickable().empty()) {
+    // No book is left on the furniture: the caregiver restocks it (a book the robot holds stays in its hand).
+    world::WorldState s = ws.state();
+    stockShelves(s, false);
+    ws.setState(s);
   }
   return r;
 }
@@ -175,7 +200,7 @@ StepResult BooksSimulator::idle() {
 }
 
 std::unique_ptr<sim::DomainSimulator> BooksSimulator::makeEvaluationTwin() const {
-  return std::unique_ptr<sim::DomainSimulator>(new BooksSimulator(options_, Shared{scene_, catalog_, user_}, 0));
+  return std::unique_ptr<sim::DomainSimulator>(new BooksSimulator(options_, Shared{scene_, catalog_, user_}, 0, true));
 }
 
 }  // namespace cbtl::domains::books

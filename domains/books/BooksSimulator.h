@@ -8,12 +8,14 @@
 //      table, books parked outside the room);
 //   2. a uniform permutation of the books and one of the nine home.xml book slots (three on the middle
 //      shelf layer, three on the top layer, one per side table);
-//   3. with probability kHeldProbability the robot holds the permutation's last book (arm at configs::kHome,
-//      carry grasp) — a book the user could not reach last time — so "stowThenHandOverBook" occurs;
+//   3. with probability kHeldProbability the robot holds the permutation's last book (HomeEpisode.h
+//      holdCarried: arm at retract, carry grasp) — a book the user could not reach last time — so
+//      "stowThenHandOverBook" occurs;
 //   4. how many books are on the furniture: uniform in [3, 9] (in [3, 8] when one is held) — the paper's "a
 //      random subset of the books are available" — the permutation's first ones, in the shuffled slots.
-// After a task ends the world goes on. When the user has taken the last book on the furniture and the robot
-// holds nothing, the shelves are restocked by steps 2 and 4 (the user has finished reading).
+// After a task ends the world goes on. Whenever no book is left on the furniture after a handover (the user
+// took the last one, or the robot still holds it), the caregiver restocks the furniture by steps 2 and 4 with
+// the other books (the user has finished reading); a book in the robot's hand stays there.
 //
 // Observations (books.cbtl): "pickable" (Names: the Book entries resting on one of the seven surfaces, in
 // catalogue order),
@@ -55,6 +57,10 @@
 namespace cbtl::domains::books {
 
 inline constexpr double kHeldProbability = 0.25;
+// An evaluation task offers one book the user enjoys among four others (the reference's evaluation: one of the
+// enjoyed books and half of the others removed from the nine), so a first handover can satisfy the user.
+inline constexpr std::size_t kEvalEnjoyed = 1;
+inline constexpr std::size_t kEvalOthers = 4;
 
 class BooksSimulator final : public sim::DomainSimulator {
  public:
@@ -70,7 +76,9 @@ class BooksSimulator final : public sim::DomainSimulator {
   sim::StepResult idle() override;
   const world::WorldState* worldState() const override { return &world_->workspace().state(); }
   std::string requestedTask() const override;
-  // Shares the user; its own world and RNG, reset with seed 0 until the caller resets it.
+  // Shares the user; its own world and RNG, reset with seed 0 until the caller resets it. Its tasks are evaluation
+  // tasks: the robot holds nothing, and the furniture holds kEvalEnjoyed books the user enjoys and kEvalOthers
+  // others (fewer when the catalogue has fewer), in shuffled slots.
   std::unique_ptr<sim::DomainSimulator> makeEvaluationTwin() const override;
 
   const BooksUser& user() const { return *user_; }
@@ -88,10 +96,12 @@ class BooksSimulator final : public sim::DomainSimulator {
     std::shared_ptr<const BookCatalog> catalog;
     std::shared_ptr<const BooksUser> user;
   };
-  BooksSimulator(const sim::SimulatorOptions& options, Shared shared, std::uint64_t seed);
+  BooksSimulator(const sim::SimulatorOptions& options, Shared shared, std::uint64_t seed, bool evaluation);
 
   // Steps 2 and 4 of the episode start on `state` (step 3 too when `mayHold`).
   void stockShelves(world::WorldState& state, bool mayHold);
+  // An evaluation task's furniture: kEvalEnjoyed books the user enjoys and kEvalOthers others, in shuffled slots.
+  void stockForEvaluation(world::WorldState& state);
   sim::StepResult handOver(sim::StepResult r);
 
   sim::SimulatorOptions options_;
@@ -103,6 +113,7 @@ class BooksSimulator final : public sim::DomainSimulator {
   world::Pose3 hand_;
   actions::RobotActions actions_;
   world::Rng rng_;
+  bool evaluation_ = false;  // an evaluation twin: tasks drawn as stockForEvaluation says
 };
 
 }  // namespace cbtl::domains::books

@@ -38,20 +38,33 @@ void CleaningSimulator::reset(std::uint64_t seed) {
   const std::vector<std::size_t> books = rng_.permutation(home::kBookCount);
   const double held = rng_.uniform();
   if (held >= 2.0 / 3.0) {
-    home::holdAtHome(s, home::bookBody(books[1]));
+    home::holdCarried(s, home::bookBody(books[1]));
   } else if (held >= 1.0 / 3.0) {
-    home::holdAtHome(s, "duster");
+    home::holdCarried(s, "duster");
   }
   if (world_->workspace().setState(s) != world::StateStatus::Ok) {
     throw std::logic_error("cleaning: the episode's start state is invalid");  // a bug in this file
   }
+  obstacle_ = home::bookBody(books[0]);
+  coverOneSurface();
+}
+
+void CleaningSimulator::coverOneSurface() {
+  world::Workspace& ws = world_->workspace();
+  // The books lying around (a book the robot put away) are tidied up first.
+  const std::string held = ws.state().held ? ws.state().held->object : std::string();
+  for (std::size_t k = 0; k < home::kBookCount; ++k) {
+    const std::string body = home::bookBody(k);
+    if (body != held && ws.objectPose(body) && !home::isParked(*ws.objectPose(body)))
+      ws.setObjectPose(body, home::parkedPose(k));
+  }
+  if (obstacle_ == held) return;
   // Surfaces in a uniform order: the first one with room for the book is covered (the main table may have
   // none while the duster lies on it).
-  const std::string obstacle = home::bookBody(books[0]);
   for (std::size_t i : rng_.permutation(home::kHomeSurfaces.size())) {
     const std::string covered(home::kHomeSurfaces[i].geom);
-    if (const auto pose = world::builtins::samplePlacement(*world_, obstacle, covered, kObstacleClearance, rng_)) {
-      world_->workspace().setObjectPose(obstacle, *pose);
+    if (const auto pose = world::builtins::samplePlacement(*world_, obstacle_, covered, kObstacleClearance, rng_)) {
+      ws.setObjectPose(obstacle_, *pose);
       break;
     }
   }
@@ -91,7 +104,7 @@ std::string CleaningSimulator::requestedTask() const {
 }
 
 StepResult CleaningSimulator::act(const sim::ActionCall& call) {
-  const auto done = actions_.execute(*world_, call, rng_);
+  const auto done = actions_.execute(*world_, call);
   if (!done) {
     StepResult r;
     r.status = sim::ActionStatus::UnknownAction;
@@ -103,6 +116,7 @@ StepResult CleaningSimulator::act(const sim::ActionCall& call) {
   if (!done->done()) {
     r.taskDone = true;  // a failure ends the task; the user has nothing to judge
     r.taskFailed = true;
+    coverOneSurface();  // the next task
     return r;
   }
   if (call.name == "wipe") {
@@ -114,6 +128,7 @@ StepResult CleaningSimulator::act(const sim::ActionCall& call) {
       r.satisfaction = welcome ? 1.0 : -1.0;
       r.taskDone = true;
       r.message = welcome ? "Thanks for cleaning there." : "Don't clean there -- I can do it myself.";
+      coverOneSurface();  // the next task
     }
   }
   return r;

@@ -7,14 +7,15 @@
 //      table, books parked outside the room);
 //   2. a uniform permutation of the nine books;
 //   3. what the robot holds: nothing, the duster or a book (the permutation's second book), 1/3 each, so
-//      the three tasks occur equally often; holding puts the arm at configs::kHome (HomeEpisode holdAtHome);
-//   4. one surface covered by one upright book (the permutation's first) at a uniform spot and yaw, kept
-//      kObstacleClearance from other objects (the paper: "for each task, we randomly sample one surface to
-//      cover with obstacles"): the surfaces are tried in a uniform random order and the first with room
-//      for the book (world::builtins::samplePlacement, 100 tries) is covered — the main table often has no
-//      room while the duster lies on it.
-// After a task ends the world goes on from where it is (the next task starts from the robot's state); only
-// reset draws a new room.
+//      the three tasks occur equally often; holding puts the arm at the carry configuration (HomeEpisode holdCarried);
+//   4. the first task's obstacle (coverOneSurface).
+// Every task (the paper: "for each task, we randomly sample one surface to cover with obstacles"): the books
+// lying on the furniture (one the robot put away) are tidied away, and one surface is covered by one upright
+// book (the permutation's first, unless the robot holds it) at a uniform spot and yaw, kept
+// kObstacleClearance from other objects: the surfaces are tried in a uniform random order and the first with
+// room for the book (world::builtins::samplePlacement, 100 tries) is covered — the main table often has no room
+// while the duster lies on it. A task ends with the user's reaction to a wipe or with a failed action; the next
+// one starts from the robot's state (base, arm, what it holds), with a new surface covered.
 //
 // Observations (cleaning.cbtl): "clearSurfaces" (Names: the Surface members on which no object rests —
 // SurfaceGeometry.h restsOn; the duster does not count, as every plan picks it up before it wipes),
@@ -80,6 +81,9 @@ class CleaningSimulator final : public sim::DomainSimulator {
   CleaningSimulator(std::shared_ptr<const world::Scene> scene, const sim::SimulatorOptions& options,
                     std::shared_ptr<const CleaningUser> user, std::uint64_t seed);
 
+  // Tidies the furniture and covers one surface with the obstacle book (the header's "Every task").
+  void coverOneSurface();
+
   sim::SimulatorOptions options_;
   std::shared_ptr<const world::Scene> scene_;  // shared with evaluation twins
   std::shared_ptr<const CleaningUser> user_;
@@ -87,6 +91,7 @@ class CleaningSimulator final : public sim::DomainSimulator {
   std::map<std::string, world::Pose3> scenePoses_;  // home.xml's object poses
   actions::RobotActions actions_;
   world::Rng rng_;
+  std::string obstacle_;  // the book that covers a surface
 };
 
 }  // namespace cbtl::domains::cleaning

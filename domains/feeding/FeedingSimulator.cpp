@@ -1,6 +1,6 @@
 #include "domains/feeding/FeedingSimulator.h"
 
-#include "domains/feeding/TableSlide.h"
+#include "domains/feeding/FeedingActions.h"
 #include "domains/home/HomeEpisode.h"
 #include "domains/home/HomeScene.h"
 #include "robot/actions/CallArguments.h"
@@ -23,15 +23,6 @@ constexpr double kPlateX0 = 0.30, kPlateX1 = 0.38, kPlateY0 = 0.25, kPlateY1 = 0
 constexpr double kDrinkX0 = 0.30, kDrinkX1 = 0.38, kDrinkY0 = 0.15, kDrinkY1 = 0.75;
 // Where the drink waits while it is not in use: off the table, out of every check of the table.
 constexpr double kDrinkParkedX = 0.55, kDrinkParkedY = 1.60;
-// The drink's handle in the drink's body frame (the holder box of feeding.xml), and how far short of it along
-// world -y the tool stops (the fingers close on the handle's near face; closer, they would touch it), metres.
-const Eigen::Vector3d kDrinkGraspOffset(-0.085, 0.0, 0.2);
-constexpr double kDrinkGraspStandoff = 0.10;
-constexpr double kDrinkLift = 0.01;  // metres the tool rises after closing on the handle
-// The utensil mount's grasp pose (feeding.cbtl mountX, mountY, mountLowZ), tool pointing down.
-const Eigen::Vector3d kMountLow(0.242, -0.077, 0.07);
-constexpr double kMountTolerance = 0.03;  // metres from the mount pose where a release re-mounts the utensil
-constexpr double kFoodReach = 0.10;       // metres from the plate centre where food can be picked up
 
 const std::vector<std::string> kFoods = {"french fries", "potato wedges", "tater tots", "carrot sticks"};
 const std::vector<std::string> kDips = {"ketchup", "bbqSauce", "ranch", "hummus"};  // noDip is always possible
@@ -42,8 +33,6 @@ sim::StepResult unknownAction(std::string message) {
   r.message = std::move(message);
   return r;
 }
-
-Eigen::Quaterniond towardsPlusY() { return Eigen::Quaterniond(0.0, 0.0, 0.7071067811865476, 0.7071067811865476); }
 
 }  // namespace
 
@@ -70,7 +59,10 @@ FeedingSimulator::FeedingSimulator(const ProgramFacts& program, const sim::Simul
 
 FeedingSimulator::FeedingSimulator(std::shared_ptr<const world::Scene> scene, std::shared_ptr<const FeedingUser> user,
                                    std::uint64_t seed)
-    : scene_(std::move(scene)), user_(std::move(user)), world_(std::make_unique<world::World>(scene_)) {
+    : scene_(std::move(scene)),
+      user_(std::move(user)),
+      world_(std::make_unique<world::World>(scene_)),
+      actions_(FeedingActions::forScene(*scene_)) {
   scenePoses_ = world_->workspace().state().objects;
   reset(seed);
 }
@@ -183,79 +175,15 @@ sim::StepResult FeedingSimulator::complete(sim::StepResult r, bool satisfied) {
   return r;
 }
 
-sim::StepResult FeedingSimulator::graspDrink() {
-  world::Workspace& ws = world_->workspace();
-  sim::StepResult r;
-  r.consumedStep = true;
-  if (ws.heldObject() >= 0) {
-    r.message = "grasp(drink): the gripper is not empty";
-    return fail(std::move(r));
-  }
-  const Pose3 drink = *ws.objectPose("drink");
-  const Pose3 handle{drink.transformPoint(kDrinkGraspOffset) - Eigen::Vector3d(0, kDrinkGraspStandoff, 0),
-                     towardsPlusY()};
-  // IK from random starts: seeded at the folded arm, every converged solution reaches around the table.
-  std::optional<world::ArmConfig> q;
-  for (int attempt = 0; attempt < 5 && !q; ++attempt) q = world::builtins::sampleIk(*world_, handle, rng_);
-  if (!q) {
-    r.message =
-        fmt::format("grasp(drink): no collision-free IK solution for the handle of the drink at ({:.3f}, {:.3f})",
-                    drink.position.x(), drink.position.y());
-    return fail(std::move(r));
-  }
-  const world::builtins::ActionResult approach = world::builtins::moveArm(*world_, *q, rng_);
-  if (!approach.done()) {
-    r.message =
-        fmt::format("grasp(drink): approach: {}: {}", world::builtins::toString(approach.status), approach.detail);
-    return fail(std::move(r));
-  }
-  // The drink's handle sticks out towards the fingers; the drink joins the hand where it stands.
-  ws.setHeld(std::string("drink"));
-  world::WorldState closed = ws.state();
-  closed.gripper = 0.0;
-  ws.setState(closed);
-  // The lift is a 1 cm straight move that starts with the drink on the table (a contact the planner would
-  // reject as a colliding start), so only its end is checked.
-  Pose3 lifted = ws.toolPose();
-  lifted.position.z() += kDrinkLift;
-  world::IkOptions ik = world_->ik;
-  const world::IkResult up = world::solveIk(ws, lifted, ws.state().arm, rng_, ik);
-  if (!up.solved()) {
-    ws.setArm(*q);
-    r.message = fmt::format("grasp(drink): lift: {}", world::toString(up.status));
-    return fail(std::move(r));
-  }
-  ws.setArm(up.q);
-  return r;
-}
-
-sim::StepResult FeedingSimulator::releaseUtensil() {
-  world::Workspace& ws = world_->workspace();
-  sim::StepResult r;
-  r.consumedStep = true;
-  if ((ws.toolPose().position - kMountLow).norm() > kMountTolerance) {
-    r.message = "release(): the utensil is not at its mount";
-    return fail(std::move(r));
-  }
-  ws.setHeld(std::nullopt);
-  ws.setObjectPose("utensil", scenePoses_.at("utensil"));
-  world::WorldState s = ws.state();
-  s.gripper = 1.0;
-  ws.setState(s);
-  return r;
-}
-
 sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
   world::Workspace& ws = world_->workspace();
-  const auto holding = [&](const char* object) {
-    return ws.heldObject() >= 0 && ws.scene().objects()[static_cast<std::size_t>(ws.heldObject())].name == object;
-  };
-  sim::StepResult step;
-  step.consumedStep = true;
   if (call.name == "dipInto") {
+    // The world does nothing (FeedingActions.h); the sauce must be one of this meal's.
     if (const std::string e = actions::checkArguments(call, {actions::kNameArg}); !e.empty()) {
       return unknownAction(e);
     }
+    sim::StepResult step;
+    step.consumedStep = true;
     const std::string entry = dipEntryOfSauce(call.args[0].text);
     if (entry.empty() || std::find(dips_.begin(), dips_.end(), entry) == dips_.end()) {
       step.message = fmt::format("dipInto({}): no such sauce on the table", call.args[0].text);
@@ -264,42 +192,19 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
     progress_.dip = entry;
     return step;
   }
-  if (call.name == "acquireFood") {
-    if (const std::string e = actions::checkArguments(call, {}); !e.empty()) {
-      return unknownAction(e);
-    }
-    const Eigen::Vector3d tool = ws.toolPose().position, plate = ws.objectPose("plate")->position;
-    if (!holding("utensil") || std::hypot(tool.x() - plate.x(), tool.y() - plate.y()) > kFoodReach) {
-      step.message = "acquireFood(): the utensil is not above the food";
-      return fail(std::move(step));
-    }
-    return step;
-  }
-  if (call.name == "waitForReady") {
-    if (const std::string e = actions::checkArguments(call, {actions::kNameArg}); !e.empty()) {
-      return unknownAction(e);
-    }
-    progress_.signal = call.args[0].text;
-    return step;
-  }
-  if (isTableSlide(call.name)) {
-    step = slideOnTable(*world_, call).toStepResult(call.name);
-    if (step.status == sim::ActionStatus::UnknownAction) return step;
-    if (step.status == sim::ActionStatus::Ignored) return fail(std::move(step));
-    if (call.name == "moveDrink" && request_ == Request::Prepare) return complete(std::move(step), true);
-    return step;
-  }
-  if (call.name == "grasp" && call.args.size() == 1 && call.args[0].text == "drink") return graspDrink();
-  if (call.name == "release" && call.args.empty() && holding("utensil")) return releaseUtensil();
-
-  const auto result = actions_.execute(*world_, call, rng_);
+  const auto result = actions_.execute(*world_, call);
   if (!result) {
     return unknownAction(fmt::format("Feeding has no action '{}'", call.name));
   }
-  step = result->toStepResult(call.name);
+  sim::StepResult step = result->toStepResult(call.name);
   if (step.status == sim::ActionStatus::UnknownAction) return step;
   if (step.status == sim::ActionStatus::Ignored) return fail(std::move(step));
 
+  if (call.name == "waitForReady") {
+    progress_.signal = call.args[0].text;
+    return step;
+  }
+  if (call.name == "moveDrink" && request_ == Request::Prepare) return complete(std::move(step), true);
   if (call.name == "moveArm") {
     const world::ArmConfig q = ws.state().arm;
     const double score = world::builtins::occlusion(*world_, q);

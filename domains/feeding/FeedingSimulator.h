@@ -87,8 +87,6 @@ class FeedingSimulator final : public sim::DomainSimulator {
   void restoreHome();
   sim::StepResult fail(sim::StepResult r);
   sim::StepResult complete(sim::StepResult r, bool satisfied);
-  sim::StepResult graspDrink();
-  sim::StepResult releaseUtensil();
   world::Pose2 randomXY(double x0, double x1, double y0, double y1);
 
   std::shared_ptr<const world::Scene> scene_;  // shared with evaluation twins

@@ -27,8 +27,8 @@ world::WorldState emptyRoom(const world::Scene& scene, const std::map<std::strin
   return s;
 }
 
-void holdAtHome(world::WorldState& state, const std::string& object) {
-  state.arm = world::configs::kHome;
+void holdCarried(world::WorldState& state, const std::string& object) {
+  state.arm = object == "duster" ? world::configs::kHome : world::configs::kRetract;
   state.gripper = 0.0;
   const world::Pose3 toolInBody = object == "duster" ? actions::dusterToolInBody() : actions::bookToolInBody();
   state.held = world::Grasp{object, toolInBody.inverse()};

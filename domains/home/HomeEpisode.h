@@ -27,8 +27,10 @@ world::ArmConfig initialArm(const world::Scene& scene);
 // Workspace's state().objects).
 world::WorldState emptyRoom(const world::Scene& scene, const std::map<std::string, world::Pose3>& scenePoses);
 
-// Puts `object` in the robot's hand in `state`: arm at configs::kHome, gripper closed, grasped with the
-// duster's standard grasp or, for any other object, the book carry grasp (StandardGrasps.h).
-void holdAtHome(world::WorldState& state, const std::string& object);
+// Puts `object` in the robot's hand in `state`: arm at the configuration the domains carry it in while the
+// base moves (the duster at configs::kHome, which holds its long pole clear of the robot; a book at
+// configs::kRetract, folded over the base, which clears the bed and the user's arm), gripper closed, grasped
+// with the duster's standard grasp or, for any other object, the book carry grasp (StandardGrasps.h).
+void holdCarried(world::WorldState& state, const std::string& object);
 
 }  // namespace cbtl::domains::home

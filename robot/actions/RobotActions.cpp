@@ -1,5 +1,6 @@
 #include "robot/actions/RobotActions.h"
 
+#include "robot/world/MotionQuery.h"
 #include "robot/world/NamedConfigurations.h"
 
 #include "robot/actions/CallArguments.h"
@@ -65,20 +66,14 @@ bool posesClose(const world::Pose3& a, const world::Pose3& b, double position, d
   return (a.position - b.position).norm() <= position && world::rotationDistance(a.orientation, b.orientation) <= angle;
 }
 
-// Moves the tool to `target` from the current joints: IK seeded there (so the arm stays in its branch),
-// then the builtin joint move (straight segment first).
-ActionResult moveToolNear(world::World& w, const world::Pose3& target, world::Rng& rng) {
-  world::Workspace& ws = w.workspace();
-  const world::ArmConfig start = ws.state().arm;
-  const world::IkResult ik = world::solveIk(ws, target, start, rng, w.ik);
-  ws.setArm(start);
-  if (!ik.solved()) {
-    ActionResult r;
-    r.status = ActionStatus::NoIk;
-    r.detail = world::toString(ik.status);
-    return r;
-  }
-  return world::builtins::moveArm(w, ik.q, rng);
+// The IK restarts' random stream for reaching `target` from the Workspace's state: a function of both.
+world::Rng ikStream(const world::Workspace& ws, const world::Pose3& target) {
+  const world::WorldState& s = ws.state();
+  std::vector<double> key(s.arm.begin(), s.arm.end());
+  key.insert(key.end(), {s.base.x, s.base.y, s.base.yaw, static_cast<double>(ws.heldObject()), target.position.x(),
+                         target.position.y(), target.position.z(), target.orientation.w(), target.orientation.x(),
+                         target.orientation.y(), target.orientation.z()});
+  return world::Rng(world::fingerprintOf(key));
 }
 
 // The standard action names, sorted (isStandard).
@@ -113,24 +108,59 @@ sim::StepResult RobotActionResult::toStepResult(const std::string& action) const
 
 bool RobotActions::isStandard(std::string_view name) { return std::binary_search(kNames.begin(), kNames.end(), name); }
 
+ActionResult moveArmIn(world::World& w, const world::ArmConfig& q, ExecutionMode mode) {
+  if (mode == ExecutionMode::Execute) return world::builtins::moveArm(w, q);
+  ActionResult r;
+  if (!w.workspace().scene().withinLimits(q)) {
+    r.status = ActionStatus::NoPath;
+    r.detail = world::toString(world::PlanStatus::InvalidGoal);
+    return r;
+  }
+  r.armPath = {w.workspace().state().arm, q};
+  w.workspace().setArm(q);
+  return r;
+}
+
+ActionResult moveToolIn(world::World& w, const world::Pose3& target, ExecutionMode mode) {
+  world::Workspace& ws = w.workspace();
+  const world::ArmConfig start = ws.state().arm;
+  world::Rng rng = ikStream(ws, target);
+  const world::IkResult ik = world::solveIk(ws, target, start, rng, w.ik);
+  ws.setArm(start);
+  if (!ik.solved()) {
+    ActionResult r;
+    r.status = ActionStatus::NoIk;
+    r.detail = world::toString(ik.status);
+    return r;
+  }
+  return moveArmIn(w, ik.q, mode);
+}
+
 std::optional<RobotActionResult> RobotActions::execute(world::World& w, const sim::ActionCall& call,
-                                                       world::Rng& rng) const {
+                                                       ExecutionMode mode) const {
+  if (domain_) {
+    if (auto r = domain_->execute(w, call, mode)) return r;
+  }
+  if (!isStandard(call.name)) return std::nullopt;
+  return standard(w, call, mode);
+}
+
+RobotActionResult RobotActions::standard(world::World& w, const sim::ActionCall& call, ExecutionMode mode) const {
   const std::string& n = call.name;
-  if (!isStandard(n)) return std::nullopt;
   const std::vector<sim::Value>& a = call.args;
 
   if (n == "moveArm") {
     if (auto e = checkArguments(call, {kConfArg}); !e.empty()) return illFormed(e);
     const auto q = decodeConf(a[0].vector);
     if (!q) return failed(ActionStatus::InvalidArgument, "moveArm: a joint angle is not finite");
-    return from(world::builtins::moveArm(w, *q, rng));
+    return from(moveArmIn(w, *q, mode));
   }
   if (n == "moveTool") {
     if (auto e = checkArguments(call, {kSe3Arg}); !e.empty()) return illFormed(e);
     const auto tool = decodePose3(a[0].vector);
     if (!tool)
       return failed(ActionStatus::InvalidArgument, "moveTool: the pose is not finite or its quaternion is zero");
-    return from(moveToolNear(w, *tool, rng));
+    return from(moveToolIn(w, *tool, mode));
   }
   if (n == "moveArmToNamed") {
     if (auto e = checkArguments(call, {kNameArg}); !e.empty()) return illFormed(e);
@@ -143,17 +173,23 @@ std::optional<RobotActionResult> RobotActions::execute(world::World& w, const si
       return failed(ActionStatus::InvalidArgument,
                     fmt::format("no named configuration '{}' (known: {})", a[0].text, known));
     }
-    return from(world::builtins::moveArm(w, *q, rng));
+    return from(moveArmIn(w, *q, mode));
   }
   if (n == "moveBase") {
     if (auto e = checkArguments(call, {kSe2Arg}); !e.empty()) return illFormed(e);
     const auto pose = decodePose2(a[0].vector);
     if (!pose) return failed(ActionStatus::InvalidArgument, "moveBase: the pose is not finite");
-    return from(world::builtins::moveBase(w, *pose, rng));
+    if (mode == ExecutionMode::Effects) {
+      if (!w.workspace().scene().hasMobileBase())
+        return failed(ActionStatus::InvalidArgument, "the scene has no mobile base");
+      w.workspace().setBase(*pose);
+      return RobotActionResult{};
+    }
+    return from(world::builtins::moveBase(w, *pose));
   }
   if (n == "grasp") {
     if (auto e = checkArguments(call, {kNameArg}); !e.empty()) return illFormed(e);
-    return grasp(w, a[0].text, rng);
+    return grasp(w, a[0].text, mode);
   }
   if (n == "closeGripper") {
     if (auto e = checkArguments(call, {kNumberArg}); !e.empty()) return illFormed(e);
@@ -174,7 +210,7 @@ std::optional<RobotActionResult> RobotActions::execute(world::World& w, const si
     if (auto e = checkArguments(call, {kNameArg, kSe3Arg}); !e.empty()) return illFormed(e);
     const auto pose = decodePose3(a[1].vector);
     if (!pose) return failed(ActionStatus::InvalidArgument, "place: the pose is not finite or its quaternion is zero");
-    return place(w, a[0].text, *pose, rng);
+    return place(w, a[0].text, *pose, mode);
   }
   if (n == "handOver") {
     if (auto e = checkArguments(call, {}); !e.empty()) return illFormed(e);
@@ -185,7 +221,15 @@ std::optional<RobotActionResult> RobotActions::execute(world::World& w, const si
     if (auto e = checkArguments(call, {kNameArg, kSe2Arg}); !e.empty()) return illFormed(e);
     const auto base = decodePose2(a[1].vector);
     if (!base) return failed(ActionStatus::InvalidArgument, "wipe: the base pose is not finite");
-    return from(sweepSurface(w, a[0].text, *base, rng));
+    if (mode == ExecutionMode::Effects) {
+      // The sweep ends where it began: the base back at `base`, the arm as it was.
+      if (w.workspace().heldObject() < 0) return failed(ActionStatus::NotHolding, "wiping needs a held duster");
+      if (!w.workspace().scene().hasMobileBase())
+        return failed(ActionStatus::InvalidArgument, "the scene has no mobile base");
+      w.workspace().setBase(*base);
+      return RobotActionResult{};
+    }
+    return from(sweepSurface(w, a[0].text, *base));
   }
   if (n == "say") {
     if (auto e = checkArguments(call, {kNameArg}); !e.empty()) return illFormed(e);
@@ -206,7 +250,7 @@ std::optional<RobotActionResult> RobotActions::execute(world::World& w, const si
   return r;
 }
 
-RobotActionResult RobotActions::grasp(world::World& w, const std::string& body, world::Rng& rng) const {
+RobotActionResult RobotActions::grasp(world::World& w, const std::string& body, ExecutionMode mode) const {
   world::Workspace& ws = w.workspace();
   if (ws.heldObject() >= 0) return failed(ActionStatus::AlreadyHolding, ws.state().held->object);
   if (!ws.objectPose(body)) return failed(ActionStatus::InvalidArgument, fmt::format("no movable object '{}'", body));
@@ -215,7 +259,7 @@ RobotActionResult RobotActions::grasp(world::World& w, const std::string& body, 
   double reach = 0.15;  // builtins::grasp's default: the body's origin near the finger tip
   if (const auto approach = standardGraspTool(w, body)) {
     if (!posesClose(ws.toolPose(), *approach, 0.01, 0.1)) {
-      ActionResult moved = moveToolNear(w, *approach, rng);
+      ActionResult moved = moveToolIn(w, *approach, mode);
       if (!moved.done()) return failed(moved.status, "approaching the grasp of " + body + ": " + moved.detail);
       r.armPath = std::move(moved.armPath);
     }
@@ -225,7 +269,7 @@ RobotActionResult RobotActions::grasp(world::World& w, const std::string& body, 
   if (!attach.done()) return failed(attach.status, attach.detail);
   world::Pose3 lifted = ws.toolPose();
   lifted.position.z() += kLift;
-  ActionResult lift = moveToolNear(w, lifted, rng);
+  ActionResult lift = moveToolIn(w, lifted, mode);
   if (!lift.done()) return failed(lift.status, "lifting " + body + ": " + lift.detail);
   r.armPath.insert(r.armPath.end(), lift.armPath.begin(), lift.armPath.end());
   restore.commit();
@@ -256,7 +300,7 @@ RobotActionResult RobotActions::release(world::World& w) const {
 }
 
 RobotActionResult RobotActions::place(world::World& w, const std::string& surface, const world::Pose3& pose,
-                                      world::Rng& rng) const {
+                                      ExecutionMode mode) const {
   world::Workspace& ws = w.workspace();
   if (ws.heldObject() < 0 || !ws.state().held) return failed(ActionStatus::NotHolding, "nothing to place");
   const world::Grasp held = *ws.state().held;
@@ -278,7 +322,7 @@ RobotActionResult RobotActions::place(world::World& w, const std::string& surfac
   RobotActionResult r;
   const world::Pose3 tool = pose * held.toolToObject.inverse();
   if (!posesClose(ws.toolPose(), tool, 1e-3, 0.01)) {
-    ActionResult moved = moveToolNear(w, tool, rng);
+    ActionResult moved = moveToolIn(w, tool, mode);
     if (!moved.done()) return failed(moved.status, "carrying " + held.object + ": " + moved.detail);
     r.armPath = std::move(moved.armPath);
   }
@@ -286,7 +330,7 @@ RobotActionResult RobotActions::place(world::World& w, const std::string& surfac
   ws.setObjectPose(held.object, settled);
   const world::Pose3 here = ws.toolPose();
   const world::Pose3 back{here.position - kRetract * (here.orientation * Eigen::Vector3d::UnitZ()), here.orientation};
-  ActionResult retract = moveToolNear(w, back, rng);
+  ActionResult retract = moveToolIn(w, back, mode);
   if (!retract.done()) return failed(retract.status, "retracting from " + held.object + ": " + retract.detail);
   r.armPath.insert(r.armPath.end(), retract.armPath.begin(), retract.armPath.end());
   restore.commit();

@@ -1,8 +1,25 @@
 // RobotActions.h — the executor of std.actions (stdlib/std/actions.cbtl) on a robot world, shared by the
 // home-scene domains (Cleaning, Books) and Feeding. Domain-only actions (Feeding's movePlate) are the domain's.
 //
-// execute(world, call, rng) runs one sim::ActionCall whose name is a standard action and returns what
-// happened; for any other name it returns std::nullopt, so a domain handles its own actions first or after.
+// execute(world, call, mode) runs one sim::ActionCall: the domain's own actions first (DomainActions, given at
+// construction: Feeding's movePlate, ...), then the standard ones; for any other name it returns std::nullopt.
+// The same executor serves the domain's simulator (which carries plans out) and the runtime's world model
+// (which dry-runs candidate plans before accepting them, robot/bind/WorldHost.h), so a plan the dry run
+// accepted is one the simulator carries out from the same state.
+//
+// Pure: an action's outcome is a function of the world state and the call. Its random choices (IK restarts,
+// the planner's stream) are seeded from a fingerprint of both (world/MotionQuery.h), never from a caller's
+// generator, and its motions go through the scene's motion cache.
+//
+// Modes (ExecutionMode):
+//   Execute  every check, planned motions: what the robot does.
+//   Effects  only the end state the action leaves when it succeeds, for state progression between skills:
+//            motions teleport (no path is planned, no configuration on the way is checked), IK that decides an
+//            end configuration still runs, preconditions that decide whether the end state is defined still
+//            apply (holding, unknown names, a body within reach of the fingers, a placement that rests on its
+//            surface); the wiping sweep is not checked. Much cheaper than Execute; when Execute succeeds both
+//            leave the same state.
+//
 // It never throws for bad input from a plan:
 //   - a call of the wrong shape (argument count, kind, vector length) is `wellFormed == false` (the simulator
 //     reports sim::ActionStatus::UnknownAction); the world is unchanged and no step passes;
@@ -50,6 +67,7 @@
 #include "robot/world/WorldOperations.h"
 #include "runtime/sim/DomainSimulator.h"
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -77,17 +95,47 @@ struct RobotActionResult {
   sim::StepResult toStepResult(const std::string& action) const;
 };
 
+enum class ExecutionMode { Execute, Effects };
+
+// A domain's own actions on the robot world (domains/<name>/): executed before the standard ones, with the
+// contract above (pure, both modes, nothing thrown, the world unchanged on failure).
+class DomainActions {
+ public:
+  virtual ~DomainActions() = default;
+  // nullopt: `call` is not one of the domain's actions.
+  virtual std::optional<RobotActionResult> execute(world::World& w, const sim::ActionCall& call,
+                                                   ExecutionMode mode) const = 0;
+  // Whether `name` is one of the domain's actions.
+  virtual bool handles(std::string_view name) const = 0;
+};
+
 class RobotActions {
  public:
-  static bool isStandard(std::string_view name);
+  explicit RobotActions(std::shared_ptr<const DomainActions> domain = nullptr) : domain_(std::move(domain)) {}
 
-  // Runs `call` on `w` drawing random choices from `rng`; nullopt when `call.name` is not a standard action.
-  std::optional<RobotActionResult> execute(world::World& w, const sim::ActionCall& call, world::Rng& rng) const;
+  static bool isStandard(std::string_view name);
+  // A standard action or one of the domain's.
+  bool knows(std::string_view name) const { return isStandard(name) || (domain_ && domain_->handles(name)); }
+
+  // Runs `call` on `w`; nullopt when `call.name` is neither the domain's nor a standard action.
+  std::optional<RobotActionResult> execute(world::World& w, const sim::ActionCall& call,
+                                           ExecutionMode mode = ExecutionMode::Execute) const;
 
  private:
-  RobotActionResult grasp(world::World& w, const std::string& body, world::Rng& rng) const;
+  RobotActionResult standard(world::World& w, const sim::ActionCall& call, ExecutionMode mode) const;
+  RobotActionResult grasp(world::World& w, const std::string& body, ExecutionMode mode) const;
   RobotActionResult release(world::World& w) const;
-  RobotActionResult place(world::World& w, const std::string& surface, const world::Pose3& pose, world::Rng& rng) const;
+  RobotActionResult place(world::World& w, const std::string& surface, const world::Pose3& pose,
+                          ExecutionMode mode) const;
+
+  std::shared_ptr<const DomainActions> domain_;
 };
+
+// Moves the arm to q: in Execute mode world::builtins::moveArm (planned, cached); in Effects mode it teleports
+// (q must be finite and within limits). For domain actions built on the standard motions.
+world::builtins::ActionResult moveArmIn(world::World& w, const world::ArmConfig& q, ExecutionMode mode);
+// Moves the tool to `target` from the current joints: IK seeded there (so the arm stays in its branch; restarts
+// seeded from the state and target), then moveArmIn.
+world::builtins::ActionResult moveToolIn(world::World& w, const world::Pose3& target, ExecutionMode mode);
 
 }  // namespace cbtl::actions

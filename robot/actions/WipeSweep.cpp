@@ -54,7 +54,7 @@ std::vector<Eigen::Vector2d> strokeWaypoints(const SurfaceFace& face, const Eige
 
 }  // namespace
 
-ActionResult sweepSurface(world::World& w, const std::string& surface, const world::Pose2& base, world::Rng& rng) {
+ActionResult sweepSurface(world::World& w, const std::string& surface, const world::Pose2& base) {
   world::Workspace& ws = w.workspace();
   if (ws.heldObject() < 0 || !ws.state().held) return fail(ActionStatus::NotHolding, "wiping needs a held duster");
   const auto face = surfaceFace(ws, surface);
@@ -64,7 +64,7 @@ ActionResult sweepSurface(world::World& w, const std::string& surface, const wor
 
   ActionResult r;
   if (!sameBase(ws.state().base, base)) {
-    ActionResult toBase = world::builtins::moveBase(w, base, rng);
+    ActionResult toBase = world::builtins::moveBase(w, base);
     if (!toBase.done()) return fail(toBase.status, "reaching the wipe base: " + toBase.detail);
     r.basePath = std::move(toBase.basePath);
   }

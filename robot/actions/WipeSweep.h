@@ -37,8 +37,7 @@ inline constexpr double kContactReach = 0.1;        // its origin may lie this f
 // The pre-wipe pose lives in the world library (world/PreWipe.h), where std.collision's wipeStartPose reads it.
 using world::preWipeToolPose;
 
-// The sweep described above. `rng` is used only to plan the base to `base`.
-world::builtins::ActionResult sweepSurface(world::World& w, const std::string& surface, const world::Pose2& base,
-                                           world::Rng& rng);
+// The sweep described above (the base is planned to `base` with world::builtins::moveBase).
+world::builtins::ActionResult sweepSurface(world::World& w, const std::string& surface, const world::Pose2& base);
 
 }  // namespace cbtl::actions

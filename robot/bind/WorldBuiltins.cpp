@@ -142,10 +142,13 @@ void fReachableAbove(const rt::CallContext& cx, Args a, Widths, Out o) {
 void writeConf(const ArmConfig& q, Out o) {
   for (int i = 0; i < world::kArmDof; ++i) o[i] = q[i];
 }
+// The IK samplers start half their draws at the arm's configuration in the reference state (the state the skill
+// starts in: the solution on the current branch, closest to the joints, as the reference code takes it) and half
+// at random configurations (so repeated draws spread over the solution set).
 bool sIkSample(const rt::CallContext& cx, Args a, Widths, rt::Rng& rng, Out o) {
   world::Rng r(rng.next());
   if (!finite(a)) return false;
-  const auto q = solveIk(host(cx), kOrigin, readPose(a.data()), true, r, true);
+  const auto q = solveIk(host(cx), kOrigin, readPose(a.data()), r.coin(), r, true);
   if (!q) return false;
   writeConf(*q, o);
   return true;
@@ -153,7 +156,7 @@ bool sIkSample(const rt::CallContext& cx, Args a, Widths, rt::Rng& rng, Out o) {
 bool sIkSampleFrom(const rt::CallContext& cx, Args a, Widths, rt::Rng& rng, Out o) {
   world::Rng r(rng.next());
   if (!finite(a)) return false;
-  const auto q = solveIk(host(cx), readSe2(a.data()), readPose(a.data() + 3), true, r, true);
+  const auto q = solveIk(host(cx), readSe2(a.data()), readPose(a.data() + 3), r.coin(), r, true);
   if (!q) return false;
   writeConf(*q, o);
   return true;
@@ -162,7 +165,7 @@ bool sIkAbove(const rt::CallContext& cx, Args a, Widths, rt::Rng& rng, Out o) {
   world::Rng r(rng.next());
   if (!finite(a)) return false;
   const double yaw = rng.uniform(-M_PI, M_PI);
-  const auto q = solveIk(host(cx), kOrigin, toolDown(Eigen::Vector3d(a[0], a[1], a[2] + a[3]), yaw), true, r, true);
+  const auto q = solveIk(host(cx), kOrigin, toolDown(Eigen::Vector3d(a[0], a[1], a[2] + a[3]), yaw), r.coin(), r, true);
   if (!q) return false;
   writeConf(*q, o);
   return true;
@@ -380,53 +383,57 @@ void fOcclusionByBody(const rt::CallContext& cx, Args a, Widths, Out o) {
   o[0] = occlusionNow(h);
 }
 
+// `state`: the result depends on the reference state (objects, held body, the arm or base as observed), not only
+// on the arguments and the scene's fixed geometry; such calls are evaluated in the state of their skill.
 struct FunctionEntry {
   const char* name;
   rt::FunctionImpl impl;
+  bool state;
 };
 struct SamplerEntry {
   const char* name;
   rt::SamplerImpl impl;
+  bool state;
 };
 
 constexpr FunctionEntry kFunctions[] = {
-    {"toolPose", fToolPose},
-    {"toolPoseFrom", fToolPoseFrom},
-    {"withinJointLimits", fWithinJointLimits},
-    {"jointDistance", fJointDistance},
-    {"namedConf", fNamedConf},
-    {"ikExists", fIkExists},
-    {"ikExistsFrom", fIkExistsFrom},
-    {"reachableAbove", fReachableAbove},
-    {"motionPlanExists", fMotionPlanExists},
-    {"motionPlanExistsFrom", fMotionPlanExistsFrom},
-    {"basePathExists", fBasePathExists},
-    {"bodyPose", fBodyPose},
-    {"sitePose", fSitePose},
-    {"supportSurface", fSupportSurface},
-    {"approachBase", fApproachBase},
-    {"toolPoseForObject", fToolPoseForObject},
-    {"wipeStartPose", fWipeStartPose},
-    {"confCollisionFree", fConfCollisionFree},
-    {"confCollisionFreeFrom", fConfCollisionFreeFrom},
-    {"confCollisionFreeHolding", fConfCollisionFreeHolding},
-    {"baseCollisionFree", fBaseCollisionFree},
-    {"collisionFreeIkExists", fCollisionFreeIkExists},
-    {"bodiesApart", fBodiesApart},
-    {"bodiesApartAtXY", fBodiesApartAtXY},
-    {"bodyClearance", fBodyClearance},
-    {"restsOn", fRestsOn},
-    {"placementClear", fPlacementClear},
-    {"sideGraspPose", fSideGraspPose},
-    {"occlusion", fOcclusion},
-    {"occlusionHolding", fOcclusionHolding},
-    {"occlusionByBody", fOcclusionByBody},
+    {"toolPose", fToolPose, false},
+    {"toolPoseFrom", fToolPoseFrom, false},
+    {"withinJointLimits", fWithinJointLimits, false},
+    {"jointDistance", fJointDistance, false},
+    {"namedConf", fNamedConf, false},
+    {"ikExists", fIkExists, true},  // seeded at the observed arm
+    {"ikExistsFrom", fIkExistsFrom, true},
+    {"reachableAbove", fReachableAbove, false},
+    {"motionPlanExists", fMotionPlanExists, true},
+    {"motionPlanExistsFrom", fMotionPlanExistsFrom, true},
+    {"basePathExists", fBasePathExists, true},
+    {"bodyPose", fBodyPose, true},
+    {"sitePose", fSitePose, true},
+    {"supportSurface", fSupportSurface, true},
+    {"approachBase", fApproachBase, true},
+    {"toolPoseForObject", fToolPoseForObject, true},
+    {"wipeStartPose", fWipeStartPose, true},
+    {"confCollisionFree", fConfCollisionFree, true},
+    {"confCollisionFreeFrom", fConfCollisionFreeFrom, true},
+    {"confCollisionFreeHolding", fConfCollisionFreeHolding, true},
+    {"baseCollisionFree", fBaseCollisionFree, true},
+    {"collisionFreeIkExists", fCollisionFreeIkExists, true},
+    {"bodiesApart", fBodiesApart, false},
+    {"bodiesApartAtXY", fBodiesApartAtXY, true},
+    {"bodyClearance", fBodyClearance, true},
+    {"restsOn", fRestsOn, false},
+    {"placementClear", fPlacementClear, true},
+    {"sideGraspPose", fSideGraspPose, true},
+    {"occlusion", fOcclusion, true},
+    {"occlusionHolding", fOcclusionHolding, true},
+    {"occlusionByBody", fOcclusionByBody, true},
 };
 constexpr SamplerEntry kSamplers[] = {
-    {"ikSample", sIkSample},
-    {"ikSampleFrom", sIkSampleFrom},
-    {"ikAbove", sIkAbove},
-    {"placementOn", sPlacementOn},
+    {"ikSample", sIkSample, true},
+    {"ikSampleFrom", sIkSampleFrom, true},
+    {"ikAbove", sIkAbove, true},
+    {"placementOn", sPlacementOn, false},
 };
 
 }  // namespace
@@ -436,8 +443,8 @@ rt::Builtins withWorld(rt::Builtins builtins, std::shared_ptr<const world::Scene
   auto h = std::make_shared<WorldHost>(std::move(scene));
   h->planIterations = options.planIterations;
   h->ikAttempts = options.ikAttempts;
-  for (const auto& f : kFunctions) builtins.addFunction(f.name, f.impl);
-  for (const auto& s : kSamplers) builtins.addSampler(s.name, s.impl);
+  for (const auto& f : kFunctions) builtins.addFunction(f.name, f.impl, f.state);
+  for (const auto& s : kSamplers) builtins.addSampler(s.name, s.impl, s.state);
   builtins.setHost(std::move(h));
   return builtins;
 }
@@ -456,6 +463,13 @@ bool addWorldFromFile(rt::Builtins& builtins, const std::string& path, std::stri
 bool setWorldReference(rt::BuiltinHost* host, const world::WorldState& state) {
   auto* h = dynamic_cast<WorldHost*>(host);
   return h != nullptr && h->setReference(state);
+}
+
+bool setWorldExecutor(rt::BuiltinHost* host, std::shared_ptr<const actions::RobotActions> executor) {
+  auto* h = dynamic_cast<WorldHost*>(host);
+  if (h == nullptr || !executor) return false;
+  h->setExecutor(std::move(executor));
+  return true;
 }
 
 std::vector<std::string> worldBuiltinNames() {

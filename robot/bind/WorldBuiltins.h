@@ -23,6 +23,9 @@ namespace cbtl::world {
 class Scene;
 struct WorldState;
 }  // namespace cbtl::world
+namespace cbtl::actions {
+class RobotActions;
+}
 
 namespace cbtl::bind {
 
@@ -43,6 +46,10 @@ bool addWorldFromFile(rt::Builtins& builtins, const std::string& path, std::stri
 // Makes `state` the world the built-ins of `host` (a registry's host made by withWorld) read. false when the
 // host is not a world host or the state does not fit its scene (unknown object, joints out of limits).
 bool setWorldReference(rt::BuiltinHost* host, const world::WorldState& state);
+
+// Makes `executor` (the domain's actions plus the standard ones) the one the world model of `host` dry-runs
+// plans with (runtime/sim/ExecutionModel.h). false when the host is not a world host.
+bool setWorldExecutor(rt::BuiltinHost* host, std::shared_ptr<const actions::RobotActions> executor);
 
 // Names of every function and sampler withWorld adds (to tell "needs a world" from "unknown").
 std::vector<std::string> worldBuiltinNames();

@@ -1,10 +1,15 @@
 #include "robot/bind/WorldHost.h"
 
+#include "robot/world/MotionQuery.h"
 #include "robot/world/NamedConfigurations.h"
 
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 namespace cbtl::bind {
@@ -13,10 +18,71 @@ using world::ArmConfig;
 using world::Pose2;
 using world::Pose3;
 
-WorldHost::WorldHost(std::shared_ptr<const world::Scene> scene) : world_(std::move(scene)) {
+namespace {
+
+constexpr std::size_t kStageCacheSize = 512;
+constexpr std::size_t kVerdictCacheSize = 8192;
+
+void appendText(std::vector<double>& k, const std::string& t) {
+  k.push_back(static_cast<double>(t.size()));
+  for (unsigned char c : t) k.push_back(c);
+}
+
+// Every value of a WorldState in a fixed order (objects by name: the map's order).
+std::uint64_t stateFingerprint(const world::WorldState& s) {
+  std::vector<double> k(s.arm.begin(), s.arm.end());
+  k.insert(k.end(), {s.base.x, s.base.y, s.base.yaw, s.gripper});
+  for (const auto& [name, p] : s.objects) {
+    appendText(k, name);
+    k.insert(k.end(), {p.position.x(), p.position.y(), p.position.z(), p.orientation.w(), p.orientation.x(),
+                       p.orientation.y(), p.orientation.z()});
+  }
+  if (s.held) {
+    appendText(k, s.held->object);
+    const world::Pose3& g = s.held->toolToObject;
+    k.insert(k.end(), {g.position.x(), g.position.y(), g.position.z(), g.orientation.w(), g.orientation.x(),
+                       g.orientation.y(), g.orientation.z()});
+  }
+  return world::fingerprintOf(k);
+}
+
+std::uint64_t callsFingerprint(std::uint64_t state, std::uint64_t mode, std::span<const sim::ActionCall> calls) {
+  std::vector<double> k{static_cast<double>(state >> 32), static_cast<double>(state & 0xffffffffu),
+                        static_cast<double>(mode)};
+  for (const sim::ActionCall& c : calls) {
+    appendText(k, c.name);
+    k.push_back(static_cast<double>(c.args.size()));
+    for (const sim::Value& v : c.args) {
+      k.push_back(static_cast<double>(v.kind));
+      k.push_back(v.number);
+      k.push_back(static_cast<double>(v.vector.size()));
+      k.insert(k.end(), v.vector.begin(), v.vector.end());
+      appendText(k, v.text);
+      k.push_back(static_cast<double>(v.members.size()));
+      for (const std::string& m : v.members) appendText(k, m);
+    }
+  }
+  return world::fingerprintOf(k);
+}
+
+template <class Map, class Value>
+void remember(Map& map, std::deque<std::uint64_t>& order, std::size_t capacity, std::uint64_t key, Value value) {
+  if (map.insert_or_assign(key, std::move(value)).second) order.push_back(key);
+  while (map.size() > capacity && !order.empty()) {
+    map.erase(order.front());
+    order.pop_front();
+  }
+}
+
+}  // namespace
+
+WorldHost::WorldHost(std::shared_ptr<const world::Scene> scene)
+    : world_(scene), dryWorld_(scene), executor_(std::make_shared<actions::RobotActions>()) {
   reference_ = world_.workspace().state();
   reference_.arm = world::configs::kRetract;
   world_.workspace().setState(reference_);
+  observed_ = reference_;
+  observedFingerprint_ = stateFingerprint(observed_);
   dirty_ = false;
 }
 
@@ -26,8 +92,65 @@ bool WorldHost::setReference(const world::WorldState& state) {
     return false;
   }
   reference_ = world_.workspace().state();
+  observed_ = reference_;
+  observedFingerprint_ = stateFingerprint(observed_);
+  stage_ = 0;
   dirty_ = false;
   return true;
+}
+
+void WorldHost::useReference(const world::WorldState& state) {
+  reference_ = state;
+  dirty_ = true;
+}
+
+sim::PlanVerdict WorldHost::runCalls(std::span<const sim::ActionCall> calls, actions::ExecutionMode mode) {
+  world::Workspace& ws = dryWorld_.workspace();
+  ws.setState(observed_);
+  sim::PlanVerdict v;
+  for (std::size_t i = 0; i < calls.size() && v.executes; ++i) {
+    const auto r = executor_->execute(dryWorld_, calls[i], mode);
+    if (!r) {
+      v = {false, i, calls[i].name, "no world model of this action", ""};
+    } else if (!r->done()) {
+      v = {false, i, calls[i].name, r->wellFormed ? world::builtins::toString(r->status) : "ill-formed call",
+           r->detail};
+    }
+  }
+  dryWorld_.utterances().clear();
+  return v;
+}
+
+sim::PlanVerdict WorldHost::enterStage(std::span<const sim::ActionCall> prefix) {
+  if (prefix.empty()) {
+    if (stage_ != 0) useReference(observed_);
+    stage_ = 0;
+    return {};
+  }
+  const std::uint64_t key = callsFingerprint(observedFingerprint_, 1, prefix);
+  if (key == stage_) return stages_.count(key) ? stages_.at(key).verdict : sim::PlanVerdict{};
+  stage_ = key;
+  auto it = stages_.find(key);
+  if (it == stages_.end()) {
+    StageEntry e;
+    e.verdict = runCalls(prefix, actions::ExecutionMode::Effects);
+    e.state = e.verdict.executes ? dryWorld_.workspace().state() : observed_;
+    remember(stages_, stageOrder_, kStageCacheSize, key, std::move(e));
+    it = stages_.find(key);
+  }
+  useReference(it->second.state);
+  return it->second.verdict;
+}
+
+sim::PlanVerdict WorldHost::dryRun(std::span<const sim::ActionCall> calls, int motionIterations) {
+  motionIterations = std::max(motionIterations, 0);
+  const std::uint64_t key =
+      callsFingerprint(observedFingerprint_, 2 + static_cast<std::uint64_t>(motionIterations), calls);
+  if (const auto it = verdicts_.find(key); it != verdicts_.end()) return it->second;
+  dryWorld_.planning.maxIterations = motionIterations;
+  sim::PlanVerdict v = runCalls(calls, actions::ExecutionMode::Execute);
+  remember(verdicts_, verdictOrder_, kVerdictCacheSize, key, v);
+  return v;
 }
 
 bool WorldHost::pose(const Pose2& base, const ArmConfig& q, const std::string* held) {

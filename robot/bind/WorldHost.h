@@ -1,31 +1,43 @@
 // WorldHost.h — the robot world as the language's built-ins see it: one world::World (a Workspace over the
-// domain's shared Scene, FCL shapes, occlusion spec) plus the *reference state*, the world as observed when
-// the current CSP was made.
+// domain's shared Scene, FCL shapes, occlusion spec) plus the *observed state*, the world as the simulator
+// showed it when the current CSP was made, and the *reference state* the built-ins read: the observed state,
+// or during a staged evaluation the state the earlier skills of the plan leave (enterStage).
 //
 // Contract: every built-in starts from the reference state and changes only what its arguments say (the
 // arm, the base, a held object, one body's pose); nothing a built-in does is visible to the next one. The
-// runtime sets the reference from the domain simulator before it builds a CSP (Planner), so constraints are
-// checked against the world the plan will run in; without a simulator it is the scene's initial state
+// runtime sets the observed state from the domain simulator before it builds a CSP (Planner), so constraints
+// are checked against the world the plan will run in; without a simulator it is the scene's initial state
 // with the arm at `retract`.
+//
+// It is also the runtime's world model (runtime/sim/ExecutionModel.h): enterStage applies the end effects of a
+// plan's earlier actions (the executor's Effects mode) to the observed state, and dryRun runs a whole plan with
+// the executor's every check in a private world. The executor is the domain's (setExecutor; by default the
+// standard actions only). Both are cached by (observed state, calls) fingerprints; the executor is pure, so a
+// cached verdict equals a fresh one.
 //
 // Thread safety: one WorldHost per Program, used by one thread (the Program's contract). Frames: world,
 // metres, radians.
 #pragma once
 
+#include "robot/actions/RobotActions.h"
 #include "robot/world/SurfaceFace.h"
 #include "robot/world/WorldOperations.h"  // world::World
 #include "runtime/core/Builtins.h"        // rt::BuiltinHost
+#include "runtime/sim/ExecutionModel.h"
 
+#include <cstdint>
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 
 namespace cbtl::bind {
 
 inline constexpr double kSideGraspDepth = 0.03;  // metres from the tool frame to the grasped box centre
 
-class WorldHost final : public rt::BuiltinHost {
+class WorldHost final : public rt::BuiltinHost, public sim::ExecutionModel {
  public:
   explicit WorldHost(std::shared_ptr<const world::Scene> scene);
 
@@ -33,9 +45,20 @@ class WorldHost final : public rt::BuiltinHost {
   world::Workspace& workspace() { return world_.workspace(); }
   const world::Scene& scene() const { return world_.workspace().scene(); }
 
-  // Replaces the reference state. Returns false (reference unchanged) when the state does not fit the scene.
+  // Replaces the observed state (and makes it the reference). Returns false (nothing changed) when the state
+  // does not fit the scene.
   bool setReference(const world::WorldState& state);
   const world::WorldState& reference() const { return reference_; }
+  const world::WorldState& observed() const { return observed_; }
+
+  // The executor of dry runs and stage effects: the domain's actions plus the standard ones.
+  void setExecutor(std::shared_ptr<const actions::RobotActions> executor) { executor_ = std::move(executor); }
+
+  sim::ExecutionModel* executionModel() override { return this; }
+  sim::PlanVerdict enterStage(std::span<const sim::ActionCall> prefix) override;
+  // The executor later finds the dry run's plans in the scene's motion cache, whatever its own larger budget.
+  sim::PlanVerdict dryRun(std::span<const sim::ActionCall> calls, int motionIterations) override;
+  bool models(std::string_view action) const override { return executor_->knows(action); }
 
   // Puts the workspace at the reference state with `base` and arm `q` (and, when `held` names an object, that
   // object attached at nominalGrasp(held) instead of the reference's grasp). false when q is out of limits
@@ -71,9 +94,28 @@ class WorldHost final : public rt::BuiltinHost {
   int ikAttempts = 10;
 
  private:
+  // Runs `calls` on dryWorld_ from the observed state in `mode`; the first failure, if any.
+  sim::PlanVerdict runCalls(std::span<const sim::ActionCall> calls, actions::ExecutionMode mode);
+  void useReference(const world::WorldState& state);
+
   world::World world_;
+  world::World dryWorld_;  // dry runs and stage effects, so the built-ins' workspace is never disturbed
+  std::shared_ptr<const actions::RobotActions> executor_;
+  world::WorldState observed_;
+  std::uint64_t observedFingerprint_ = 0;
+  std::uint64_t stage_ = 0;  // fingerprint of the stage the reference shows; 0: the observed state
   world::WorldState reference_;
   bool dirty_ = true;  // the workspace's objects or grasp differ from the reference
+
+  // Verdicts and stage states by fingerprint of (observed state, calls), first in first out.
+  struct StageEntry {
+    sim::PlanVerdict verdict;
+    world::WorldState state;
+  };
+  std::unordered_map<std::uint64_t, StageEntry> stages_;
+  std::deque<std::uint64_t> stageOrder_;
+  std::unordered_map<std::uint64_t, sim::PlanVerdict> verdicts_;
+  std::deque<std::uint64_t> verdictOrder_;
 };
 
 }  // namespace cbtl::bind

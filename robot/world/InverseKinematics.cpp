@@ -1,6 +1,6 @@
 #include "robot/world/InverseKinematics.h"
 
-#include <Eigen/SVD>
+#include <Eigen/Cholesky>
 
 #include <algorithm>
 #include <cmath>
@@ -31,6 +31,10 @@ namespace {
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Vec7 = Eigen::Matrix<double, 7, 1>;
 using Jac = Eigen::Matrix<double, 6, 7>;
+
+constexpr double kProjectorRegulariser = 1e-9;
+constexpr double kProgress = 1e-3;    // relative decrease of the error that counts as progress
+constexpr int kStallIterations = 25;  // iterations without progress after which an attempt stops
 
 struct ErrorTerms {
   Vec6 e;
@@ -82,10 +86,19 @@ IkResult solveIk(Workspace& ws, const Pose3& target, const ArmConfig& seed, Rng&
   for (int attempt = 0; attempt < o.maxAttempts; ++attempt) {
     ArmConfig q = s.normalize(attempt == 0 ? seed : randomConfig(s, rng));
     ++result.attempts;
+    double attemptBest = INFINITY;
+    int lastProgress = 0;
     for (int it = 0; it <= o.maxIterations; ++it) {
       ws.setArm(q);
       const ErrorTerms err = poseError(target, ws.sitePose(site));
       const double score = err.pos + 0.1 * err.rot;
+      // An attempt that has stopped getting closer (a joint limit, a local minimum) gives up early.
+      if (score < attemptBest * (1 - kProgress)) {
+        attemptBest = score;
+        lastProgress = it;
+      } else if (it - lastProgress > kStallIterations) {
+        break;
+      }
       if (score < bestScore && !anyConverged) {
         bestScore = score;
         result.q = q;
@@ -113,22 +126,17 @@ IkResult solveIk(Workspace& ws, const Pose3& target, const ArmConfig& seed, Rng&
       if (it == o.maxIterations) break;
       ++result.iterations;
       siteJacobian(ws, site, buf, J);
-      const Eigen::Matrix<double, 6, 6> A = J * J.transpose() + lambda2 * Eigen::Matrix<double, 6, 6>::Identity();
+      const Eigen::Matrix<double, 6, 6> JJt = J * J.transpose();
+      const Eigen::Matrix<double, 6, 6> A = JJt + lambda2 * Eigen::Matrix<double, 6, 6>::Identity();
       Vec7 dq = J.transpose() * A.ldlt().solve(err.e);
       if (o.nullspaceGain > 0) {
-        // Exact projector onto the null space of J: N = I - J⁺J with the undamped pseudo-inverse.
-        const Eigen::JacobiSVD<Jac> svd(J, Eigen::ComputeFullV);
-        const auto& sv = svd.singularValues();
-        const Eigen::Matrix<double, 7, 7>& V = svd.matrixV();
-        int rank = 0;
-        for (int i = 0; i < sv.size(); ++i)
-          if (sv(i) > 1e-6 * sv(0)) ++rank;
+        // Projector onto the null space of J: N = I - J⁺J with J⁺ = Jᵀ(JJᵀ)⁻¹ (a 6x6 solve instead of an SVD;
+        // the tiny regulariser only matters at singular configurations, where the task term dominates anyway).
         Vec7 pull;
         for (int i = 0; i < kArmDof; ++i)
           pull(i) = o.nullspaceGain * (s.armContinuous(i) ? angleDiff(o.rest[i], q[i]) : (o.rest[i] - q[i]));
-        // The null space is spanned by the right singular vectors beyond the rank.
-        const auto Vn = V.rightCols(kArmDof - rank);
-        dq += Vn * (Vn.transpose() * pull);
+        const Eigen::Matrix<double, 6, 6> M = JJt + kProjectorRegulariser * Eigen::Matrix<double, 6, 6>::Identity();
+        dq += pull - J.transpose() * M.ldlt().solve(J * pull);
       }
       const double biggest = dq.cwiseAbs().maxCoeff();
       if (biggest > o.maxStep) dq *= o.maxStep / biggest;

@@ -2,9 +2,10 @@
 //
 // Each attempt iterates  dq = Jᵀ(JJᵀ + λ²I)⁻¹ e  +  N (k (q_rest - q)),  where e = [p* - p; ω] (ω the world
 // rotation vector taking the current tool orientation to the target), J the 6x7 site Jacobian and
-// N = I - J⁺J the exact null-space projector (J⁺ from an SVD), so the posture pull toward `rest` never leaks
-// into the task. Steps are clamped (largest component <= maxStep), continuous joints wrapped to [-pi, pi),
-// limited joints clipped. The first attempt starts at `seed`; restarts start at uniform random
+// N = I - J⁺J the null-space projector (J⁺ = Jᵀ(JJᵀ)⁻¹, regularised by 1e-9 for singular J), so the posture
+// pull toward `rest` does not leak into the task. An attempt that stops making progress (its error has not
+// fallen by 0.1 % in 25 iterations) ends early. Steps are clamped (largest component <= maxStep), continuous joints
+// wrapped to [-pi, pi), limited joints clipped. The first attempt starts at `seed`; restarts start at uniform random
 // configurations drawn from the caller's Rng. Budgets are iteration counts only.
 // The target is the pose of `site` (tool_frame by default) in world coordinates, for the Workspace's
 // current base pose and objects. The Workspace is left at the returned configuration.

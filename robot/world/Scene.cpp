@@ -1,5 +1,6 @@
 #include "robot/world/Scene.h"
 
+#include "robot/world/MotionQuery.h"
 #include "robot/world/MujocoErrors.h"
 
 #include <fmt/core.h>
@@ -47,7 +48,7 @@ SceneLoadResult Scene::loadFile(const std::string& path) {
   return {LoadStatus::Ok, {}, std::move(scene)};
 }
 
-Scene::Scene(mjModel* m) : model_(m) {}
+Scene::Scene(mjModel* m) : model_(m), motionCache_(std::make_unique<MotionCache>()) {}
 
 Scene::~Scene() { mj_deleteModel(model_); }
 

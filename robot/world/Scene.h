@@ -1,8 +1,8 @@
 // Scene.h — a loaded MuJoCo robot scene: the compiled model plus the names the world API looks up.
 //
-// A Scene is immutable after loading and shared (std::shared_ptr<const Scene>) by every thread; each thread
-// owns its own Workspace (mjData) over it. A robot scene must contain the Gen3 arm of
-// domains/assets/gen3.xml (joints joint_1..joint_7, site tool_frame, bodies base_link and end_effector_link).
+// A Scene is immutable after loading (but for its motion cache, see motionCache()) and shared (std::shared_ptr<const
+// Scene>) by every thread; each thread owns its own Workspace (mjData) over it. A robot scene must contain the Gen3 arm
+// of domains/assets/gen3.xml (joints joint_1..joint_7, site tool_frame, bodies base_link and end_effector_link).
 // Optional parts: a mobile base (body mobile_base with joints base_x, base_y, base_yaw), finger slide
 // joints finger_left / finger_right, and movable objects (bodies whose first joint is a free joint).
 // Units: metres, radians.
@@ -28,6 +28,7 @@ enum class LoadStatus {
 };
 
 class Scene;
+class MotionCache;
 
 struct SceneLoadResult {
   LoadStatus status = LoadStatus::ParseError;
@@ -101,6 +102,10 @@ class Scene {
   // True when the model defines explicit <pair> contacts, which the pair lists above do not model.
   bool hasExplicitPairs() const { return model_->npair > 0; }
 
+  // The motion-planning answers of every Workspace over this scene (MotionQuery.h). The one mutable part of a
+  // Scene: shared, locked, and transparent (a cached answer equals a fresh one).
+  MotionCache& motionCache() const { return *motionCache_; }
+
  private:
   void buildPairs();
   bool mujocoWouldCollide(int g1, int g2) const;
@@ -121,6 +126,7 @@ class Scene {
   std::vector<ObjectInfo> objects_;
   std::vector<GeomPair> selfPairs_, robotPairs_;
   std::vector<std::vector<GeomPair>> objectPairs_;
+  std::unique_ptr<MotionCache> motionCache_;
 };
 
 }  // namespace cbtl::world

@@ -1,5 +1,6 @@
 #include "robot/world/WorldOperations.h"
 
+#include "robot/world/MotionQuery.h"
 #include "robot/world/SurfaceFace.h"
 
 #include <fmt/core.h>
@@ -60,17 +61,12 @@ ActionResult fail(ActionStatus s, std::string detail) {
   return r;
 }
 
-// Moves the arm from its current configuration to q: a straight segment if free, else a planned path.
-// Appends the executed waypoints (without the start) to `path`.
-bool moveArmInternal(World& w, const ArmConfig& q, Rng& rng, std::vector<ArmConfig>& path, std::string& detail) {
+// Moves the arm from its current configuration to q (planArmCached: the straight segment first, then
+// RRTConnect, with the query's own random stream). Appends the executed waypoints (without the start) to `path`.
+bool moveArmInternal(World& w, const ArmConfig& q, std::vector<ArmConfig>& path, std::string& detail) {
   Workspace& ws = w.workspace();
   const ArmConfig start = ws.state().arm;
-  if (armSegmentFree(ws, start, q, w.planning.resolution, w.planning.collision)) {
-    path.push_back(q);
-    ws.setArm(q);
-    return true;
-  }
-  const ArmPlan plan = planArm(ws, start, q, rng, w.planning);
+  const ArmPlan plan = planArmCached(ws, q, w.planning);
   if (!plan.solved()) {
     ws.setArm(start);
     detail = toString(plan.status);
@@ -131,20 +127,20 @@ double occlusion(World& w, const ArmConfig& q) {
   return score;
 }
 
-ActionResult moveArm(World& w, const ArmConfig& goal, Rng& rng) {
+ActionResult moveArm(World& w, const ArmConfig& goal) {
   StateGuard guard(w);
   ActionResult r;
   r.armPath.push_back(w.workspace().state().arm);
-  if (!moveArmInternal(w, goal, rng, r.armPath, r.detail)) return fail(ActionStatus::NoPath, r.detail);
+  if (!moveArmInternal(w, goal, r.armPath, r.detail)) return fail(ActionStatus::NoPath, r.detail);
   guard.commit();
   return r;
 }
 
-ActionResult moveBase(World& w, const Pose2& goal, Rng& rng) {
+ActionResult moveBase(World& w, const Pose2& goal) {
   StateGuard guard(w);
   Workspace& ws = w.workspace();
   if (!ws.scene().hasMobileBase()) return fail(ActionStatus::InvalidArgument, "the scene has no mobile base");
-  const BasePlan plan = planBase(ws, goal, rng, w.planning);
+  const BasePlan plan = planBaseCached(ws, goal, w.planning);
   if (!plan.solved()) return fail(ActionStatus::NoPath, toString(plan.status));
   ws.setBase(goal);
   ActionResult r;

@@ -87,10 +87,11 @@ struct ActionResult {
   bool done() const { return status == ActionStatus::Done; }
 };
 
-// Plans to `goal` and moves there.
-ActionResult moveArm(World& w, const ArmConfig& goal, Rng& rng);
-// Plans the mobile base to `goal` (arm fixed) and moves there.
-ActionResult moveBase(World& w, const Pose2& goal, Rng& rng);
+// Plans to `goal` and moves there (MotionQuery.h planArmCached: straight segment first, then RRTConnect with
+// w.planning; the plan is a pure function of the world state and `goal`, shared through the scene's cache).
+ActionResult moveArm(World& w, const ArmConfig& goal);
+// Plans the mobile base to `goal` (arm fixed) and moves there (planBaseCached, likewise pure).
+ActionResult moveBase(World& w, const Pose2& goal);
 // Attaches `object` to the gripper at its current relative pose and closes the gripper; the object's
 // origin must be within `maxDistance` metres of the finger tip.
 ActionResult grasp(World& w, const std::string& object, double maxDistance = 0.15);

@@ -5,7 +5,10 @@
 
 #include <fmt/format.h>
 
+#include "ir/ReadSet.h"
+
 #include <algorithm>
+#include <set>
 
 namespace cbtl::approach {
 
@@ -100,26 +103,69 @@ void run(const rt::Program& program, const std::vector<CompiledAction>& actions,
   }
 }
 
+// Every variable an action (its arguments, loop sets and conditions, nested actions) reads.
+void collectActionReads(const ir::ConstraintGraph& graph, const ir::Action& a, std::set<ir::VarId>& out,
+                        std::set<std::string>& names) {
+  if (a.kind == ir::ActionKind::Call) names.insert(a.name);
+  for (const auto& e : a.args) ir::collectReadVars(graph, e, out);
+  if (a.set) ir::collectReadVars(graph, *a.set, out);
+  if (a.condition) ir::collectReadVars(graph, *a.condition, out);
+  for (const auto& b : a.body) collectActionReads(graph, b, out, names);
+  for (const auto& b : a.elseBody) collectActionReads(graph, b, out, names);
+}
+
 }  // namespace
 
 TaskActions::TaskActions(rt::Program& program, const ir::Task& task) {
   Compiler c{program, rt::ProgramCompiler(program), {}, 0};
   c.scope.frameTop = &c.top;
-  for (const auto& inst : task.instances) {
-    for (const auto& a : inst.actions) actions_.push_back(c.compile(a));
+  std::set<ir::VarId> reads;
+  std::set<std::string> names;
+  readsBefore_.emplace_back();
+  for (std::uint32_t k = 0; k < task.instances.size(); ++k) {
+    const ir::SkillInstance& inst = task.instances[k];
+    auto& stage = stages_.emplace_back();
+    for (const auto& a : inst.actions) {
+      stage.push_back(c.compile(a));
+      collectActionReads(program.graph(), a, reads, names);
+    }
+    readsBefore_.emplace_back(reads.begin(), reads.end());
+    for (std::uint32_t con : inst.constraints) constraintStage_[con] = k;
+    for (std::uint32_t smp : inst.samplers) samplerStage_[smp] = k;
+    for (ir::VarId v : inst.vars) variableStage_[v] = k;
   }
+  if (stages_.empty()) readsBefore_.emplace_back();  // reads(): empty
+  actionNames_.assign(names.begin(), names.end());
   frameWidth_ = c.top + 1;
+}
+
+namespace {
+std::uint32_t stageIn(const std::map<std::uint32_t, std::uint32_t>& m, std::uint32_t key) {
+  const auto it = m.find(key);
+  return it == m.end() ? 0 : it->second;
+}
+}  // namespace
+
+std::uint32_t TaskActions::constraintStage(std::uint32_t constraint) const {
+  return stageIn(constraintStage_, constraint);
+}
+std::uint32_t TaskActions::samplerStage(std::uint32_t sampler) const { return stageIn(samplerStage_, sampler); }
+std::uint32_t TaskActions::variableStage(ir::VarId v) const { return stageIn(variableStage_, v); }
+
+void TaskActions::unrollStage(const rt::Program& program, std::size_t stage, const double* x, const double* obs,
+                              std::vector<sim::ActionCall>& out) const {
+  std::vector<double> frame(std::max<std::size_t>(frameWidth_, program.frameSize()) + 1, 0.0);
+  rt::EvalContext ctx{x, obs, frame.data(), program.callContext()};
+  run(program, stages_.at(stage), ctx, out);
 }
 
 std::vector<sim::ActionCall> TaskActions::unroll(const rt::Program& program, const std::vector<double>& solution,
                                                  const std::vector<double>& observation) const {
-  std::vector<double> frame(std::max<std::size_t>(frameWidth_, program.frameSize()) + 1, 0.0);
   std::vector<double> x = solution, obs = observation;
   x.resize(std::max<std::size_t>(program.assignmentWidth(), 1), 0.0);
   obs.resize(std::max<std::size_t>(program.observationWidth(), 1), 0.0);
-  rt::EvalContext ctx{x.data(), obs.data(), frame.data(), program.callContext()};
   std::vector<sim::ActionCall> out;
-  run(program, actions_, ctx, out);
+  for (std::size_t k = 0; k < stages_.size(); ++k) unrollStage(program, k, x.data(), obs.data(), out);
   return out;
 }
 

@@ -266,7 +266,7 @@ void trainStep(Trial& tr, std::int64_t t) {
                          trainingChoice(config.approach, tr.approachRng), tr.fallback, tr.trainSolver, tr.user);
     countRecheck(result, plan);
     ++result.trainSolves;
-    iterations = plan.solve.iterations + (plan.failedFull ? plan.failedFull->iterations : 0);
+    iterations = plan.iterations;
     result.solverIterations += iterations;
     outcome = solver::toString(plan.solve.outcome);
     replanned = plan.replanned;

@@ -58,6 +58,11 @@ class PreparedProgram {
   // Runs the WorldSync (nothing without one or without a program); throws rt::RuntimeError when the state
   // does not fit the program's scene.
   void syncWorld(const sim::DomainSimulator& simulator) const;
+  // The dry run's motion budgets, cheapest first (Planner.h): planner iterations per motion of a plan's dry run
+  // in each tier; a request is solved with the first tier and, when that finds no solution, with the next.
+  const std::vector<int>& dryRunTiers() const { return dryRunTiers_; }
+  void setDryRunTiers(std::vector<int> tiers) { dryRunTiers_ = std::move(tiers); }
+
   // The task the simulator asks for now (DomainSimulator::requestedTask), else `configured`. Throws
   // rt::RuntimeError when the simulator names a task the program lacks.
   std::size_t taskFor(const sim::DomainSimulator& simulator, std::size_t configured) const;
@@ -80,6 +85,7 @@ class PreparedProgram {
   std::vector<std::vector<rt::PersonalInstance>> instances_;
   std::vector<TaskActions> actions_;
   std::unique_ptr<Learner> learner_;
+  std::vector<int> dryRunTiers_{0, 1000};
 };
 
 }  // namespace cbtl::approach

@@ -20,9 +20,14 @@
 #include <cstddef>
 #include <map>
 #include <memory>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
+
+namespace cbtl::sim {
+class ExecutionModel;
+}
 
 namespace cbtl::rt {
 
@@ -31,6 +36,9 @@ namespace cbtl::rt {
 class BuiltinHost {
  public:
   virtual ~BuiltinHost() = default;
+  // The world model that dry-runs plans and moves the built-ins' state from skill to skill
+  // (runtime/sim/ExecutionModel.h); null when the host has none.
+  virtual sim::ExecutionModel* executionModel() { return nullptr; }
 };
 
 struct CallContext {
@@ -52,8 +60,18 @@ class Builtins {
   // The prelude, geometry and text built-ins (std.prelude, std.geometry, std.text).
   static Builtins standard();
 
-  void addFunction(const std::string& name, FunctionImpl f) { functions_[name] = f; }
-  void addSampler(const std::string& name, SamplerImpl s) { samplers_[name] = s; }
+  // `readsHost`: the built-in reads the host's state (the robot world as the current stage shows it), so its
+  // value depends on more than its arguments (solver/StagedPlan.h evaluates such calls in their skill's state).
+  void addFunction(const std::string& name, FunctionImpl f, bool readsHost = false) {
+    functions_[name] = f;
+    if (readsHost) hostFunctions_.insert(f);
+  }
+  void addSampler(const std::string& name, SamplerImpl s, bool readsHost = false) {
+    samplers_[name] = s;
+    if (readsHost) hostSamplers_.insert(s);
+  }
+  bool readsHost(FunctionImpl f) const { return hostFunctions_.count(f) != 0; }
+  bool readsHost(SamplerImpl s) const { return hostSamplers_.count(s) != 0; }
   FunctionImpl function(const std::string& name) const;
   SamplerImpl sampler(const std::string& name) const;
   std::vector<std::string> functionNames() const;
@@ -67,6 +85,8 @@ class Builtins {
   std::shared_ptr<BuiltinHost> host_;
   std::map<std::string, FunctionImpl> functions_;
   std::map<std::string, SamplerImpl> samplers_;
+  std::set<FunctionImpl> hostFunctions_;
+  std::set<SamplerImpl> hostSamplers_;
 };
 
 }  // namespace cbtl::rt

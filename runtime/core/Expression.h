@@ -129,6 +129,16 @@ class ExprPool {
   double evalScalar(std::uint32_t root, const EvalContext& ctx) const;
   bool evalBool(std::uint32_t root, const EvalContext& ctx) const { return evalScalar(root, ctx) != 0; }
 
+  // Whether node `root` or any node below it calls a built-in for which `pred` is true.
+  template <class Pred>
+  bool callsAny(std::uint32_t root, const Pred& pred) const {
+    const PackedNode& n = nodes_[root];
+    if (n.op == Op::Call && pred(n.fn)) return true;
+    for (std::size_t i = 0; i < n.kidCount; ++i)
+      if (callsAny(kid(n, i), pred)) return true;
+    return false;
+  }
+
  private:
   bool scalarPath(const PackedNode& n) const;
   std::uint32_t kid(const PackedNode& n, std::size_t i) const { return kids_[n.kids + i]; }

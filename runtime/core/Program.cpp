@@ -45,4 +45,18 @@ const ir::Observation* Program::findObservation(const std::string& name) const {
   return nullptr;
 }
 
+bool Program::samplerReadsWorld(std::uint32_t sampler) const {
+  const CompiledSampler& s = samplers_.at(sampler);
+  if (s.impl != nullptr && builtins_.readsHost(s.impl)) return true;
+  for (std::uint32_t a : s.args)
+    if (readsWorld(a)) return true;
+  for (const UniformPlan& u : s.uniform) {
+    for (std::uint32_t n : u.lo)
+      if (readsWorld(n)) return true;
+    for (std::uint32_t n : u.hi)
+      if (readsWorld(n)) return true;
+  }
+  return false;
+}
+
 }  // namespace cbtl::rt

@@ -141,6 +141,14 @@ class Program {
   // nullopt when it is not one.
   std::optional<double> memberIndex(const std::string& typeName, const std::string& member) const;
 
+  // Whether evaluating node `root` reads the built-ins' host (the robot world's state): it calls a built-in
+  // registered with readsHost. Such expressions are evaluated in the state of their skill (solver/StagedPlan.h).
+  bool readsWorld(std::uint32_t root) const {
+    return pool_.callsAny(root, [this](FunctionImpl f) { return builtins_.readsHost(f); });
+  }
+  // The same for a sampler: its implementation reads the host, or one of its arguments does.
+  bool samplerReadsWorld(std::uint32_t sampler) const;
+
   // Renders a value (width doubles) for people: enum member names, strings, vectors "(x, y)".
   std::string render(const ValueType& t, const double* v) const;
   // Converts a value to the form the simulator boundary uses and back (enum members and texts by name).

@@ -33,9 +33,6 @@ TextFactor::TextFactor(const TextFactor& other)
       fallback_(other.fallback_),
       model_(backend_->makeModel(prompts_, rating_)),
       cache_(other.cache_),
-      bestOf_(other.bestOf_),
-      bestSize_(other.bestSize_),
-      best_(other.best_),
       fallbacks_(other.fallbacks_),
       lastError_(other.lastError_) {
   // The fresh model of the same backend takes the original's state; the cached assessments stay valid because
@@ -50,12 +47,7 @@ TextFactor& TextFactor::operator=(const TextFactor& other) {
   return *this;
 }
 
-void TextFactor::forget() const {
-  cache_.clear();
-  bestOf_ = nullptr;
-  bestSize_ = 0;
-  best_ = 0.0;
-}
+void TextFactor::forget() const { cache_.clear(); }
 
 textpref::Assessment TextFactor::assess(const textpref::Item& subject) const {
   const auto result = model_->assess(subject, textpref::Context{});
@@ -76,16 +68,12 @@ double TextFactor::absolute(const textpref::Item& subject) const {
 double TextFactor::probability(const textpref::Item& subject, std::span<const textpref::Item> available) const {
   const double p = absolute(subject);
   if (scale_ != Scale::Relative || available.empty()) return p;
-  if (bestOf_ != available.data() || bestSize_ != available.size()) {
-    // The same rule as textpref::scaleRelativeToBest, over probabilities that are cached anyway.
-    double best = 0.0;
-    for (const auto& item : available) best = std::max(best, absolute(item));
-    best_ = best;
-    bestOf_ = available.data();
-    bestSize_ = available.size();
-  }
-  if (best_ <= 0.0) return p;
-  return std::clamp(p / best_, 0.0, 1.0);
+  // The same rule as textpref::scaleRelativeToBest, over probabilities that are cached anyway. Recomputed on
+  // every call: the available values differ from CSP to CSP (a few cached look-ups).
+  double best = 0.0;
+  for (const auto& item : available) best = std::max(best, absolute(item));
+  if (best <= 0.0) return p;
+  return std::clamp(p / best, 0.0, 1.0);
 }
 
 textpref::Status TextFactor::learn(const textpref::Item& subject, bool liked) {

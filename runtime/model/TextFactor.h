@@ -16,9 +16,10 @@
 //    failed assessment gives the generator's `fallback` (textpref::assessOrFallback) and is cached too, so an
 //    unreachable server is asked once per subject and learning step, not once per candidate.
 //  - `scale: relative` (the reference's rule) divides by the best probability among the available
-//    subjects, so the best one has P = 1. The runtime has no per-CSP availability yet: "available" is the whole
-//    domain the caller passes (every entry of the subject's item set, or every enum member). A subject without a
-//    fixed domain (a text) is scored absolutely.
+//    subjects, so the best one has P = 1. "Available" is what the caller passes: the values the CSP can choose
+//    (solver/PersonalEvaluator.h: the members of the variable's observed set, e.g. the books on the shelves, or
+//    the whole item set / enum when the domain is fixed). A subject without a fixed domain (a text) is scored
+//    absolutely.
 //  - Like the models it owns, a TextFactor is used from one thread at a time; probability() is logically const
 //    (assessing never changes what was learned) but fills the cache.
 #pragma once
@@ -59,7 +60,7 @@ class TextFactor {
   TextFactor& operator=(TextFactor&&) noexcept = default;
   ~TextFactor();
 
-  // P(holds) for `subject`. `available` is the subject's whole domain for relative scaling (empty: absolute).
+  // P(holds) for `subject`. `available`: the subjects the CSP can choose, for relative scaling (empty: absolute).
   double probability(const textpref::Item& subject, std::span<const textpref::Item> available) const;
   // The model's own assessment of `subject` (absolute, with its rating bins and provenance), the fallback on error.
   textpref::Assessment assess(const textpref::Item& subject) const;
@@ -97,9 +98,6 @@ class TextFactor {
 
   // Caches, valid until the model learns (see the contracts above).
   mutable std::unordered_map<std::string, double> cache_;  // subject name -> absolute probability
-  mutable const textpref::Item* bestOf_ = nullptr;         // the domain `best_` was computed over
-  mutable std::size_t bestSize_ = 0;
-  mutable double best_ = 0.0;
   mutable std::size_t fallbacks_ = 0;
   mutable std::string lastError_;
 };

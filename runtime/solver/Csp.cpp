@@ -20,10 +20,11 @@ Csp makeCsp(const rt::Program& program, std::uint32_t taskIndex, const std::vect
   // Personalized constraints first: they are cheap and reject most candidates once learned.
   if (personal == PersonalMode::Include) {
     for (std::uint32_t i = 0; i < instances.size(); ++i) {
-      csp.constraints.push_back({true, i, (std::uint64_t{1} << 63) | (std::uint64_t{taskIndex} << 32) | i});
+      csp.constraints.push_back(
+          {ConstraintKind::Personal, i, (std::uint64_t{1} << 63) | (std::uint64_t{taskIndex} << 32) | i});
     }
   }
-  for (std::uint32_t c : csp.task->constraints) csp.constraints.push_back({false, c, c});
+  for (std::uint32_t c : csp.task->constraints) csp.constraints.push_back({ConstraintKind::Hard, c, c});
   if (cost == CostKind::Entropy) {
     for (std::uint32_t i = 0; i < instances.size(); ++i) csp.entropyTerms.push_back(i);
   }
@@ -33,12 +34,14 @@ Csp makeCsp(const rt::Program& program, std::uint32_t taskIndex, const std::vect
 }
 
 std::string constraintName(const Csp& csp, const ConstraintRef& c) {
-  if (c.personal) return (*csp.instances)[c.index].name;
+  if (c.kind == ConstraintKind::PlanExecutes) return kPlanExecutesName;
+  if (c.personal()) return (*csp.instances)[c.index].name;
   return csp.program->graph().constraints.at(c.index).name;
 }
 
 std::string constraintLocation(const Csp& csp, const ConstraintRef& c) {
-  if (c.personal) {
+  if (c.kind == ConstraintKind::PlanExecutes) return rt::Program::where(csp.task->span);
+  if (c.personal()) {
     const auto& inst = (*csp.instances)[c.index];
     return rt::Program::where(csp.program->graph().generators.at(inst.generator).span);
   }

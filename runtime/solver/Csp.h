@@ -8,6 +8,7 @@
 #include "runtime/core/Personalization.h"
 #include "runtime/core/Program.h"
 #include "runtime/model/UserModel.h"
+#include "runtime/solver/StagedPlan.h"
 
 #include <cstdint>
 #include <string>
@@ -21,10 +22,17 @@ enum class CostKind {
   Declared,  // the task's `minimize` / `maximize` expressions, summed
 };
 
+enum class ConstraintKind : std::uint8_t {
+  Hard,          // a constraint of the graph
+  Personal,      // a personalized instance
+  PlanExecutes,  // the task's plan runs in the world (StagedPlan.h); always checked last
+};
+
 struct ConstraintRef {
-  bool personal = false;
-  std::uint32_t index = 0;  // graph constraint index, or index into Csp::instances
+  ConstraintKind kind = ConstraintKind::Hard;
+  std::uint32_t index = 0;  // graph constraint index, or index into Csp::instances (0 for PlanExecutes)
   std::uint64_t identity = 0;
+  bool personal() const { return kind == ConstraintKind::Personal; }
 };
 
 struct Csp {
@@ -40,6 +48,13 @@ struct Csp {
   std::vector<std::uint32_t> entropyTerms;  // instance indices entering the entropy cost
   std::vector<std::uint32_t> samplers;      // program sampler indices
   CostKind cost = CostKind::None;
+
+  // Robot domains: the task's plan, evaluated skill by skill and dry-run while the solver searches
+  // (StagedPlan.h; attached by the caller, runtime/approach/PlanExecution.h). Null: every constraint reads the
+  // observed world and no plan is checked. With a plan, every entry of `constraints` has its stage in
+  // `constraintStage`, every sampler its stage in `samplerStage`, every instance in `instanceStage`.
+  StagedPlan* plan = nullptr;
+  std::vector<std::uint32_t> constraintStage, samplerStage, instanceStage;
 };
 
 // Which personalized constraints a CSP contains: none (hard constraints only) or all of the task's.

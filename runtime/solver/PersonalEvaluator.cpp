@@ -4,6 +4,24 @@
 
 namespace cbtl::solver {
 
+namespace {
+
+// The observation offset of the membership flags of the observed set the factor's subject variable draws from
+// (`var book : Book in pickable`), when the factor reads one parameter whose instance variable has such a domain.
+std::optional<std::uint32_t> observedDomainFlags(const rt::Program& program, const rt::PersonalInstance& inst,
+                                                 const ir::ModelFactor& factor) {
+  if (factor.params.size() != 1) return std::nullopt;
+  const ir::Generator& g = program.graph().generators.at(inst.generator);
+  for (std::size_t p = 0; p < g.params.size() && p < inst.vars.size(); ++p) {
+    if (g.params[p].name != factor.params[0]) continue;
+    const ir::Domain& domain = program.graph().variables.at(inst.vars[p]).domain;
+    if (domain.set && domain.set->op == ir::Op::Obs) return program.observationOffset(domain.set->text);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 PersonalEvaluator::PersonalEvaluator(const rt::Program& program, const std::vector<rt::PersonalInstance>& instances,
                                      const model::UserModel& user)
     : program_(program), instances_(instances), user_(user), cache_(instances.size()) {
@@ -19,17 +37,26 @@ PersonalEvaluator::PersonalEvaluator(const rt::Program& program, const std::vect
       if (factors[k].source->kind != ir::FactorKind::Text) continue;
       c.text.resize(factors.size());
       c.text[k].domain = program_.itemDescriptors().domain(inst.featureTypes[k]);
+      c.text[k].flags = observedDomainFlags(program_, inst, *factors[k].source);
     }
   }
 }
 
 double PersonalEvaluator::textProbability(const rt::PersonalInstance& inst, std::size_t factor, const model::Factor& f,
-                                          TextSubject& subject, double value) {
+                                          TextSubject& subject, double value, const rt::EvalContext& ctx) {
   const textpref::Item* item = nullptr;
   std::span<const textpref::Item> available;
   if (subject.domain != nullptr) {
     available = *subject.domain;
     if (value >= 0 && value < static_cast<double>(available.size())) item = &available[static_cast<std::size_t>(value)];
+    if (subject.flags) {
+      if (!subject.availableBuilt) {
+        for (std::size_t i = 0; i < subject.domain->size(); ++i)
+          if (ctx.observation[*subject.flags + i] != 0) subject.available.push_back((*subject.domain)[i]);
+        subject.availableBuilt = true;
+      }
+      available = subject.available;
+    }
   } else if (inst.featureTypes[factor].kind == rt::ValueKind::Text) {
     if (!(value == subject.last)) {
       const bool interned = value >= 0 && value < static_cast<double>(program_.strings().size());
@@ -93,7 +120,7 @@ PersonalValue PersonalEvaluator::evaluate(std::uint32_t instance, const rt::Eval
       p *= factors[k].probability(program_.render(inst.featureTypes[k], v));
     } else if (factors[k].isText()) {
       if (feature == UINT32_MAX || k >= c.text.size()) continue;
-      p *= textProbability(inst, k, factors[k], c.text[k], pool.evalScalar(feature, ctx));
+      p *= textProbability(inst, k, factors[k], c.text[k], pool.evalScalar(feature, ctx), ctx);
     } else {
       p *= feature == UINT32_MAX ? 1.0 : factors[k].probability(pool.evalScalar(feature, ctx));
     }

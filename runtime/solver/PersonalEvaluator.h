@@ -6,8 +6,10 @@
 // allocates nothing for interval, threshold and table factors.
 //
 // A text factor is handed its subject as a textpref::Item: item entries and enum members index the Program's
-// precomputed ItemDescriptors (and their whole domain is what `scale: relative` divides by); a text subject is
-// converted when its value changes, which allocates only then. A subject value with no item (an index out of
+// precomputed ItemDescriptors; a text subject is converted when its value changes, which allocates only then.
+// `scale: relative` divides by the best of the values the CSP can choose: when the subject's variable draws from
+// an observed set (`var book : Book in pickable`), the members the observation lists; otherwise its whole item
+// set or enum. A subject value with no item (an index out of
 // range) reads the generator's `fallback`. The text factor caches its own assessments (TextFactor.h).
 #pragma once
 
@@ -16,6 +18,7 @@
 #include "runtime/model/UserModel.h"
 
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -46,6 +49,11 @@ class PersonalEvaluator {
     const std::vector<textpref::Item>* domain = nullptr;     // item / enum subjects: the item of every value
     double last = std::numeric_limits<double>::quiet_NaN();  // text subjects: the text id `owned` holds
     textpref::Item owned;
+    // Relative scaling over an observed set: the offset of its membership flags in the observation, and the
+    // members it lists (built on first use; the observation is fixed for the evaluator's CSP).
+    std::optional<std::uint32_t> flags;
+    bool availableBuilt = false;
+    std::vector<textpref::Item> available;
   };
   struct Cache {
     std::vector<double> keyValues;
@@ -54,7 +62,7 @@ class PersonalEvaluator {
     std::vector<TextSubject> text;  // per factor; empty when the generator has no text factor
   };
   double textProbability(const rt::PersonalInstance& inst, std::size_t factor, const model::Factor& f,
-                         TextSubject& subject, double value);
+                         TextSubject& subject, double value, const rt::EvalContext& ctx);
   const rt::Program& program_;
   const std::vector<rt::PersonalInstance>& instances_;
   const model::UserModel& user_;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace cbtl::solver {
 namespace {
@@ -82,23 +83,44 @@ RecheckResult recheck(const Csp& csp, const std::vector<double>& assignment) {
                                          rt::Program::where(graph.variables[v].span), why));
     }
   }
+  // In a staged plan each constraint is evaluated in the state its skill starts in, unrolled afresh.
+  std::map<std::uint32_t, std::uint32_t> stageOfConstraint;
+  for (std::size_t i = 0; i < csp.constraints.size() && i < csp.constraintStage.size(); ++i) {
+    if (csp.constraints[i].kind == ConstraintKind::Hard)
+      stageOfConstraint[csp.constraints[i].index] = csp.constraintStage[i];
+  }
+  if (csp.plan != nullptr) csp.plan->changed();
+  const auto enter = [&](std::uint32_t stage) {
+    return csp.plan == nullptr || stage == kAnyStage || csp.plan->enterStage(stage, ctx);
+  };
   for (std::uint32_t c : csp.task->constraints) {
     ++r.constraintsChecked;
-    if (!program.pool().evalBool(program.constraints()[c].root, ctx)) {
+    const auto stage = stageOfConstraint.find(c);
+    if (!enter(stage == stageOfConstraint.end() ? 0 : stage->second) ||
+        !program.pool().evalBool(program.constraints()[c].root, ctx)) {
       r.violations.push_back(fmt::format("constraint '{}' ({}) does not hold", graph.constraints[c].name,
                                          rt::Program::where(graph.constraints[c].span)));
     }
   }
   const bool personal =
-      std::any_of(csp.constraints.begin(), csp.constraints.end(), [](const ConstraintRef& c) { return c.personal; });
+      std::any_of(csp.constraints.begin(), csp.constraints.end(), [](const ConstraintRef& c) { return c.personal(); });
   if (personal) {
     PersonalEvaluator fresh(program, *csp.instances, *csp.user);  // a new evaluator: nothing cached
     for (std::uint32_t i = 0; i < csp.instances->size(); ++i) {
       ++r.constraintsChecked;
-      if (!fresh.holds(i, fresh.evaluate(i, ctx))) {
+      if (!enter(i < csp.instanceStage.size() ? csp.instanceStage[i] : 0) || !fresh.holds(i, fresh.evaluate(i, ctx))) {
         r.violations.push_back(fmt::format("personalized constraint '{}' does not hold", (*csp.instances)[i].name));
       }
     }
+  }
+  if (csp.plan != nullptr) {
+    ++r.constraintsChecked;
+    const sim::PlanVerdict v = csp.plan->check(ctx);
+    if (!v.executes) {
+      r.violations.push_back(fmt::format("the plan does not execute: call {} ({}): {}{}", v.failedCall + 1, v.action,
+                                         v.status, v.detail.empty() ? "" : ": " + v.detail));
+    }
+    csp.plan->enterStage(0, ctx);
   }
   return r;
 }

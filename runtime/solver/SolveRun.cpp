@@ -2,6 +2,8 @@
 
 #include "runtime/model/Entropy.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -43,6 +45,7 @@ SolveRun::SolveRun(const SolverOptions& options, rt::Rng& rng, std::map<std::uin
       x_(csp.initial),
       frame_(std::max<std::size_t>(program_.frameSize(), 1), 0.0),
       ctx_{x_.data(), csp.observation.data(), frame_.data(), program_.callContext()},
+      plan_(csp.plan),
       scratch_(std::max<std::size_t>(program_.maxSamplerOutWidth(), 1)),
       args_(std::max<std::size_t>(program_.maxSamplerArgsWidth(), 1)) {
   buildIndexTables();
@@ -63,7 +66,9 @@ void SolveRun::buildIndexTables() {
   constraintCount_ = csp_.constraints.size();
   for (std::size_t i = 0; i < constraintCount_; ++i) {
     const auto& ref = csp_.constraints[i];
-    const auto& vars = ref.personal ? (*csp_.instances)[ref.index].hyperedge : graph.constraints[ref.index].vars;
+    const std::vector<ir::VarId>& vars = ref.kind == ConstraintKind::PlanExecutes ? plan_->reads()
+                                         : ref.personal() ? (*csp_.instances)[ref.index].hyperedge
+                                                          : graph.constraints[ref.index].vars;
     for (ir::VarId v : vars) {
       edgeVars_.items.push_back(v);
       const auto& slot = program_.slot(v);
@@ -72,7 +77,7 @@ void SolveRun::buildIndexTables() {
     edgeVars_.endRow();
     edgeSlots_.endRow();
   }
-  readersOf_ = invert(edgeVars_, constraintCount_, graph.variables.size());
+  readersOf_ = invert(dirtyRows(edgeVars_, csp_.constraintStage), constraintCount_, graph.variables.size());
   instanceCount_ = csp_.instances->size();
   Rows termVars;
   for (std::size_t t = 0; t < instanceCount_; ++t) {
@@ -81,7 +86,40 @@ void SolveRun::buildIndexTables() {
     }
     termVars.endRow();
   }
-  termsOf_ = invert(termVars, instanceCount_, graph.variables.size());
+  termsOf_ = invert(dirtyRows(termVars, csp_.instanceStage), instanceCount_, graph.variables.size());
+  actionRead_.assign(graph.variables.size(), 0);
+  if (plan_ != nullptr) {
+    for (ir::VarId v : plan_->reads()) actionRead_[v] = 1;
+    failedByStage_.assign(constraintCount_, 0);
+    stageVerdict_.resize(constraintCount_);
+    for (std::size_t i = 0; i < constraintCount_; ++i)
+      if (csp_.constraints[i].kind == ConstraintKind::PlanExecutes) planIndex_ = i;
+  }
+}
+
+SolveRun::Rows SolveRun::dirtyRows(const Rows& own, const std::vector<std::uint32_t>& stages) const {
+  if (plan_ == nullptr) return own;
+  Rows out;
+  for (std::size_t r = 0; r + 1 < own.start.size(); ++r) {
+    std::vector<std::uint32_t> row(own.begin(r), own.end(r));
+    if (r < stages.size() && stages[r] != kAnyStage) {
+      for (ir::VarId v : plan_->readsBefore(stages[r])) row.push_back(v);
+    }
+    std::sort(row.begin(), row.end());
+    row.erase(std::unique(row.begin(), row.end()), row.end());
+    out.items.insert(out.items.end(), row.begin(), row.end());
+    out.endRow();
+  }
+  return out;
+}
+
+bool SolveRun::enter(std::uint32_t stage) {
+  if (plan_ == nullptr || stage == kAnyStage) return true;
+  if (stageCurrent_ && stage == stage_) return stageDefined_;
+  stageDefined_ = plan_->enterStage(stage, ctx_);
+  stage_ = stage;
+  stageCurrent_ = true;
+  return stageDefined_;
 }
 
 // Memory samplers: one per constraint that already has memory when the solve starts. A memory whose width no
@@ -108,16 +146,41 @@ void SolveRun::remember(std::size_t i) {
   for (const auto* at = edgeSlots_.begin(i); at != edgeSlots_.end(i); ++at) *slot++ = x_[*at];
 }
 
+void SolveRun::countPlanFailure(const sim::PlanVerdict& v, const char* when) {
+  // Rejections by failing action and status; the first detail of each as an example.
+  auto& failures = result_.planFailures;
+  std::string key = fmt::format("{}{}: {}", v.action, when, v.status);
+  if (!failures.count(key) && failures.size() >= kMaxPlanFailureKinds) key = "(other failures)";
+  PlanFailure& f = failures[key];
+  if (f.count++ == 0) f.example = fmt::format("call {}{}{}", v.failedCall + 1, v.detail.empty() ? "" : ": ", v.detail);
+}
+
+bool SolveRun::checkPlan() {
+  const sim::PlanVerdict v = plan_->check(ctx_);
+  if (v.executes) return true;
+  countPlanFailure(v, "");
+  return false;
+}
+
 bool SolveRun::check(std::size_t i) {
   if (state_[i] != Dirty) return state_[i] == Holds;
   const auto& ref = csp_.constraints[i];
   ++result_.constraints[i].evaluations;
-  bool ok;
-  if (ref.personal) {
+  bool ok, undefinedStage = false;
+  if (ref.kind == ConstraintKind::PlanExecutes) {
+    ok = checkPlan();
+  } else if (!enter(i < csp_.constraintStage.size() ? csp_.constraintStage[i] : 0)) {
+    ok = false;  // an earlier skill cannot leave a defined state for this one
+    undefinedStage = true;
+  } else if (ref.personal()) {
     const PersonalValue v = personal_.evaluate(ref.index, ctx_);
     ok = personal_.holds(ref.index, v);
   } else {
     ok = pool_.evalBool(program_.constraints()[ref.index].root, ctx_);
+  }
+  if (!failedByStage_.empty()) {
+    failedByStage_[i] = undefinedStage ? 1 : 0;
+    if (undefinedStage) stageVerdict_[i] = plan_->stageFailure();
   }
   state_[i] = ok ? Holds : Fails;
   if (ok && options_.memoryPolicy == MemoryPolicy::EverySatisfiedCheck) remember(i);
@@ -127,7 +190,12 @@ bool SolveRun::check(std::size_t i) {
 bool SolveRun::checkAll() {
   for (std::size_t i = 0; i < constraintCount_; ++i) {
     if (!check(i)) {
-      ++result_.constraints[i].rejections;
+      if (planIndex_ != SIZE_MAX && failedByStage_[i]) {
+        ++result_.constraints[planIndex_].rejections;
+        countPlanFailure(stageVerdict_[i], " (an earlier skill's effect)");
+      } else {
+        ++result_.constraints[i].rejections;
+      }
       return false;
     }
   }
@@ -140,7 +208,12 @@ double SolveRun::costOf() {
     std::size_t active = 0;
     for (std::uint32_t t : csp_.entropyTerms) {
       if (termDirty_[t]) {
-        termValue_[t] = personal_.evaluate(t, ctx_);
+        if (enter(t < csp_.instanceStage.size() ? csp_.instanceStage[t] : 0)) {
+          termValue_[t] = personal_.evaluate(t, ctx_);
+        } else {
+          termValue_[t] = PersonalValue{};  // no defined state: the instance counts as certain
+          termValue_[t].applies = false;
+        }
         termDirty_[t] = 0;
       }
       if (!termValue_[t].applies) continue;
@@ -160,6 +233,10 @@ double SolveRun::costOf() {
 void SolveRun::markWritten(ir::VarId v) {
   for (const auto* c = readersOf_.begin(v); c != readersOf_.end(v); ++c) state_[*c] = Dirty;
   for (const auto* t = termsOf_.begin(v); t != termsOf_.end(v); ++t) termDirty_[*t] = 1;
+  if (actionRead_[v]) {
+    plan_->changed();
+    stageCurrent_ = false;
+  }
 }
 
 // Writes a sampler's drawn values (laid out variable after variable in `scratch_`) into the candidate.
@@ -173,8 +250,14 @@ void SolveRun::writeDrawn(const std::vector<ir::VarId>& writes) {
   }
 }
 
-bool SolveRun::runSampler(std::uint32_t s) {
-  const rt::CompiledSampler& cs = program_.samplers()[s];
+bool SolveRun::runSampler(std::uint32_t k) {
+  const std::uint32_t stage = k < csp_.samplerStage.size() ? csp_.samplerStage[k] : kAnyStage;
+  if (plan_ != nullptr && stage != kAnyStage) {
+    // A proposal needs no exact state: the latest one of its stage (StagedPlan.h), so no effects are computed.
+    plan_->enterRecentStage(stage);
+    stageCurrent_ = false;
+  }
+  const rt::CompiledSampler& cs = program_.samplers()[csp_.samplers[k]];
   if (cs.impl == nullptr) return drawUniform(cs);
   double* const args = args_.data();
   std::size_t at = 0;
@@ -245,13 +328,19 @@ bool SolveRun::move() {
     swaps_[pos] = static_cast<std::uint32_t>(pos + rng_.index(order_.size() - pos));
     std::swap(order_[pos], order_[swaps_[pos]]);
     const std::uint32_t k = order_[pos];
-    moved = k < userSamplers_ ? runSampler(csp_.samplers[k]) : runMemorySampler(memorySamplers_[k - userSamplers_]);
+    moved = k < userSamplers_ ? runSampler(k) : runMemorySampler(memorySamplers_[k - userSamplers_]);
   }
   while (pos-- > 0) std::swap(order_[pos], order_[swaps_[pos]]);
   return moved;
 }
 
 SolveResult SolveRun::run() {
+  SolveResult result = search();
+  if (plan_ != nullptr) plan_->enterStage(0, ctx_);  // the caller's built-ins read the observed world again
+  return result;
+}
+
+SolveResult SolveRun::search() {
   bool found = false;
   double bestCost = std::numeric_limits<double>::infinity();
   std::vector<double> best;

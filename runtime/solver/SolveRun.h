@@ -28,9 +28,18 @@ class SolveRun {
   };
 
  private:
+  SolveResult search();
   enum ConstraintState : std::uint8_t { Dirty, Holds, Fails };
 
   void buildIndexTables();
+  // The rows of variables whose change re-evaluates each constraint: its own, plus in a staged plan the
+  // variables the earlier stages' actions read.
+  Rows dirtyRows(const Rows& own, const std::vector<std::uint32_t>& stages) const;
+  // Makes the world built-ins read the state `stage` starts in (StagedPlan.h); false when it is undefined.
+  bool enter(std::uint32_t stage);
+  bool checkPlan();
+  // Counts a dry-run rejection by failing action (SolveResult::planFailures).
+  void countPlanFailure(const sim::PlanVerdict& v, const char* when);
   void attachMemories(std::map<std::uint64_t, Solver::Memory>& memory);
   void remember(std::size_t i);
   bool check(std::size_t i);
@@ -39,7 +48,8 @@ class SolveRun {
   double costOf();
   void markWritten(ir::VarId v);
   void writeDrawn(const std::vector<ir::VarId>& writes);
-  bool runSampler(std::uint32_t s);
+  // The k-th of the CSP's samplers.
+  bool runSampler(std::uint32_t k);
   // The built-in `uniform` sampler: draws every component into `scratch_` first, so a failure leaves the
   // assignment untouched.
   bool drawUniform(const rt::CompiledSampler& cs);
@@ -62,6 +72,17 @@ class SolveRun {
   // sub-assignment its memory stores). Per variable: the constraints and entropy terms that read it.
   std::size_t constraintCount_ = 0, instanceCount_ = 0;
   Rows edgeVars_, edgeSlots_, readersOf_, termsOf_;
+
+  // The staged plan (null without one): the stage the world shows, whether that is still the current
+  // candidate's, whether it is defined, and which variables its actions read.
+  StagedPlan* plan_ = nullptr;
+  std::uint32_t stage_ = 0;
+  bool stageCurrent_ = false, stageDefined_ = true;
+  std::vector<std::uint8_t> actionRead_;
+  // Per constraint: its cached Fails came from an undefined stage (charged to PlanExecutes), with the reason.
+  std::vector<std::uint8_t> failedByStage_;
+  std::vector<sim::PlanVerdict> stageVerdict_;
+  std::size_t planIndex_ = SIZE_MAX;  // PlanExecutes' position in the check order
 
   std::vector<std::uint8_t> state_;
   std::vector<std::uint8_t> termDirty_;

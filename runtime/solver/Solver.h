@@ -62,6 +62,13 @@ struct ConstraintStats {
   std::uint64_t rejections = 0;  // candidates this constraint was the first to reject
 };
 
+// Candidates the plan's dry run rejected (StagedPlan.h), by failing action and status.
+struct PlanFailure {
+  std::uint64_t count = 0;
+  std::string example;  // the detail of the first such failure
+};
+inline constexpr std::size_t kMaxPlanFailureKinds = 24;  // further kinds are counted as "(other failures)"
+
 struct SolveResult {
   SolveOutcome outcome = SolveOutcome::InfeasibleWithinBudget;
   std::vector<double> assignment;  // the solution (Solved), else the last candidate
@@ -71,6 +78,7 @@ struct SolveResult {
   std::uint64_t improvements = 0;
   std::uint64_t prunedByCost = 0;
   std::vector<ConstraintStats> constraints;  // in the CSP's check order
+  std::map<std::string, PlanFailure> planFailures;
   bool solved() const { return outcome == SolveOutcome::Solved; }
 };
 

@@ -56,9 +56,23 @@ void explain(const cbtl::approach::Plan& plan) {
       fmt::print("  {:>10} {:>11}  {:<48} {}\n", s.rejections, s.evaluations, constraintName(csp, s.ref),
                  constraintLocation(csp, s.ref));
     }
+    if (!r.planFailures.empty()) {
+      std::vector<std::pair<std::string, PlanFailure>> failures(r.planFailures.begin(), r.planFailures.end());
+      std::stable_sort(failures.begin(), failures.end(),
+                       [](const auto& a, const auto& b) { return a.second.count > b.second.count; });
+      fmt::print("  {} rejections by failing action (the first detail of each):\n", kPlanExecutesName);
+      for (const auto& [what, f] : failures)
+        fmt::print("  {:>10}  {}{}\n", f.count, what, f.example.empty() ? "" : " (" + f.example + ")");
+    }
   };
+  for (const auto& [budget, result] : plan.failedTiers)
+    print(plan.csp, result, fmt::format("dry-run tier with {} planner iterations per motion", budget).c_str());
+  if (plan.dryRun())
+    fmt::print("dry-run tier of the result: {} planner iterations per motion\n", plan.motionIterations);
   if (plan.failedFull) print(plan.csp, *plan.failedFull, "with personalized constraints");
   print(plan.csp, plan.solve, plan.failedFull ? "replanned without personalized constraints" : "solve");
+  if (!plan.dryRun() && plan.csp.program->host() != nullptr && plan.csp.program->host()->executionModel() != nullptr)
+    fmt::print("note: the plan was not dry-run: the world model does not know every action of the task\n");
 }
 
 int runSolve(const SolveArgs& a) {

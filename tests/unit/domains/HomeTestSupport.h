@@ -42,7 +42,7 @@ inline bool holdAt(world::World& w, const std::string& object, const world::Pose
     s.objects[domains::home::bookBody(k)] = domains::home::parkedPose(k);
   s.base = base;
   s.held.reset();
-  domains::home::holdAtHome(s, object);
+  domains::home::holdCarried(s, object);
   return w.workspace().setState(s) == world::StateStatus::Ok;
 }
 

@@ -33,7 +33,7 @@ class RobotActionsTest : public ::testing::Test {
   }
 
   RobotActionResult run(const std::string& name, std::vector<Value> args) {
-    auto r = actions.execute(w, ActionCall{name, std::move(args)}, rng);
+    auto r = actions.execute(w, ActionCall{name, std::move(args)});
     EXPECT_TRUE(r.has_value()) << name;
     return r ? *r : RobotActionResult{};
   }
@@ -52,7 +52,7 @@ class RobotActionsTest : public ::testing::Test {
 };
 
 TEST_F(RobotActionsTest, OtherNamesAreNotStandard) {
-  EXPECT_FALSE(actions.execute(w, ActionCall{"movePot", {}}, rng).has_value());
+  EXPECT_FALSE(actions.execute(w, ActionCall{"movePot", {}}).has_value());
   EXPECT_TRUE(RobotActions::isStandard("wipe"));
   EXPECT_FALSE(RobotActions::isStandard("movePlate"));  // Feeding's own (domains/feeding/TableSlide.h)
 }
@@ -107,7 +107,7 @@ TEST_F(RobotActionsTest, IllFormedCallsAreUnknownActions) {
   };
   const world::WorldState before = w.workspace().state();
   for (const ActionCall& call : bad) {
-    const auto r = actions.execute(w, call, rng);
+    const auto r = actions.execute(w, call);
     ASSERT_TRUE(r.has_value()) << call.name;
     EXPECT_FALSE(r->wellFormed) << call.name;
     EXPECT_EQ(r->steps, 0) << call.name;

@@ -57,7 +57,7 @@ TEST_F(WipeSweepTest, WipesEveryHomeSurfaceFromItsApproachBase) {
     ASSERT_TRUE(readyToWipe(surface, base));
     const world::ArmConfig arm = w.workspace().state().arm;
     const auto r =
-        actions.execute(w, ActionCall{"wipe", {Value::name(surface), Value::vec({base.x, base.y, base.yaw})}}, rng);
+        actions.execute(w, ActionCall{"wipe", {Value::name(surface), Value::vec({base.x, base.y, base.yaw})}});
     ASSERT_TRUE(r.has_value());
     ASSERT_TRUE(r->done()) << r->detail;
     EXPECT_GE(r->basePath.size(), 3u);  // at least one stroke there and back, plus the return
@@ -69,15 +69,15 @@ TEST_F(WipeSweepTest, WipesEveryHomeSurfaceFromItsApproachBase) {
 
 TEST_F(WipeSweepTest, FailsWhenTheDusterIsNotOnTheSurface) {
   ASSERT_TRUE(readyToWipe("shelf_layer_1", {0, 0, 0}));
-  const auto r = actions.execute(w, ActionCall{"wipe", {Value::name("shelf_layer_2"), Value::vec({0, 0, 0})}}, rng);
+  const auto r = actions.execute(w, ActionCall{"wipe", {Value::name("shelf_layer_2"), Value::vec({0, 0, 0})}});
   ASSERT_TRUE(r.has_value());
   EXPECT_EQ(r->status, ActionStatus::OutOfReach);
-  const auto unknown = actions.execute(w, ActionCall{"wipe", {Value::name("ceiling"), Value::vec({0, 0, 0})}}, rng);
+  const auto unknown = actions.execute(w, ActionCall{"wipe", {Value::name("ceiling"), Value::vec({0, 0, 0})}});
   EXPECT_EQ(unknown->status, ActionStatus::InvalidArgument);
 }
 
 TEST_F(WipeSweepTest, FailsWithoutAHeldTool) {
-  const auto r = actions.execute(w, ActionCall{"wipe", {Value::name("table_top"), Value::vec({0, -0.1, 0})}}, rng);
+  const auto r = actions.execute(w, ActionCall{"wipe", {Value::name("table_top"), Value::vec({0, -0.1, 0})}});
   ASSERT_TRUE(r.has_value());
   EXPECT_EQ(r->status, ActionStatus::NotHolding);
 }
@@ -87,7 +87,7 @@ TEST_F(WipeSweepTest, ABlockedSweepLeavesTheWorldAsItWas) {
   // A book standing in the middle of the middle layer is in the duster's way.
   w.workspace().setObjectPose("book_0", world::Pose3::fromPosition(Eigen::Vector3d(-0.2, 0.675, 0.13)));
   const world::WorldState before = w.workspace().state();
-  const auto r = actions.execute(w, ActionCall{"wipe", {Value::name("shelf_layer_1"), Value::vec({0, 0, 0})}}, rng);
+  const auto r = actions.execute(w, ActionCall{"wipe", {Value::name("shelf_layer_1"), Value::vec({0, 0, 0})}});
   ASSERT_TRUE(r.has_value());
   EXPECT_EQ(r->status, ActionStatus::NoPath);
   EXPECT_EQ(w.workspace().state().base.x, before.base.x);

@@ -72,7 +72,7 @@ TEST(Approach, CspContentsFollowTheChoice) {
   const std::vector<double> obs(lp->program().observationWidth(), 15.0);
   auto count = [](const solver::Csp& c) {
     std::size_t personal = 0;
-    for (const auto& r : c.constraints) personal += r.personal ? 1 : 0;
+    for (const auto& r : c.constraints) personal += r.personal() ? 1 : 0;
     return personal;
   };
   const auto include =
@@ -80,7 +80,7 @@ TEST(Approach, CspContentsFollowTheChoice) {
   const auto exclude =
       solver::makeCsp(lp->program(), 0, lp->instances(0), user, obs, PersonalMode::Exclude, CostKind::Entropy);
   EXPECT_EQ(count(include), 4u);
-  EXPECT_TRUE(include.constraints.front().personal) << "personalized constraints are checked first";
+  EXPECT_TRUE(include.constraints.front().personal()) << "personalized constraints are checked first";
   EXPECT_EQ(count(exclude), 0u);
   EXPECT_EQ(exclude.entropyTerms.size(), 4u);
   EXPECT_EQ(include.constraints.size() - 4, exclude.constraints.size());

@@ -45,7 +45,7 @@ TEST(WorldOperations, MoveArmReleaseAndSay) {
   World w(test::feedingScene());
   Rng rng(2);
   w.workspace().setArm(configs::kRetract);
-  const ActionResult m = moveArm(w, test::feedingConf("abovePlate"), rng);
+  const ActionResult m = moveArm(w, test::feedingConf("abovePlate"));
   ASSERT_TRUE(m.done()) << m.detail;
   EXPECT_EQ(m.armPath.front(), configs::kRetract);
   EXPECT_EQ(w.workspace().state().arm, test::feedingConf("abovePlate"));
@@ -65,11 +65,11 @@ TEST(WorldOperations, GraspTheUtensilFromAboveTheMount) {
   const IkResult ik = solveIk(w.workspace(), inside, above, rng, w.ik);
   w.workspace().setArm(above);
   ASSERT_TRUE(ik.solved());
-  ASSERT_TRUE(moveArm(w, ik.q, rng).done());
+  ASSERT_TRUE(moveArm(w, ik.q).done());
   ASSERT_TRUE(grasp(w, "utensil").done());
   EXPECT_EQ(grasp(w, "plate").status, ActionStatus::AlreadyHolding);
   const Pose3 before = *w.workspace().objectPose("utensil");
-  ASSERT_TRUE(moveArm(w, test::feedingConf("utensilAboveMount"), rng).done());
+  ASSERT_TRUE(moveArm(w, test::feedingConf("utensilAboveMount")).done());
   EXPECT_GT(w.workspace().objectPose("utensil")->position.z(), before.position.z() + 0.05);  // it came along
   ASSERT_TRUE(release(w).done());
   EXPECT_EQ(w.workspace().heldObject(), -1);
@@ -81,7 +81,7 @@ TEST(WorldOperations, HomeBaseMoveAndGrasp) {
   WorldState st;
   st.arm = configs::kRetract;
   ASSERT_EQ(w.workspace().setState(st), StateStatus::Ok);
-  const ActionResult base = moveBase(w, {1.0, 0.2, 0.0}, rng);
+  const ActionResult base = moveBase(w, {1.0, 0.2, 0.0});
   ASSERT_TRUE(base.done()) << base.detail;
   EXPECT_NEAR(w.workspace().state().base.x, 1.0, 1e-12);
   // Hold a book (attached where it is: the test only needs something in the gripper).
@@ -99,7 +99,7 @@ TEST(WorldOperations, FailedActionLeavesTheWorldUnchanged) {
   const ArmConfig inTable{-0.828, 0.843, 2.992, -1.341, 0.135, -0.966, -1.004};  // through the table
   ASSERT_FALSE(checkArm(w.workspace(), inTable).free());
   w.workspace().setArm(configs::kRetract);
-  const ActionResult r = moveArm(w, inTable, rng);
+  const ActionResult r = moveArm(w, inTable);
   EXPECT_EQ(r.status, ActionStatus::NoPath);
   EXPECT_EQ(w.workspace().state().arm, configs::kRetract);
 }

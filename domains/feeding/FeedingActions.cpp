@@ -1,0 +1,141 @@
+#include "domains/feeding/FeedingActions.h"
+
+#include "domains/feeding/TableSlide.h"
+#include "robot/actions/CallArguments.h"
+#include "robot/world/MotionQuery.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace cbtl::domains::feeding {
+
+namespace {
+
+using world::Pose3;
+using world::builtins::ActionStatus;
+
+// The drink's handle in the drink's body frame (the holder box of feeding.xml), metres.
+const Eigen::Vector3d kDrinkGraspOffset(-0.085, 0.0, 0.2);
+// The utensil mount's grasp pose (feeding.cbtl mountX, mountY, mountLowZ), tool pointing down.
+const Eigen::Vector3d kMountLow(0.242, -0.077, 0.07);
+constexpr int kDrinkIkDraws = 5;  // collision-free IK draws from random starts for the handle
+
+Eigen::Quaterniond towardsPlusY() { return Eigen::Quaterniond(0.0, 0.0, 0.7071067811865476, 0.7071067811865476); }
+
+actions::RobotActionResult failed(ActionStatus s, std::string detail) {
+  actions::RobotActionResult r;
+  r.status = s;
+  r.detail = std::move(detail);
+  return r;
+}
+
+actions::RobotActionResult illFormed(std::string detail) {
+  actions::RobotActionResult r = failed(ActionStatus::InvalidArgument, std::move(detail));
+  r.wellFormed = false;
+  r.steps = 0;
+  return r;
+}
+
+bool holding(const world::Workspace& ws, const char* object) {
+  return ws.heldObject() >= 0 && ws.scene().objects()[static_cast<std::size_t>(ws.heldObject())].name == object;
+}
+
+}  // namespace
+
+std::shared_ptr<const FeedingActions> FeedingActions::forScene(const world::Scene& scene) {
+  const int index = scene.objectIndex("utensil");
+  if (index < 0) return std::make_shared<const FeedingActions>(Pose3{});
+  const mjtNum* q = scene.model()->qpos0 + scene.objects()[static_cast<std::size_t>(index)].qposAdr;
+  return std::make_shared<const FeedingActions>(
+      Pose3{Eigen::Vector3d(q[0], q[1], q[2]), Eigen::Quaterniond(q[3], q[4], q[5], q[6])});
+}
+
+bool FeedingActions::handles(std::string_view name) const {
+  return name == "movePlate" || name == "moveDrink" || name == "dipInto" || name == "acquireFood" ||
+         name == "waitForReady";
+}
+
+std::optional<actions::RobotActionResult> FeedingActions::execute(world::World& w, const sim::ActionCall& call,
+                                                                  actions::ExecutionMode mode) const {
+  const std::string& n = call.name;
+  if (isTableSlide(n)) return slideOnTable(w, call);
+  if (n == "grasp" && call.args.size() == 1 && call.args[0].kind == sim::Value::Kind::Name &&
+      call.args[0].text == "drink")
+    return graspDrink(w, mode);
+  if (n == "release" && call.args.empty() && holding(w.workspace(), "utensil")) return releaseUtensil(w);
+  if (n == "acquireFood") {
+    if (auto e = actions::checkArguments(call, {}); !e.empty()) return illFormed(e);
+    return acquireFood(w);
+  }
+  if (n == "dipInto" || n == "waitForReady") {
+    if (auto e = actions::checkArguments(call, {actions::kNameArg}); !e.empty()) return illFormed(e);
+    return actions::RobotActionResult{};
+  }
+  return std::nullopt;
+}
+
+actions::RobotActionResult FeedingActions::graspDrink(world::World& w, actions::ExecutionMode mode) const {
+  world::Workspace& ws = w.workspace();
+  if (ws.heldObject() >= 0) return failed(ActionStatus::AlreadyHolding, "grasp(drink): the gripper is not empty");
+  const auto drink = ws.objectPose("drink");
+  if (!drink) return failed(ActionStatus::InvalidArgument, "no movable object 'drink'");
+  const Pose3 handle{drink->transformPoint(kDrinkGraspOffset) - Eigen::Vector3d(0, kDrinkGraspStandoff, 0),
+                     towardsPlusY()};
+  // IK from random starts (seeded at the folded arm, every converged solution reaches around the table); the
+  // starts are drawn from a stream that is a function of the state and the handle.
+  std::vector<double> key(ws.state().arm.begin(), ws.state().arm.end());
+  key.insert(key.end(), {handle.position.x(), handle.position.y(), handle.position.z()});
+  world::Rng rng(world::fingerprintOf(key));
+  std::optional<world::ArmConfig> q;
+  for (int attempt = 0; attempt < kDrinkIkDraws && !q; ++attempt) q = world::builtins::sampleIk(w, handle, rng);
+  if (!q) {
+    return failed(
+        ActionStatus::NoIk,
+        fmt::format("grasp(drink): no collision-free IK solution for the handle of the drink at ({:.3f}, {:.3f})",
+                    drink->position.x(), drink->position.y()));
+  }
+  const world::WorldState before = ws.state();
+  const world::builtins::ActionResult approach = actions::moveArmIn(w, *q, mode);
+  if (!approach.done()) return failed(approach.status, "grasp(drink): approach: " + approach.detail);
+  ws.setHeld(std::string("drink"));
+  world::WorldState closed = ws.state();
+  closed.gripper = 0.0;
+  ws.setState(closed);
+  Pose3 lifted = ws.toolPose();
+  lifted.position.z() += kDrinkLift;
+  const world::IkResult up = world::solveIk(ws, lifted, ws.state().arm, rng, w.ik);
+  if (!up.solved()) {
+    ws.setState(before);
+    return failed(ActionStatus::NoIk, fmt::format("grasp(drink): lift: {}", world::toString(up.status)));
+  }
+  ws.setArm(up.q);
+  actions::RobotActionResult r;
+  r.armPath = approach.armPath;
+  r.armPath.push_back(up.q);
+  return r;
+}
+
+actions::RobotActionResult FeedingActions::releaseUtensil(world::World& w) const {
+  world::Workspace& ws = w.workspace();
+  if ((ws.toolPose().position - kMountLow).norm() > kMountTolerance)
+    return failed(ActionStatus::OutOfReach, "release(): the utensil is not at its mount");
+  ws.setHeld(std::nullopt);
+  ws.setObjectPose("utensil", mount_);
+  world::WorldState s = ws.state();
+  s.gripper = 1.0;
+  ws.setState(s);
+  return {};
+}
+
+actions::RobotActionResult FeedingActions::acquireFood(world::World& w) const {
+  world::Workspace& ws = w.workspace();
+  const auto plate = ws.objectPose("plate");
+  const Eigen::Vector3d tool = ws.toolPose().position;
+  if (!holding(ws, "utensil") || !plate ||
+      std::hypot(tool.x() - plate->position.x(), tool.y() - plate->position.y()) > kFoodReach)
+    return failed(ActionStatus::OutOfReach, "acquireFood(): the utensil is not above the food");
+  return {};
+}
+
+}  // namespace cbtl::domains::feeding

@@ -1,0 +1,50 @@
+// FeedingActions.h — Feeding's own actions on the robot world (feeding.cbtl), for both the simulator that carries
+// plans out and the runtime's world model that dry-runs them (robot/actions/RobotActions.h DomainActions):
+//
+//   movePlate(xy), moveDrink(xy)  the caregiver slides the plate or the drink (TableSlide.h).
+//   grasp("drink")                the drink is taken by its handle: a collision-free IK solution for the tool just
+//                                 short of the handle (tool z along world +y), the arm moved there, the drink
+//                                 attached where it stands and lifted kDrinkLift (only the lift's end is checked:
+//                                 it starts with the drink on the table, a contact the planner would reject).
+//   release() holding the utensil the utensil goes back on its mount: the tool must be within kMountTolerance
+//                                 of the mount's grasp pose; the utensil is set to its mount pose (the scene's).
+//   acquireFood()                 the held utensil must be over the plate (tool within kFoodReach of its centre).
+//   dipInto(sauce), waitForReady(signal)  change nothing in the world (the simulator checks the sauce is on the
+//                                 table and records the signal).
+// Every other call is the standard executor's. Pure and both modes as RobotActions.h says; failures leave the
+// world as it was.
+#pragma once
+
+#include "robot/actions/RobotActions.h"
+
+#include <map>
+#include <memory>
+#include <string>
+
+namespace cbtl::domains::feeding {
+
+inline constexpr double kDrinkGraspStandoff = 0.10;  // metres short of the handle (world -y) where the tool stops
+inline constexpr double kDrinkLift = 0.01;           // metres the tool rises after closing on the handle
+inline constexpr double kMountTolerance = 0.03;      // metres from the mount pose where a release re-mounts
+inline constexpr double kFoodReach = 0.10;           // metres from the plate centre where food can be picked up
+
+class FeedingActions final : public actions::DomainActions {
+ public:
+  // `utensilMount`: the utensil's pose on its mount (the scene's initial pose).
+  explicit FeedingActions(world::Pose3 utensilMount) : mount_(std::move(utensilMount)) {}
+  // Reads the mount pose from the scene.
+  static std::shared_ptr<const FeedingActions> forScene(const world::Scene& scene);
+
+  std::optional<actions::RobotActionResult> execute(world::World& w, const sim::ActionCall& call,
+                                                    actions::ExecutionMode mode) const override;
+  bool handles(std::string_view name) const override;
+
+ private:
+  actions::RobotActionResult graspDrink(world::World& w, actions::ExecutionMode mode) const;
+  actions::RobotActionResult releaseUtensil(world::World& w) const;
+  actions::RobotActionResult acquireFood(world::World& w) const;
+
+  world::Pose3 mount_;
+};
+
+}  // namespace cbtl::domains::feeding

@@ -86,6 +86,11 @@ std::shared_ptr<const actions::DomainActions> domainActions(const std::string& d
   return nullptr;
 }
 
+SolverBudgets solverBudgets(const std::string& domain) {
+  if (domain == "books" || domain == "cleaning" || domain == "feeding") return SolverBudgets{2500, 500, 100};
+  return SolverBudgets{};
+}
+
 std::vector<std::string> knownDomains() {
   std::vector<std::string> names;
   for (const Entry& e : entries()) names.emplace_back(e.name);

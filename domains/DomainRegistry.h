@@ -32,6 +32,16 @@ std::unique_ptr<sim::DomainSimulator> createSimulator(const std::string& domain,
 // world model, the same ones its simulator executes; null when the domain has none (or none was built).
 std::shared_ptr<const actions::DomainActions> domainActions(const std::string& domain, const world::Scene& scene);
 
+// A domain's solver budgets, used where the command line gives none: the reference's per-environment settings
+// (Cooking: 100,000 iterations, 500 improvements, 10,000 attempts after the first solution; the robot domains:
+// 2,500 / 500 / 100, since every candidate that reaches the plan check is dry-run in the world).
+struct SolverBudgets {
+  std::uint64_t maxIters = 100000;
+  std::uint64_t numImprovements = 500;
+  std::uint64_t maxImprovementAttempts = 10000;
+};
+SolverBudgets solverBudgets(const std::string& domain);
+
 // The names createSimulator accepts, sorted.
 std::vector<std::string> knownDomains();
 

@@ -81,6 +81,8 @@ void BooksSimulator::stockShelves(world::WorldState& state, bool mayHold) {
 
 void BooksSimulator::reset(std::uint64_t seed) {
   rng_.seed(seed);
+  judged_ = false;
+  idleRun_ = 0;
   world_->utterances().clear();
   world::WorldState s = home::emptyRoom(*scene_, scenePoses_);
   if (evaluation_)
@@ -136,6 +138,7 @@ std::string BooksSimulator::requestedTask() const {
 }
 
 StepResult BooksSimulator::act(const sim::ActionCall& call) {
+  idleRun_ = 0;
   const auto done = actions_.execute(*world_, call);
   if (!done) {
     StepResult r;
@@ -146,24 +149,30 @@ StepResult BooksSimulator::act(const sim::ActionCall& call) {
   StepResult r = done->toStepResult(call.name);
   if (!done->wellFormed) return r;
   if (!done->done()) {
-    r.taskDone = true;  // a failure ends the task; the user has nothing to judge
+    r.taskDone = true;  // a failure ends the task
     r.taskFailed = true;
+    judged_ = false;
     return r;
   }
   if (call.name == "handOver") return handOver(std::move(r));
+  if (call.name == "say" && call.args[0].text == kDoneUtterance && judged_) {
+    r.taskDone = true;  // the robot has handed over, put its arm back and said so
+    judged_ = false;
+  }
   return r;
 }
 
 StepResult BooksSimulator::handOver(StepResult r) {
   world::Workspace& ws = world_->workspace();
   const std::string body = ws.state().held->object;  // handOver succeeded, so something is held
-  r.taskDone = true;
   const Book* book = catalog_->byBody(body);
   if (book == nullptr) {
     r.status = sim::ActionStatus::Ignored;
+    r.taskDone = true;
     r.message = "handOver: the user does not take the " + body;
     return r;
   }
+  judged_ = true;
   const Eigen::Vector3d point = ws.toolPose().position;
   const bool reached = user_->reaches(hand_, point);
   const bool enjoyed = reached && enjoysBook(*user_, *book);
@@ -196,6 +205,20 @@ StepResult BooksSimulator::idle() {
   StepResult r;
   r.consumedStep = true;
   r.message = "idle: the robot waits";
+  if (++idleRun_ >= home::kCaregiverPatience) {
+    world::WorldState s = world_->workspace().state();
+    home::caregiverReset(s, *scene_);
+    world_->workspace().setState(s);
+    if (pickable().empty()) {
+      s = world_->workspace().state();
+      stockShelves(s, false);
+      world_->workspace().setState(s);
+    }
+    idleRun_ = 0;
+    judged_ = false;
+    r.caregiverReset = true;
+    r.message = "the robot was stuck: the caregiver put it back at its start";
+  }
   return r;
 }
 

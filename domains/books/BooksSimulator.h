@@ -29,13 +29,15 @@
 //     said, enjoyed); reached per BooksUser::reaches; enjoyed is the user's taste when reached and false
 //     when not (they never got the book; books.cbtl learns `enjoyed if reached`). Satisfaction +1 iff
 //     reached and enjoyed, otherwise -1 (an unreachable handover disappoints the user too, as in the
-//     reference); taskDone. Reached: the user takes the book (it is parked outside the room: no longer held,
-//     not pickable). Not reached: the robot keeps holding it.
+//     reference). Reached: the user takes the book (it is parked outside the room: no longer held, not
+//     pickable). Not reached: the robot keeps holding it. The task ends (taskDone) when the robot then says
+//     "Done" (the reference's missions complete on "Done"), after it has put its arm back.
 //   - handOver() of something that is not a book (the duster): the user refuses it: status Ignored, taskDone,
 //     no feedback, no satisfaction.
 //   - A failed action (no path, no IK, ...) ends the task as failed: status Ignored, taskDone, no
 //     satisfaction, the message says why; the world is as before that action.
-// idle(): one step passes, nothing changes.
+// idle(): one step passes, nothing changes; after home::kCaregiverPatience idle steps in a row (the robot found no
+// plan) a caregiver resets it (HomeEpisode.h caregiverReset: a held book is taken away; StepResult::caregiverReset).
 // Options: none of SimulatorOptions applies (kept only for the evaluation twin).
 // Lifetime state (not touched by reset): the user, the catalogue and the scene, shared with evaluation twins.
 #pragma once
@@ -57,6 +59,7 @@
 namespace cbtl::domains::books {
 
 inline constexpr double kHeldProbability = 0.25;
+inline constexpr const char* kDoneUtterance = "Done";  // what the robot says when it has finished a task
 // An evaluation task offers one book the user enjoys among four others (the reference's evaluation: one of the
 // enjoyed books and half of the others removed from the nine), so a first handover can satisfy the user.
 inline constexpr std::size_t kEvalEnjoyed = 1;
@@ -114,6 +117,8 @@ class BooksSimulator final : public sim::DomainSimulator {
   actions::RobotActions actions_;
   world::Rng rng_;
   bool evaluation_ = false;  // an evaluation twin: tasks drawn as stockForEvaluation says
+  bool judged_ = false;      // the user has answered this task's handover; the robot's "Done" ends the task
+  int idleRun_ = 0;          // steps idle in a row (home::kCaregiverPatience)
 };
 
 }  // namespace cbtl::domains::books

@@ -33,6 +33,8 @@ CleaningSimulator::CleaningSimulator(std::shared_ptr<const world::Scene> scene, 
 
 void CleaningSimulator::reset(std::uint64_t seed) {
   rng_.seed(seed);
+  judged_ = false;
+  idleRun_ = 0;
   world_->utterances().clear();
   world::WorldState s = home::emptyRoom(*scene_, scenePoses_);
   const std::vector<std::size_t> books = rng_.permutation(home::kBookCount);
@@ -104,6 +106,7 @@ std::string CleaningSimulator::requestedTask() const {
 }
 
 StepResult CleaningSimulator::act(const sim::ActionCall& call) {
+  idleRun_ = 0;
   const auto done = actions_.execute(*world_, call);
   if (!done) {
     StepResult r;
@@ -114,8 +117,15 @@ StepResult CleaningSimulator::act(const sim::ActionCall& call) {
   StepResult r = done->toStepResult(call.name);
   if (!done->wellFormed) return r;
   if (!done->done()) {
-    r.taskDone = true;  // a failure ends the task; the user has nothing to judge
+    r.taskDone = true;  // a failure ends the task
     r.taskFailed = true;
+    judged_ = false;
+    coverOneSurface();  // the next task
+    return r;
+  }
+  if (call.name == "say" && call.args[0].text == kDoneUtterance && judged_) {
+    r.taskDone = true;  // the robot has cleaned, put its arm back and said so
+    judged_ = false;
     coverOneSurface();  // the next task
     return r;
   }
@@ -126,9 +136,8 @@ StepResult CleaningSimulator::act(const sim::ActionCall& call) {
           sim::FeedbackEvent{"cleaningReaction", {Value::name(*surface), Value::num(welcome ? 1 : 0)}});
       r.hasSatisfaction = true;
       r.satisfaction = welcome ? 1.0 : -1.0;
-      r.taskDone = true;
       r.message = welcome ? "Thanks for cleaning there." : "Don't clean there -- I can do it myself.";
-      coverOneSurface();  // the next task
+      judged_ = true;
     }
   }
   return r;
@@ -138,6 +147,16 @@ StepResult CleaningSimulator::idle() {
   StepResult r;
   r.consumedStep = true;
   r.message = "idle: the robot waits";
+  if (++idleRun_ >= home::kCaregiverPatience) {
+    world::WorldState s = world_->workspace().state();
+    home::caregiverReset(s, *scene_);
+    world_->workspace().setState(s);
+    idleRun_ = 0;
+    judged_ = false;
+    coverOneSurface();
+    r.caregiverReset = true;
+    r.message = "the robot was stuck: the caregiver put it back at its start";
+  }
   return r;
 }
 

@@ -26,11 +26,13 @@
 // Actions: the standard actions (robot/RobotActions.h; every well-formed action takes one step, wait(n)
 // n steps). A call of another name, or one of the wrong shape, is UnknownAction (no step).
 //   - A completed wipe of one of the seven surfaces is judged by the user: feedback
-//     cleaningReaction(surface, welcome), satisfaction +1 (welcome) or -1, taskDone.
+//     cleaningReaction(surface, welcome), satisfaction +1 (welcome) or -1. The task ends (taskDone) when the
+//     robot then says "Done" (the reference's missions complete on "Done"), after it has put its arm back.
 //   - A failed action (no path, no IK, not holding, ...) ends the task as failed: status Ignored, taskDone,
 //     no satisfaction (the user did not see a cleaning to judge), the message says why; the world is as
 //     before that action.
-// idle(): one step passes, nothing changes.
+// idle(): one step passes, nothing changes; after home::kCaregiverPatience idle steps in a row (the robot found no
+// plan) a caregiver resets it (HomeEpisode.h caregiverReset; StepResult::caregiverReset), and a new task begins.
 // Options: none of SimulatorOptions applies (the user has no ranges to shift and there is no stock); they are
 // kept only for the evaluation twin.
 // Lifetime state (not touched by reset): the user, shared with evaluation twins.
@@ -51,7 +53,8 @@
 
 namespace cbtl::domains::cleaning {
 
-inline constexpr double kObstacleClearance = 0.02;  // metres between an obstacle book and other objects
+inline constexpr double kObstacleClearance = 0.02;     // metres between an obstacle book and other objects
+inline constexpr const char* kDoneUtterance = "Done";  // what the robot says when it has finished a task
 
 class CleaningSimulator final : public sim::DomainSimulator {
  public:
@@ -92,6 +95,8 @@ class CleaningSimulator final : public sim::DomainSimulator {
   actions::RobotActions actions_;
   world::Rng rng_;
   std::string obstacle_;  // the book that covers a surface
+  bool judged_ = false;   // the user has judged this task's wipe; the robot's "Done" ends the task
+  int idleRun_ = 0;       // steps idle in a row (home::kCaregiverPatience)
 };
 
 }  // namespace cbtl::domains::cleaning

@@ -34,4 +34,18 @@ void holdCarried(world::WorldState& state, const std::string& object) {
   state.held = world::Grasp{object, toolInBody.inverse()};
 }
 
+void caregiverReset(world::WorldState& state, const world::Scene& scene) {
+  state.base = world::Pose2{0, 0, 0};
+  const std::string held = state.held ? state.held->object : std::string();
+  state.held.reset();
+  state.gripper = 1.0;
+  state.arm = initialArm(scene);
+  if (held == "duster") {
+    holdCarried(state, held);
+  } else if (!held.empty()) {
+    for (std::size_t k = 0; k < kBookCount; ++k)
+      if (bookBody(k) == held) state.objects[held] = parkedPose(k);
+  }
+}
+
 }  // namespace cbtl::domains::home

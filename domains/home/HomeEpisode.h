@@ -33,4 +33,12 @@ world::WorldState emptyRoom(const world::Scene& scene, const std::map<std::strin
 // with the duster's standard grasp or, for any other object, the book carry grasp (StandardGrasps.h).
 void holdCarried(world::WorldState& state, const std::string& object);
 
+// How many steps in a row a robot may stand idle (no plan found) before a caregiver steps in.
+inline constexpr int kCaregiverPatience = 5;
+
+// A caregiver puts a stuck robot back to an episode's start pose in `state`: base at the origin, the gripper's
+// duster kept and carried (holdCarried), any other held object taken away (parked outside the room), the arm at
+// the initial configuration when empty-handed.
+void caregiverReset(world::WorldState& state, const world::Scene& scene);
+
 }  // namespace cbtl::domains::home

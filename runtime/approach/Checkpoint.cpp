@@ -15,7 +15,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;  // 2: competence counters, the open plan's flags
 
 // Doubles exactly: finite ones as JSON numbers (nlohmann writes the shortest text that reads back to the same
 // double), the others as text.
@@ -110,6 +110,26 @@ sim::ActionCall actionCallFromJson(const json& j) {
   return call;
 }
 
+static json toJson(const Competence& c) {
+  return {{"requests", c.requests},
+          {"solved", c.solved},
+          {"executed", c.executed},
+          {"failed", c.failed},
+          {"dry_run_mismatches", c.dryRunMismatches},
+          {"caregiver_resets", c.caregiverResets}};
+}
+
+static Competence competenceFromJson(const json& j) {
+  Competence c;
+  c.requests = j.at("requests").get<std::int64_t>();
+  c.solved = j.at("solved").get<std::int64_t>();
+  c.executed = j.at("executed").get<std::int64_t>();
+  c.failed = j.at("failed").get<std::int64_t>();
+  c.dryRunMismatches = j.at("dry_run_mismatches").get<std::int64_t>();
+  c.caregiverResets = j.at("caregiver_resets").get<std::int64_t>();
+  return c;
+}
+
 static json numbers(const std::vector<double>& values) {
   json out = json::array();
   for (double v : values) out.push_back(num(v));
@@ -126,7 +146,8 @@ json toJson(const ExperimentResult& r) {
                      {"mean", num(e.mean)},
                      {"task_success_rate", num(e.taskSuccessRate)},
                      {"preferences_met_rate", num(e.preferencesMetRate)},
-                     {"replans", e.replans}});
+                     {"replans", e.replans},
+                     {"competence", toJson(e.competence)}});
   }
   return {{"evals", evals},
           {"meals_served", r.mealsServed},
@@ -134,6 +155,8 @@ json toJson(const ExperimentResult& r) {
           {"train_solves", r.trainSolves},
           {"train_solve_failures", r.trainSolveFailures},
           {"train_replans", r.trainReplans},
+          {"train_competence", toJson(r.train)},
+          {"eval_competence", toJson(r.eval)},
           {"solver_iterations", r.solverIterations},
           {"text_model_errors", r.textModelErrors},
           {"first_text_model_error", r.firstTextModelError},
@@ -154,6 +177,7 @@ ExperimentResult experimentResultFromJson(const json& j) {
     p.taskSuccessRate = numFrom(e.at("task_success_rate"));
     p.preferencesMetRate = numFrom(e.at("preferences_met_rate"));
     p.replans = e.at("replans").get<int>();
+    p.competence = competenceFromJson(e.at("competence"));
     r.evals.push_back(std::move(p));
   }
   r.mealsServed = j.at("meals_served").get<std::int64_t>();
@@ -161,6 +185,8 @@ ExperimentResult experimentResultFromJson(const json& j) {
   r.trainSolves = j.at("train_solves").get<std::int64_t>();
   r.trainSolveFailures = j.at("train_solve_failures").get<std::int64_t>();
   r.trainReplans = j.at("train_replans").get<std::int64_t>();
+  r.train = competenceFromJson(j.at("train_competence"));
+  r.eval = competenceFromJson(j.at("eval_competence"));
   r.solverIterations = j.at("solver_iterations").get<std::uint64_t>();
   r.textModelErrors = j.at("text_model_errors").get<std::int64_t>();
   r.firstTextModelError = j.at("first_text_model_error").get<std::string>();
@@ -204,6 +230,8 @@ json Checkpoint::toJson() const {
           {"plan",
            {{"calls", calls},
             {"next", next},
+            {"open", planOpen},
+            {"dry_run", planDryRun},
             {"assignment", numbers(planWorld.assignment)},
             {"observation", numbers(planWorld.observation)}}},
           {"result", approach::toJson(result)}};
@@ -227,6 +255,8 @@ Checkpoint Checkpoint::fromJson(const json& j, const std::string& source) {
     cp.strings = j.at("strings").get<std::vector<std::string>>();
     for (const auto& c : j.at("plan").at("calls")) cp.pending.push_back(actionCallFromJson(c));
     cp.next = j.at("plan").at("next").get<std::size_t>();
+    cp.planOpen = j.at("plan").at("open").get<bool>();
+    cp.planDryRun = j.at("plan").at("dry_run").get<bool>();
     for (const auto& v : j.at("plan").at("assignment")) cp.planWorld.assignment.push_back(numFrom(v));
     for (const auto& v : j.at("plan").at("observation")) cp.planWorld.observation.push_back(numFrom(v));
     if (cp.next > cp.pending.size())

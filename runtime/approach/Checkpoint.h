@@ -51,6 +51,7 @@ struct Checkpoint {
   std::vector<sim::ActionCall> pending;
   std::size_t next = 0;
   StepWorld planWorld;  // the solution and observation the pending calls come from (what feedback is about)
+  bool planOpen = false, planDryRun = false;  // the pending plan's execution is not yet counted; it was dry-run
   ExperimentResult result;
 
   nlohmann::json toJson() const;

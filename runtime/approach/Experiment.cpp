@@ -41,6 +41,15 @@ std::optional<Adaptation> parseAdaptation(const std::string& name) {
   return std::nullopt;
 }
 
+void Competence::add(const Competence& o) {
+  requests += o.requests;
+  solved += o.solved;
+  executed += o.executed;
+  failed += o.failed;
+  dryRunMismatches += o.dryRunMismatches;
+  caregiverResets += o.caregiverResets;
+}
+
 double ExperimentResult::meanEval() const {
   if (evals.empty()) return 0;
   double s = 0;
@@ -81,6 +90,7 @@ sim::StepResult executeStep(sim::DomainSimulator& world, const std::vector<sim::
     merged.taskDone = merged.taskDone || r.taskDone;
     merged.taskFailed = merged.taskFailed || r.taskFailed;
     merged.preferencesChanged = merged.preferencesChanged || r.preferencesChanged;
+    merged.caregiverReset = merged.caregiverReset || r.caregiverReset;
     if (r.consumedStep) {
       merged.consumedStep = true;
       break;
@@ -155,7 +165,9 @@ std::string trainHeader() {
 std::string evalHeader(int evalTasks) {
   std::string h = "training_step,training_execution_time";
   for (int i = 0; i < evalTasks; ++i) h += fmt::format(",eval_episode_{}_user_satisfaction", i);
-  return h + ",eval_mean_user_satisfaction,eval_task_success_rate,eval_preferences_met_rate,eval_replans\n";
+  return h +
+         ",eval_mean_user_satisfaction,eval_task_success_rate,eval_preferences_met_rate,eval_replans,"
+         "eval_requests_solved_rate,eval_plans_executed_rate,eval_dry_run_mismatches\n";
 }
 
 // Everything one trial carries from step to step; a checkpoint saves exactly this (Checkpoint.h).
@@ -187,8 +199,23 @@ struct Trial {
   ExperimentResult result;
   std::vector<sim::ActionCall> calls;  // the current plan's calls, and the next one to execute
   std::size_t next = 0;
-  StepWorld planWorld;  // the solution and observation the current calls come from: what feedback is about
+  StepWorld planWorld;      // the solution and observation the current calls come from: what feedback is about
+  bool planOpen = false;    // the current plan is being executed and not yet counted (Competence)
+  bool planDryRun = false;  // it was dry-run before it was accepted
 };
+
+// Counts how a plan's execution ended once a step shows it: a failed action, its task done, or its calls used up.
+void countExecution(Competence& c, bool& open, bool dryRun, const sim::StepResult& r, bool callsLeft) {
+  if (!open) return;
+  if (r.taskFailed) {
+    ++c.failed;
+    if (dryRun) ++c.dryRunMismatches;
+    open = false;
+  } else if (r.taskDone || !callsLeft) {
+    ++c.executed;
+    open = false;
+  }
+}
 
 // Every plan with a Solved result was re-checked (Planner.h); a refused one is counted with its first violation.
 void countRecheck(ExperimentResult& result, const Plan& plan) {
@@ -217,10 +244,14 @@ void evaluate(Trial& tr, std::int64_t step) {
                            tr.evalSolver, evalUser);
       countRecheck(tr.result, plan);
       if (plan.replanned) ++point.replans;
+      ++point.competence.requests;
+      if (plan.ok) ++point.competence.solved;
       if (!plan.ok || plan.calls.empty()) break;  // the robot cannot do this task: the episode fails
       std::size_t next = 0;
+      bool open = true;
       while (next < plan.calls.size() && !done && steps < config.maxEvalEpisodeSteps) {
         sim::StepResult r = executeStep(*tr.evalWorld, plan.calls, next);
+        countExecution(point.competence, open, plan.dryRun(), r, next < plan.calls.size());
         if (r.consumedStep) ++steps;
         if (r.hasSatisfaction) satisfaction += r.satisfaction;
         done = r.taskDone;
@@ -239,12 +270,14 @@ void evaluate(Trial& tr, std::int64_t step) {
   if (tr.out.enabled()) {
     std::string row = fmt::format("{},{:.6g}", step, static_cast<double>(step) * config.dt);
     for (double s : point.satisfaction) row += fmt::format(",{:.6g}", s);
-    row += fmt::format(",{:.6g},{:.6g},{:.6g},{}\n", point.mean, point.taskSuccessRate, point.preferencesMetRate,
-                       point.replans);
+    row += fmt::format(",{:.6g},{:.6g},{:.6g},{},{:.6g},{:.6g},{}\n", point.mean, point.taskSuccessRate,
+                       point.preferencesMetRate, point.replans, point.competence.solvedRate(),
+                       point.competence.executedRate(), point.competence.dryRunMismatches);
     tr.out.evalRow(row);
     tr.out.writeModel(step, tr.user.toJson());
     if (config.testHook) config.testHook("model", step);
   }
+  tr.result.eval.add(point.competence);
   tr.result.evals.push_back(std::move(point));
 }
 
@@ -272,11 +305,17 @@ void trainStep(Trial& tr, std::int64_t t) {
     replanned = plan.replanned;
     if (plan.replanned) ++result.trainReplans;
     if (!plan.ok) ++result.trainSolveFailures;
+    ++result.train.requests;
+    if (plan.ok) ++result.train.solved;
+    tr.planOpen = plan.ok && !plan.calls.empty();
+    tr.planDryRun = plan.dryRun();
     tr.calls = plan.ok ? std::move(plan.calls) : std::vector<sim::ActionCall>{};
     tr.next = 0;
     tr.planWorld = StepWorld{plan.ok ? std::move(plan.solve.assignment) : std::vector<double>{}, obs};
   }
   sim::StepResult r = tr.next < tr.calls.size() ? executeStep(tr.trainWorld, tr.calls, tr.next) : tr.trainWorld.idle();
+  countExecution(result.train, tr.planOpen, tr.planDryRun, r, tr.next < tr.calls.size());
+  if (r.caregiverReset) ++result.train.caregiverResets;
   std::size_t labels = 0;
   if (tr.learning && !r.feedback.empty()) {
     const LearnReport report = lp.learner().learn(r.feedback, tr.user, tr.planWorld);
@@ -317,6 +356,8 @@ void saveCheckpoint(Trial& tr, std::int64_t step) {
   cp.pending = tr.calls;
   cp.next = tr.next;
   cp.planWorld = tr.planWorld;
+  cp.planOpen = tr.planOpen;
+  cp.planDryRun = tr.planDryRun;
   cp.result = tr.result;
   tr.out.checkpoint(cp, tr.trainWorld.takeLog());
 }
@@ -340,6 +381,8 @@ void restoreCheckpoint(Trial& tr, const Checkpoint& cp) {
   tr.calls = cp.pending;
   tr.next = cp.next;
   tr.planWorld = cp.planWorld;
+  tr.planOpen = cp.planOpen;
+  tr.planDryRun = cp.planDryRun;
   tr.result = cp.result;
 }
 

@@ -70,6 +70,21 @@ struct ExperimentConfig {
   std::function<void(const char* point, std::int64_t step)> testHook;
 };
 
+// How competently the robot acted: requests solved within the solver's budget, solved plans that ran to their end
+// (or to the end of their task) without a failed action, and plans the dry run had accepted that then failed
+// (the world model and the simulator disagree: a bug, counted apart so it can be driven to 0).
+struct Competence {
+  std::int64_t requests = 0, solved = 0;
+  std::int64_t executed = 0, failed = 0;  // solved plans, by how their execution ended
+  std::int64_t dryRunMismatches = 0;      // failed plans that had been dry-run
+  std::int64_t caregiverResets = 0;       // times a person had to put a stuck robot back (StepResult)
+  double solvedRate() const { return requests > 0 ? static_cast<double>(solved) / requests : 1.0; }
+  double executedRate() const {
+    return executed + failed > 0 ? static_cast<double>(executed) / static_cast<double>(executed + failed) : 1.0;
+  }
+  void add(const Competence& o);
+};
+
 struct EvalPoint {
   std::int64_t step = 0;
   std::vector<double> satisfaction;  // per episode
@@ -77,6 +92,7 @@ struct EvalPoint {
   double taskSuccessRate = 0;     // episodes that completed their task
   double preferencesMetRate = 0;  // episodes whose user was satisfied
   int replans = 0;                // episodes that had to drop the personalized constraints
+  Competence competence;          // over this checkpoint's episodes
 };
 
 struct ExperimentResult {
@@ -84,6 +100,7 @@ struct ExperimentResult {
   std::int64_t mealsServed = 0;  // tasks completed in training
   double trainSatisfaction = 0;  // sum over training
   std::int64_t trainSolves = 0, trainSolveFailures = 0, trainReplans = 0;
+  Competence train, eval;  // eval: over every checkpoint
   std::uint64_t solverIterations = 0;
   // Learning steps whose text model kept its old theta (e.g. a language-model server failed), and the first one.
   std::int64_t textModelErrors = 0;

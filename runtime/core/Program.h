@@ -32,6 +32,9 @@ struct UniformPlan {
   enum class Kind { Real, Int, Bool, Choice } kind = Kind::Real;
   std::vector<std::uint32_t> lo, hi;  // Real/Int: one bound node per component (`uniform` needs both bounds)
   std::vector<double> choices;        // Choice: the allowed values (enum indices, text ids, ...)
+  // Choice over an observed set (`var b : Book in pickable`): the observation offset of its membership flags
+  // (one per member, in member order); the draw is uniform over the members the observation lists.
+  std::optional<std::uint32_t> observedFlags;
 };
 
 struct CompiledSampler {

@@ -76,6 +76,7 @@ class ProgramCompiler {
   std::uint32_t compileCall(const ir::Expr& e, Scope& scope);
   std::uint32_t compileQuantifier(const ir::Expr& e, Scope& scope, std::size_t binder);
   std::uint32_t compileIn(const ir::Expr& e, Scope& scope);
+  UniformPlan uniformPlanOfType(const ValueType& t, Scope& scope);
   UniformPlan uniformPlan(const ir::Sampler& s, ir::VarId v, Scope& scope);
   CompiledLearnRule compileLearnRule(const ir::Generator& g, const ir::LearnRule& r);
 

@@ -66,27 +66,38 @@ std::vector<DomainCheck> ProgramCompiler::compileDomainChecks() {
   return checks;
 }
 
+// Every member of an enum or item type, as a Choice.
+UniformPlan ProgramCompiler::uniformPlanOfType(const ValueType& t, Scope& scope) {
+  UniformPlan plan;
+  plan.kind = UniformPlan::Kind::Choice;
+  ir::Expr set;
+  set.op = t.kind == ValueKind::Enum ? ir::Op::EnumSet : ir::Op::ItemSet;
+  const ir::ItemSet* items = program_.findItemSetOfType(t.typeName);
+  set.text = t.kind == ValueKind::Enum ? t.typeName : (items != nullptr ? items->name : t.typeName);
+  ValueType elem;
+  plan.choices = setMembers(set, elem, scope);
+  return plan;
+}
+
 // How `sample v ~ uniform` draws v: from its declared set, every value of a finite type, or between its bounds.
 UniformPlan ProgramCompiler::uniformPlan(const ir::Sampler& s, ir::VarId v, Scope& scope) {
   const auto& var = program_.graph().variables.at(v);
   const ValueType& t = program_.slot(v).type;
   UniformPlan plan;
-  // An observed set draws from every member of the type; the variable's `.domain` constraint (added by the
-  // compiler) rejects the members the observation leaves out.
-  if (var.domain.set && var.domain.set->op != ir::Op::Obs) {
+  // An observed set draws from the members the observation lists (the variable's `.domain` constraint, added by
+  // the compiler, still checks every value whatever sampler wrote it).
+  if (var.domain.set && var.domain.set->op == ir::Op::Obs && var.domain.set->children.empty() &&
+      (t.kind == ValueKind::Enum || t.kind == ValueKind::Item)) {
+    plan = uniformPlanOfType(t, scope);
+    plan.observedFlags = program_.observationOffset(var.domain.set->text);
+  } else if (var.domain.set && var.domain.set->op != ir::Op::Obs) {
     ValueType elem;
     plan.kind = UniformPlan::Kind::Choice;
     plan.choices = setMembers(*var.domain.set, elem, scope);
   } else if (t.kind == ValueKind::Bool) {
     plan.kind = UniformPlan::Kind::Bool;
   } else if (t.kind == ValueKind::Enum || t.kind == ValueKind::Item) {
-    plan.kind = UniformPlan::Kind::Choice;
-    ir::Expr set;
-    set.op = t.kind == ValueKind::Enum ? ir::Op::EnumSet : ir::Op::ItemSet;
-    const ir::ItemSet* items = program_.findItemSetOfType(t.typeName);
-    set.text = t.kind == ValueKind::Enum ? t.typeName : (items != nullptr ? items->name : t.typeName);
-    ValueType elem;
-    plan.choices = setMembers(set, elem, scope);
+    plan = uniformPlanOfType(t, scope);
   } else if (t.kind == ValueKind::Real || t.kind == ValueKind::Int || t.kind == ValueKind::Vec ||
              t.kind == ValueKind::SE2 || t.kind == ValueKind::SE3 || t.kind == ValueKind::Conf) {
     plan.kind = t.kind == ValueKind::Int ? UniformPlan::Kind::Int : UniformPlan::Kind::Real;

@@ -67,6 +67,7 @@ struct StepResult {
   bool hasSatisfaction = false;         // the user scored the outcome on this step
   double satisfaction = 0;              // +1 / -1 when hasSatisfaction
   bool preferencesChanged = false;      // the user announced that their preferences changed
+  bool caregiverReset = false;          // a person put the robot back to a safe start (it was stuck)
   std::vector<FeedbackEvent> feedback;  // what the user said on this step
   std::string message;                  // human-readable detail (why an action was ignored, ...)
 };

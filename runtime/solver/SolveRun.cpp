@@ -285,7 +285,23 @@ bool SolveRun::drawUniform(const rt::CompiledSampler& cs) {
           scratch[at] = rng_.coin() ? 1 : 0;
           break;
         case rt::UniformPlan::Kind::Choice:
-          scratch[at] = plan.choices[rng_.index(plan.choices.size())];
+          if (plan.observedFlags) {
+            // The members the observation lists (flags in member order; choices are the member indices).
+            const double* flags = csp_.observation.data() + *plan.observedFlags;
+            std::size_t listed = 0;
+            for (double m : plan.choices) listed += flags[static_cast<std::size_t>(m)] != 0 ? 1 : 0;
+            if (listed == 0) return false;
+            std::size_t pick = rng_.index(listed);
+            for (double m : plan.choices) {
+              if (flags[static_cast<std::size_t>(m)] == 0) continue;
+              if (pick-- == 0) {
+                scratch[at] = m;
+                break;
+              }
+            }
+          } else {
+            scratch[at] = plan.choices[rng_.index(plan.choices.size())];
+          }
           break;
         case rt::UniformPlan::Kind::Int: {
           // Bounds are clamped to the integers a double holds exactly (and int64 can convert).

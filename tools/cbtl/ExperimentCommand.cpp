@@ -8,6 +8,7 @@
 #include "tools/cbtl/CommandRegistry.h"
 #include "tools/cbtl/ErrorHandling.h"
 #include "tools/cbtl/RuntimeSupport.h"
+#include "tools/cbtl/TrialPool.h"
 
 #include "runtime/approach/RunDirectory.h"
 #include "runtime/model/UserModel.h"
@@ -22,12 +23,14 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <thread>
 
 namespace {
 
 struct ExperimentArgs : cbtl::cli::TrialArgs {
   std::string approaches = "cbtl,no-personalization", seeds = "0..9", out, columns;
   bool quiet = false, force = false, resume = false;
+  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 };
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -143,9 +146,8 @@ int runExperiments(const ExperimentArgs& a) {
   if (!cli::configureTrial("experiment", a, base)) return 2;
   auto lp = cli::loadForRun("experiment", a.file, a.stdlibDir);
   if (!lp) return 1;
-  const auto factoryOrNone = cli::domainSimulator("experiment", *lp, base.simulator);
-  if (!factoryOrNone) return 1;
-  const approach::SimulatorFactory& factory = *factoryOrNone;
+  base.solverOptions = cli::solverOptionsFor(a.solver, lp->graph().domain);
+  if (!cli::domainSimulator("experiment", *lp, base.simulator)) return 1;  // says which domains exist
   base.runMode = a.force ? approach::RunMode::Force : a.resume ? approach::RunMode::Resume : approach::RunMode::Fresh;
   base.testHook = approach::killHookFromEnvironment();
   const auto lock = prepareOut(a.out, kinds, seeds, base.runMode);
@@ -154,42 +156,59 @@ int runExperiments(const ExperimentArgs& a) {
     std::map<std::int64_t, std::vector<double>> bySteps, success, prefs;
     std::vector<double> meanOverCheckpoints, seconds;
     std::vector<double> finalSuccess, finalPrefs, finalPrefsWhenServed;  // per seed, at the last checkpoint
+    approach::Competence train, eval;                                    // over every seed
   };
   std::map<std::string, Summary> summaries;
   std::int64_t rechecks = 0, refused = 0;
   std::string firstRefusal;
   cbtl::textpref::FaultReport llmFaults;  // over every trial
+  // Every trial's configuration, in the table's order; they run on --jobs threads (TrialPool.h).
+  std::vector<approach::ExperimentConfig> trials;
+  std::vector<std::pair<approach::ApproachKind, std::uint64_t>> labels;
   for (auto kind : kinds) {
-    Summary& s = summaries[approach::toString(kind)];
     for (auto seed : seeds) {
       approach::ExperimentConfig c = base;
       c.approach.kind = kind;
       c.seed = seed;
+      c.progress = false;
       if (!a.out.empty()) c.outDir = trialFolder(a.out, kind, seed);
-      const auto start = std::chrono::steady_clock::now();
-      const auto r = approach::runExperiment(*lp, factory, c);
-      llmFaults.add(r.llmFaults);
-      s.seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-      for (const auto& e : r.evals) {
-        s.bySteps[e.step].push_back(e.mean);
-        s.success[e.step].push_back(e.taskSuccessRate);
-        s.prefs[e.step].push_back(e.preferencesMetRate);
-      }
-      s.meanOverCheckpoints.push_back(r.meanEval());
-      rechecks += r.rechecks;
-      if (r.recheckViolations > 0 && refused == 0) firstRefusal = r.firstRecheckViolation;
-      refused += r.recheckViolations;
-      if (!r.evals.empty()) {
-        const auto& last = r.evals.back();
-        s.finalSuccess.push_back(last.taskSuccessRate);
-        s.finalPrefs.push_back(last.preferencesMetRate);
-        if (last.taskSuccessRate > 0) s.finalPrefsWhenServed.push_back(last.preferencesMetRate / last.taskSuccessRate);
-      }
-      if (!a.quiet) {
-        fmt::print(stderr, "{} seed {}: mean eval {:+.3f}, final {:+.2f} ({:.2f} s)\n", approach::toString(kind), seed,
-                   r.meanEval(), r.evals.empty() ? 0.0 : r.evals.back().mean, s.seconds.back());
-        if (r.llmFaults.any()) fmt::print(stderr, "{}", r.llmFaults.summary());
-      }
+      trials.push_back(std::move(c));
+      labels.emplace_back(kind, seed);
+    }
+  }
+  const auto outcomes =
+      cli::runTrials(*lp, a.file, a.stdlibDir, a.text, trials, a.jobs, [&](std::size_t i, const cli::TrialOutcome& o) {
+        if (a.quiet || o.error) return;
+        fmt::print(stderr, "{} seed {}: mean eval {:+.3f}, final {:+.2f} ({:.2f} s)\n",
+                   approach::toString(labels[i].first), labels[i].second, o.result.meanEval(),
+                   o.result.evals.empty() ? 0.0 : o.result.evals.back().mean, o.seconds);
+        if (o.result.llmFaults.any()) fmt::print(stderr, "{}", o.result.llmFaults.summary());
+      });
+  approach::Competence train, eval;
+  for (std::size_t i = 0; i < outcomes.size(); ++i) {
+    if (outcomes[i].error) std::rethrow_exception(outcomes[i].error);
+    const approach::ExperimentResult& r = outcomes[i].result;
+    Summary& s = summaries[approach::toString(labels[i].first)];
+    llmFaults.add(r.llmFaults);
+    s.seconds.push_back(outcomes[i].seconds);
+    for (const auto& e : r.evals) {
+      s.bySteps[e.step].push_back(e.mean);
+      s.success[e.step].push_back(e.taskSuccessRate);
+      s.prefs[e.step].push_back(e.preferencesMetRate);
+    }
+    s.meanOverCheckpoints.push_back(r.meanEval());
+    s.train.add(r.train);
+    s.eval.add(r.eval);
+    train.add(r.train);
+    eval.add(r.eval);
+    rechecks += r.rechecks;
+    if (r.recheckViolations > 0 && refused == 0) firstRefusal = r.firstRecheckViolation;
+    refused += r.recheckViolations;
+    if (!r.evals.empty()) {
+      const auto& last = r.evals.back();
+      s.finalSuccess.push_back(last.taskSuccessRate);
+      s.finalPrefs.push_back(last.preferencesMetRate);
+      if (last.taskSuccessRate > 0) s.finalPrefsWhenServed.push_back(last.preferencesMetRate / last.taskSuccessRate);
     }
   }
   if (!a.out.empty()) {
@@ -243,6 +262,22 @@ int runExperiments(const ExperimentArgs& a) {
       "columns: eval satisfaction per checkpoint and over all checkpoints (mean ± standard error over seeds); task\n"
       "success, preferences met (of all tasks) and preferences met of the served meals at the last checkpoint\n"
       "(mean ± standard deviation over seeds); wall-clock seconds per trial\n");
+  fmt::print(
+      "competence over every seed: requests solved within budget, solved plans executed without a failed "
+      "action, dry-run mismatches\n");
+  fmt::print("{:<20} {:>22} {:>22} {:>22} {:>22} {:>10}\n", "approach", "train solved", "train executed", "eval solved",
+             "eval executed", "mismatch");
+  const auto rate = [](std::int64_t n, std::int64_t d) {
+    return fmt::format("{}/{} ({:.1f}%)", n, d,
+                       d > 0 ? 100.0 * static_cast<double>(n) / static_cast<double>(d) : 100.0);
+  };
+  for (auto kind : kinds) {
+    const Summary& s = summaries.at(approach::toString(kind));
+    fmt::print("{:<20} {:>22} {:>22} {:>22} {:>22} {:>10}\n", approach::toString(kind),
+               rate(s.train.solved, s.train.requests), rate(s.train.executed, s.train.executed + s.train.failed),
+               rate(s.eval.solved, s.eval.requests), rate(s.eval.executed, s.eval.executed + s.eval.failed),
+               s.train.dryRunMismatches + s.eval.dryRunMismatches);
+  }
   fmt::print("{} solutions re-checked before execution, {} refused\n", rechecks, refused);
   cli::printLlmFaults(stdout, llmFaults);
   if (!a.out.empty()) fmt::print("wrote {}/summary.csv and one folder per approach and seed\n", a.out);
@@ -266,6 +301,9 @@ void addExperiment(CLI::App& app, int& exitCode) {
   cmd->add_option("--columns", args->columns, "checkpoints to show in the table, comma-separated");
   cmd->add_option("--out", args->out, "write every trial's files and summary.csv here");
   cmd->add_flag("--quiet,-q", args->quiet, "no per-trial lines");
+  cmd->add_option("--jobs,-j", args->jobs, "trials run in parallel (results equal a serial run's)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1024));
   auto* force =
       cmd->add_flag("--force", args->force, "replace the experiment already in --out (only the files runs write)");
   cmd->add_flag("--resume", args->resume,

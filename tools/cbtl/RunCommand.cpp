@@ -36,6 +36,7 @@ int runTrial(const RunArgs& a) {
   if (!cli::configureTrial("run", a, c)) return 2;
   auto lp = cli::loadForRun("run", a.file, a.stdlibDir);
   if (!lp) return 1;
+  c.solverOptions = cli::solverOptionsFor(a.solver, lp->graph().domain);
   c.approach.kind = *kind;
   c.seed = a.seed;
   c.outDir = a.out;
@@ -57,6 +58,7 @@ int runTrial(const RunArgs& a) {
                r.evals.size(), r.meanEval());
     fmt::print("{:.2f} s wall clock; {} training solver iterations\n", seconds, r.solverIterations);
     fmt::print("{} solutions re-checked before execution, {} refused\n", r.rechecks, r.recheckViolations);
+    cli::printCompetence(r.train, r.eval);
     if (r.textModelErrors > 0) {
       fmt::print("{} text-model updates failed (the old theta was kept); the first: {}\n", r.textModelErrors,
                  r.firstTextModelError);

@@ -45,15 +45,35 @@ inline approach::SimulatorFactory simulatorFactory(const std::string& domain, do
   };
 }
 
-inline void addSolverOptions(CLI::App* cmd, solver::SolverOptions& o) {
-  cmd->add_option("--max-iters", o.maxIters, "solver iterations per CSP")->capture_default_str()->check(unsignedIn(1));
+// The competence lines of a run's or an experiment's summary (approach/Experiment.h Competence).
+inline void printCompetence(const approach::Competence& train, const approach::Competence& eval) {
+  for (const auto& [name, c] : {std::pair{"training", &train}, std::pair{"evaluation", &eval}}) {
+    fmt::print(
+        "{}: {}/{} requests solved within budget ({:.1f} %), {}/{} solved plans executed without a failed "
+        "action ({:.1f} %), {} dry-run mismatches, {} caregiver resets\n",
+        name, c->solved, c->requests, 100 * c->solvedRate(), c->executed, c->executed + c->failed,
+        100 * c->executedRate(), c->dryRunMismatches, c->caregiverResets);
+  }
+}
+
+// Solver options as given on the command line; a budget not given is the domain's (domains::solverBudgets).
+struct SolverArgs {
+  std::optional<std::uint64_t> maxIters, numImprovements, maxImprovementAttempts;
+  std::size_t memorySize = 100;
+  solver::MemoryPolicy memoryPolicy = solver::MemoryPolicy::EverySatisfiedCheck;
+};
+
+inline void addSolverOptions(CLI::App* cmd, SolverArgs& o) {
+  cmd->add_option("--max-iters", o.maxIters,
+                  "solver iterations per CSP (default: the domain's; Cooking 100000, robot "
+                  "domains 2500)")
+      ->check(unsignedIn(1));
   cmd->add_option("--num-improvements", o.numImprovements,
-                  "stop after this many improvements (N_improve; 0: the first solution)")
-      ->capture_default_str()
+                  "stop after this many improvements (N_improve; 0: the first solution; default: the domain's, 500)")
       ->check(unsignedIn(0));
   cmd->add_option("--max-improvement-attempts", o.maxImprovementAttempts,
-                  "stop this many iterations after the first solution")
-      ->capture_default_str()
+                  "stop this many iterations after the first solution (default: the domain's; Cooking 10000, robot "
+                  "domains 100)")
       ->check(unsignedIn(0));
   cmd->add_option("--memory-size", o.memorySize, "remembered satisfying values per constraint")
       ->capture_default_str()
@@ -64,6 +84,18 @@ inline void addSolverOptions(CLI::App* cmd, solver::SolverOptions& o) {
                   "what the solver remembers: checks (every satisfied constraint check, as the reference) | solutions")
       ->transform(CLI::CheckedTransformer(policies, CLI::ignore_case))
       ->default_str("checks");
+}
+
+// The solver options for a program of `domain`: what the command line gave, the domain's budgets otherwise.
+inline solver::SolverOptions solverOptionsFor(const SolverArgs& a, const std::string& domain) {
+  const domains::SolverBudgets budgets = domains::solverBudgets(domain);
+  solver::SolverOptions o;
+  o.maxIters = a.maxIters.value_or(budgets.maxIters);
+  o.numImprovements = a.numImprovements.value_or(budgets.numImprovements);
+  o.maxImprovementAttempts = a.maxImprovementAttempts.value_or(budgets.maxImprovementAttempts);
+  o.memorySize = a.memorySize;
+  o.memoryPolicy = a.memoryPolicy;
+  return o;
 }
 
 // `--text-backend offline|openai`, `--llm-base-url`, `--llm-model`: which model text factors use. The offline
@@ -145,7 +177,7 @@ struct TrialArgs {
   int evalTasks = 10;
   double epsilon = 0.5, unsatisfiable = 0;
   bool replan = false;
-  solver::SolverOptions solver;
+  SolverArgs solver;
   TextBackendArgs text;
 };
 
@@ -208,7 +240,7 @@ inline bool configureTrial(const std::string& command, const TrialArgs& a, appro
   c.task = a.task;
   c.periodicResetEvery = a.periodicEvery;
   c.simulator.unsatisfiableStockProbability = a.unsatisfiable;
-  c.solverOptions = a.solver;
+  // The solver's budgets are the domain's unless given: set once the program is loaded (solverOptionsFor).
   c.approach.epsilon = a.epsilon;
   c.approach.replan = a.replan;
   return true;

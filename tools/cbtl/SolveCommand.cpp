@@ -20,7 +20,7 @@ struct SolveArgs {
   std::string file, task, csp = "exploit", profile, stdlibDir;
   std::uint64_t seed = 0;
   bool explain = false, replan = false;
-  cbtl::solver::SolverOptions solver;
+  cbtl::cli::SolverArgs solver;
   cbtl::cli::TextBackendArgs text;
 };
 
@@ -107,7 +107,7 @@ int runSolve(const SolveArgs& a) {
   } else if (lp->program().observationWidth() > 0) {
     fmt::print(stderr, "cbtl solve: note: no simulator for domain '{}'; observations are zero\n", lp->graph().domain);
   }
-  solver::Solver solver(a.solver, approach::deriveSeed(a.seed, 1));
+  solver::Solver solver(cli::solverOptionsFor(a.solver, lp->graph().domain), approach::deriveSeed(a.seed, 1));
   const approach::Plan plan =
       approach::makePlan(*lp, static_cast<std::size_t>(task), observation, choice, a.replan, solver, user);
   const auto& program = lp->program();

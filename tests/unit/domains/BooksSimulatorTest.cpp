@@ -100,7 +100,7 @@ TEST(BooksSimulator, AReachableHandoverOfALikedBookPleasesTheUser) {
   const StepResult r = sim.act(ActionCall{"handOver", {}});
   ASSERT_EQ(r.status, ActionStatus::Applied) << r.message;
   EXPECT_TRUE(r.consumedStep);
-  EXPECT_TRUE(r.taskDone);
+  EXPECT_FALSE(r.taskDone) << "the task ends when the robot says Done";
   ASSERT_TRUE(r.hasSatisfaction);
   EXPECT_EQ(r.satisfaction, 1.0);
   ASSERT_EQ(r.feedback.size(), 1u);
@@ -118,6 +118,8 @@ TEST(BooksSimulator, AReachableHandoverOfALikedBookPleasesTheUser) {
   EXPECT_FALSE(contains(sim.pickable(), "cosmos"));
   EXPECT_TRUE(home::isParked(sim.worldState()->objects.at("book_0")));
   EXPECT_EQ(sim.world().utterances().back(), "Here you go!");
+  const StepResult done = sim.act(ActionCall{"say", {Value::name("Done")}});
+  EXPECT_TRUE(done.taskDone);
 }
 
 TEST(BooksSimulator, AReachedDislikedBookIsTakenButDisappoints) {
@@ -138,7 +140,7 @@ TEST(BooksSimulator, AnUnreachableHandoverKeepsTheBookInHand) {
   ASSERT_TRUE(presentAt(sim, "book_0", 0.45, rng).has_value());  // beyond the 0.3 m shell
   const StepResult r = sim.act(ActionCall{"handOver", {}});
   ASSERT_EQ(r.status, ActionStatus::Applied) << r.message;
-  EXPECT_TRUE(r.taskDone);
+  EXPECT_FALSE(r.taskDone);
   EXPECT_EQ(r.satisfaction, -1.0);
   EXPECT_EQ(r.feedback.at(0).args.at(2).number, 0.0);
   EXPECT_EQ(r.feedback.at(0).args.at(3).text, "I can't reach there.");

@@ -92,7 +92,7 @@ TEST(CleaningSimulator, AWipeOfAWelcomeSurfaceIsThanked) {
   const StepResult r = sim.act(wipe("shelf_layer_1", {0, 0, 0}));
   ASSERT_EQ(r.status, ActionStatus::Applied) << r.message;
   EXPECT_TRUE(r.consumedStep);
-  EXPECT_TRUE(r.taskDone);
+  EXPECT_FALSE(r.taskDone) << "the task ends when the robot says Done";
   ASSERT_TRUE(r.hasSatisfaction);
   EXPECT_EQ(r.satisfaction, 1.0);
   ASSERT_EQ(r.feedback.size(), 1u);
@@ -100,6 +100,34 @@ TEST(CleaningSimulator, AWipeOfAWelcomeSurfaceIsThanked) {
   ASSERT_EQ(r.feedback[0].args.size(), 2u);
   EXPECT_EQ(r.feedback[0].args[0].text, "shelfMiddle");
   EXPECT_EQ(r.feedback[0].args[1].number, 1.0);
+  const StepResult done = sim.act(ActionCall{"say", {Value::name("Done")}});
+  ASSERT_EQ(done.status, ActionStatus::Applied) << done.message;
+  EXPECT_TRUE(done.taskDone);
+  EXPECT_FALSE(done.hasSatisfaction);
+  EXPECT_TRUE(done.feedback.empty());
+}
+
+TEST(CleaningSimulator, SayingDoneWithoutAWipeEndsNoTask) {
+  CleaningSimulator sim(cbtl::test::homeFacts(), {}, 5);
+  const StepResult r = sim.act(ActionCall{"say", {Value::name("Done")}});
+  ASSERT_EQ(r.status, ActionStatus::Applied) << r.message;
+  EXPECT_FALSE(r.taskDone);
+}
+
+TEST(CleaningSimulator, ACaregiverResetsARobotThatStaysIdle) {
+  CleaningSimulator sim(cbtl::test::homeFacts(), {}, 5);
+  world::Rng rng(2);
+  ASSERT_TRUE(cbtl::test::readyToWipe(sim.world(), "shelf_layer_1", {0.3, 0.1, 0.5}, rng));
+  for (int i = 1; i < home::kCaregiverPatience; ++i) EXPECT_FALSE(sim.idle().caregiverReset) << i;
+  const StepResult r = sim.idle();
+  EXPECT_TRUE(r.caregiverReset);
+  const world::WorldState& s = *sim.worldState();
+  EXPECT_EQ(s.base.x, 0.0);
+  EXPECT_EQ(s.base.yaw, 0.0);
+  ASSERT_TRUE(s.held.has_value());  // the duster stays in the hand, carried
+  EXPECT_EQ(s.held->object, "duster");
+  EXPECT_EQ(s.arm, world::configs::kHome);
+  EXPECT_FALSE(sim.idle().caregiverReset) << "the count starts again";
 }
 
 TEST(CleaningSimulator, AWipeOfAnUnwelcomeSurfaceIsAdmonished) {
@@ -108,7 +136,7 @@ TEST(CleaningSimulator, AWipeOfAnUnwelcomeSurfaceIsAdmonished) {
   ASSERT_TRUE(cbtl::test::readyToWipe(sim.world(), "shelf_layer_2", {0, 0, 0}, rng));
   const StepResult r = sim.act(wipe("shelf_layer_2", {0, 0, 0}));
   ASSERT_EQ(r.status, ActionStatus::Applied) << r.message;
-  EXPECT_TRUE(r.taskDone);
+  EXPECT_FALSE(r.taskDone);
   EXPECT_EQ(r.satisfaction, -1.0);
   ASSERT_EQ(r.feedback.size(), 1u);
   EXPECT_EQ(r.feedback[0].args[0].text, "shelfTop");

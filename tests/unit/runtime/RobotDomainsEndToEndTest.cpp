@@ -1,10 +1,15 @@
 // The robot domains end to end: each .cbtl file's tasks solved against its simulated scene (the world
-// built-ins read the simulator's state) and executed by its simulator, request after request, with the hidden
-// user's feedback learned.
+// built-ins read the simulator's state, every plan is staged and dry-run) and executed by its simulator. Every
+// task kind of every robot domain, on seeds 0-9: each request must be solved within the domain's budgets and
+// its plan must execute without a failed action (competence, not just safety).
 #include "tests/unit/runtime/TestPrograms.h"
 
 #include "app/SimulatorFacts.h"
 #include "domains/DomainRegistry.h"
+#include "domains/books/BooksSimulator.h"
+#include "domains/cleaning/CleaningSimulator.h"
+#include "domains/home/HomeEpisode.h"
+#include "domains/home/HomeScene.h"
 #include "runtime/approach/Planner.h"
 #include "runtime/approach/ValueBridge.h"
 
@@ -18,114 +23,156 @@ namespace {
 
 struct RequestLog {
   std::string task;
-  bool solved = false;
-  bool done = false;
-  double satisfaction = 0;
+  bool solved = false, dryRun = false, done = false, failed = false;
   std::string failure;  // the message of the step that failed the request
-  bool failed = false;  // the simulator reported the task as failed
 };
 
-// Runs `requests` requests with exploration CSPs (hard constraints + entropy) and learning.
-std::vector<RequestLog> runRequests(app::LoadedProgram& lp, sim::DomainSimulator& world, int requests,
-                                    model::UserModel& user) {
-  solver::SolverOptions options;
-  options.maxIters = 3000;
-  solver::Solver solver(options, 7);
-  std::vector<RequestLog> log;
-  for (int i = 0; i < requests; ++i) {
-    RequestLog entry;
-    lp.syncWorld(world);
-    const std::size_t task = lp.taskFor(world, 0);
-    entry.task = lp.graph().tasks[task].name;
-    const auto obs = approach::observationVector(lp.program(), world.observe());
-    approach::Plan plan = approach::makePlan(lp, task, obs, approach::evaluationChoice(), true, solver, user);
-    entry.solved = plan.ok;
-    if (!plan.ok) {
-      log.push_back(entry);
+solver::SolverOptions domainBudgets(const std::string& domain) {
+  const domains::SolverBudgets b = domains::solverBudgets(domain);
+  solver::SolverOptions o;
+  o.maxIters = b.maxIters;
+  o.numImprovements = b.numImprovements;
+  o.maxImprovementAttempts = b.maxImprovementAttempts;
+  return o;
+}
+
+// One request: the task the world asks for, solved with the personalized constraints (an untrained user model,
+// so they hold everywhere) and executed call by call until its task ends or its calls are used up.
+RequestLog runRequest(app::LoadedProgram& lp, sim::DomainSimulator& world, solver::Solver& solver,
+                      model::UserModel& user) {
+  RequestLog log;
+  lp.syncWorld(world);
+  const std::size_t task = lp.taskFor(world, 0);
+  log.task = lp.graph().tasks[task].name;
+  const auto obs = approach::observationVector(lp.program(), world.observe());
+  approach::Plan plan = approach::makePlan(lp, task, obs, approach::evaluationChoice(), true, solver, user);
+  log.solved = plan.ok;
+  log.dryRun = plan.dryRun();
+  for (const auto& call : plan.calls) {
+    if (!plan.ok) break;
+    sim::StepResult r = world.act(call);
+    EXPECT_NE(r.status, sim::ActionStatus::UnknownAction) << call.name << ": " << r.message;
+    if (r.status == sim::ActionStatus::Ignored && log.failure.empty()) log.failure = call.name + ": " + r.message;
+    if (!r.feedback.empty()) {
+      const auto report = lp.learner().learn(r.feedback, user, approach::StepWorld{plan.solve.assignment, obs});
+      EXPECT_TRUE(report.problems.empty()) << report.problems.front();
+    }
+    if (r.taskDone) {
+      log.done = true;
+      log.failed = r.taskFailed;
       break;
     }
-    for (const auto& call : plan.calls) {
-      sim::StepResult r = world.act(call);
-      EXPECT_NE(r.status, sim::ActionStatus::UnknownAction) << call.name << ": " << r.message;
-      if (r.status == sim::ActionStatus::Ignored && entry.failure.empty()) entry.failure = call.name + ": " + r.message;
-      if (!r.feedback.empty()) {
-        const auto report = lp.learner().learn(r.feedback, user, approach::StepWorld{plan.solve.assignment, obs});
-        EXPECT_TRUE(report.problems.empty()) << report.problems.front();
-      }
-      if (r.hasSatisfaction) entry.satisfaction += r.satisfaction;
-      if (r.taskDone) {
-        entry.done = true;
-        entry.failed = r.taskFailed;
-        break;
-      }
-    }
-    log.push_back(entry);
   }
   return log;
 }
 
+void expectCompetent(const RequestLog& r, std::uint64_t seed) {
+  EXPECT_TRUE(r.solved) << r.task << " (seed " << seed << ") found no solution within the domain's budgets";
+  EXPECT_TRUE(r.dryRun) << r.task << " (seed " << seed << ") was not dry-run";
+  EXPECT_FALSE(r.failed) << r.task << " (seed " << seed << "): " << r.failure;
+  EXPECT_TRUE(r.failure.empty()) << r.task << " (seed " << seed << "): " << r.failure;
+}
+
+std::unique_ptr<app::LoadedProgram> loadDomain(const std::string& name) {
+  auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/" + name + "/" + name + ".cbtl");
+  EXPECT_TRUE(lp->ok()) << lp->errors();
+  return lp;
+}
+
+// What the home-scene robot holds at the start of a request.
+enum class Holding { Nothing, Duster, Book };
+
+// Arranges `w` (a freshly reset Cleaning or Books world) so that the robot holds `what`: a held object that is
+// not wanted goes back where the scene keeps it (the duster on the main table, a book parked outside the room);
+// a book to hold is one that is not on the furniture.
+void arrangeHolding(world::World& w, Holding what, const std::map<std::string, world::Pose3>& scenePoses) {
+  world::WorldState s = w.workspace().state();
+  if (s.held) {
+    const std::string held = s.held->object;
+    s.held.reset();
+    s.gripper = 1.0;
+    s.objects[held] = held == "duster" ? scenePoses.at("duster") : s.objects.at(held);
+    for (std::size_t k = 0; k < domains::home::kBookCount; ++k)
+      if (domains::home::bookBody(k) == held) s.objects[held] = domains::home::parkedPose(k);
+  }
+  s.arm = domains::home::initialArm(w.workspace().scene());
+  if (what == Holding::Duster) domains::home::holdCarried(s, "duster");
+  if (what == Holding::Book) {
+    // A parked book (one the user has); with every book on the furniture, the last of them.
+    std::string book = domains::home::bookBody(domains::home::kBookCount - 1);
+    for (std::size_t k = 0; k < domains::home::kBookCount; ++k) {
+      const std::string body = domains::home::bookBody(k);
+      if (domains::home::isParked(s.objects.at(body))) {
+        book = body;
+        break;
+      }
+    }
+    domains::home::holdCarried(s, book);
+  }
+  ASSERT_EQ(w.workspace().setState(s), world::StateStatus::Ok);
+}
+
+std::map<std::string, world::Pose3> scenePoses(const app::LoadedProgram& lp) {
+  world::Workspace ws(lp.scene());
+  return ws.state().objects;
+}
+
 }  // namespace
 
-std::map<std::string, int> served(const std::vector<RequestLog>& log) {
-  std::map<std::string, int> out;
-  for (const auto& r : log) {
-    if (r.done && r.failure.empty()) ++out[r.task];
-  }
-  return out;
-}
-
-TEST(RobotDomainsEndToEnd, FeedingServesEveryKindOfRequest) {
-  auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/feeding/feeding.cbtl");
-  ASSERT_TRUE(lp->ok()) << lp->errors();
-  auto world = domains::createSimulator("feeding", app::simulatorFacts(*lp), {}, 3);
-  ASSERT_NE(world, nullptr);
-  model::UserModel user(lp->graph());
-  const auto log = runRequests(*lp, *world, 12, user);
-  for (const auto& r : log) {
-    EXPECT_TRUE(r.solved) << r.task;
-    EXPECT_TRUE(r.done) << r.task;
-    EXPECT_TRUE(r.failure.empty()) << r.task << ": " << r.failure;
-  }
-  auto count = served(log);
-  EXPECT_GE(count["feedBite"], 4);
-  EXPECT_GE(count["prepareDrink"], 2);
-  EXPECT_GE(count["giveDrink"], 2);
-}
-
-// Seeds 1, 2 and 6 start empty-handed or with the duster in hand; their wipes complete (measured: of seeds
-// 1-6, seed 3's stowThenClean finds no solution within 3,000 iterations, seed 4's duster grasp has only
-// colliding IK solutions, seed 5's sweep of the bottom shelf touches the shelf's side).
-TEST(RobotDomainsEndToEnd, CleaningWipesASurface) {
-  auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/cleaning/cleaning.cbtl");
-  ASSERT_TRUE(lp->ok()) << lp->errors();
-  for (std::uint64_t seed : {1, 2, 6}) {
-    auto world = domains::createSimulator("cleaning", app::simulatorFacts(*lp), {}, seed);
-    ASSERT_NE(world, nullptr);
-    model::UserModel user(lp->graph());
-    const auto log = runRequests(*lp, *world, 1, user);
-    ASSERT_EQ(log.size(), 1u);
-    EXPECT_TRUE(log[0].solved) << log[0].task << " (seed " << seed << ")";
-    EXPECT_TRUE(log[0].done) << log[0].task << " (seed " << seed << ")";
-    EXPECT_TRUE(log[0].failure.empty()) << log[0].task << ": " << log[0].failure << " (seed " << seed << ")";
-  }
-}
-
-// Books' CSPs solve against the simulated room, but executing them still fails in the world (measured on
-// seeds 1-6: the arm finds no path from `home` to the grasp configuration at the shelf, or the base cannot
-// reach the bed with the book held at `home`): each failure must come back as an explicit failed task.
-TEST(RobotDomainsEndToEnd, BooksSolvesAndReportsExecutionFailures) {
-  auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/books/books.cbtl");
-  ASSERT_TRUE(lp->ok()) << lp->errors();
-  for (std::uint64_t seed : {1, 3}) {
-    auto world = domains::createSimulator("books", app::simulatorFacts(*lp), {}, seed);
-    ASSERT_NE(world, nullptr);
-    model::UserModel user(lp->graph());
-    const auto log = runRequests(*lp, *world, 1, user);
-    ASSERT_EQ(log.size(), 1u);
-    EXPECT_TRUE(log[0].solved) << log[0].task << " (seed " << seed << ")";
-    EXPECT_TRUE(log[0].done) << log[0].task << " (seed " << seed << ")";
-    if (!log[0].failure.empty()) {
-      EXPECT_TRUE(log[0].failed) << log[0].failure;
+TEST(RobotDomainsEndToEnd, CleaningEveryTaskOnSeedsZeroToNine) {
+  auto lp = loadDomain("cleaning");
+  const auto poses = scenePoses(*lp);
+  const std::map<Holding, std::string> expected{
+      {Holding::Nothing, "cleanSurface"}, {Holding::Duster, "cleanWithDusterInHand"}, {Holding::Book, "stowThenClean"}};
+  for (const auto& [holding, task] : expected) {
+    for (std::uint64_t seed = 0; seed < 10; ++seed) {
+      domains::cleaning::CleaningSimulator world(app::simulatorFacts(*lp), {}, seed);
+      arrangeHolding(world.world(), holding, poses);
+      ASSERT_EQ(world.requestedTask(), task);
+      solver::Solver solver(domainBudgets("cleaning"), seed);
+      model::UserModel user(lp->graph());
+      const RequestLog r = runRequest(*lp, world, solver, user);
+      expectCompetent(r, seed);
+      EXPECT_TRUE(r.done) << task << " (seed " << seed << "): the wipe did not end the task";
     }
   }
+}
+
+TEST(RobotDomainsEndToEnd, BooksEveryTaskOnSeedsZeroToNine) {
+  auto lp = loadDomain("books");
+  const auto poses = scenePoses(*lp);
+  for (Holding holding : {Holding::Nothing, Holding::Book}) {
+    for (std::uint64_t seed = 0; seed < 10; ++seed) {
+      domains::books::BooksSimulator world(app::simulatorFacts(*lp), {}, seed);
+      arrangeHolding(world.world(), holding, poses);
+      ASSERT_EQ(world.requestedTask(), holding == Holding::Book ? "stowThenHandOverBook" : "handOverBook");
+      solver::Solver solver(domainBudgets("books"), seed);
+      model::UserModel user(lp->graph());
+      const RequestLog r = runRequest(*lp, world, solver, user);
+      expectCompetent(r, seed);
+      EXPECT_TRUE(r.done) << r.task << " (seed " << seed << "): the handover did not end the task";
+    }
+  }
+}
+
+// Feeding's requests follow its cycle (two bites, the drink put in place, the drink offered); four requests from
+// each seed's start cover every kind.
+TEST(RobotDomainsEndToEnd, FeedingEveryTaskOnSeedsZeroToNine) {
+  auto lp = loadDomain("feeding");
+  std::map<std::string, int> kinds;
+  for (std::uint64_t seed = 0; seed < 10; ++seed) {
+    auto world = domains::createSimulator("feeding", app::simulatorFacts(*lp), {}, seed);
+    ASSERT_NE(world, nullptr);
+    solver::Solver solver(domainBudgets("feeding"), seed);
+    model::UserModel user(lp->graph());
+    for (int request = 0; request < 4; ++request) {
+      const RequestLog r = runRequest(*lp, *world, solver, user);
+      expectCompetent(r, seed);
+      EXPECT_TRUE(r.done) << r.task << " (seed " << seed << ")";
+      ++kinds[r.task];
+    }
+  }
+  EXPECT_GE(kinds["feedBite"], 10);
+  EXPECT_GE(kinds["prepareDrink"], 10);
+  EXPECT_GE(kinds["giveDrink"], 10);
 }

@@ -1,6 +1,8 @@
 #include "robot/world/Collision.h"
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
 #include <vector>
 
 namespace cbtl::world {
@@ -42,6 +44,23 @@ CollisionStatus classify(const Scene& s, int held, int b1, int b2) {
 
 namespace {
 
+// Whether geom `g` (a box or a plane) is farther than `reach` from the point `x`: exact for the box's volume and
+// the plane's solid half-space, so a sphere of radius `reach` around x cannot touch it.
+bool beyond(const mjModel* m, const mjData* d, int g, const mjtNum* x, mjtNum reach) {
+  const mjtNum* c = d->geom_xpos + 3 * g;
+  const mjtNum* r = d->geom_xmat + 9 * g;  // row-major; columns are the geom's axes in the world frame
+  const mjtNum v[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
+  if (m->geom_type[g] == mjGEOM_PLANE) return r[2] * v[0] + r[5] * v[1] + r[8] * v[2] > reach;
+  const mjtNum* h = m->geom_size + 3 * g;
+  mjtNum outside = 0;
+  for (int k = 0; k < 3; ++k) {
+    const mjtNum local = r[k] * v[0] + r[3 + k] * v[1] + r[6 + k] * v[2];  // v in the box's frame
+    const mjtNum excess = std::abs(local) - h[k];
+    if (excess > 0) outside += excess * excess;
+  }
+  return outside > reach * reach;
+}
+
 // Runs MuJoCo's narrow phase on one candidate pair; returns the deepest penetration (positive), or 0.
 double pairPenetration(const mjModel* m, const mjData* d, const Scene::GeomPair& p, mjContact* buf) {
   const int g1 = p.g1, g2 = p.g2;
@@ -54,6 +73,14 @@ double pairPenetration(const mjModel* m, const mjData* d, const Scene::GeomPair&
     const mjtNum dx = x1[0] - x2[0], dy = x1[1] - x2[1], dz = x1[2] - x2[2];
     const mjtNum reach = r1 + r2 + margin;
     if (dx * dx + dy * dy + dz * dz > reach * reach) return 0.0;
+  }
+  // Large boxes (walls, tables, shelves) and planes pass the sphere test for every nearby geom: test the other
+  // geom's bounding sphere against their true extent before the narrow phase (a cheap, exact reject).
+  for (const auto& [box, other] : {std::pair{g1, g2}, std::pair{g2, g1}}) {
+    const int type = m->geom_type[box];
+    if ((type == mjGEOM_BOX || type == mjGEOM_PLANE) && m->geom_rbound[other] > 0 &&
+        beyond(m, d, box, d->geom_xpos + 3 * other, m->geom_rbound[other] + margin))
+      return 0.0;
   }
   const mjfCollision fn = mjCOLLISIONFUNC[m->geom_type[g1]][m->geom_type[g2]];
   if (!fn) return 0.0;

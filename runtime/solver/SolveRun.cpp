@@ -187,8 +187,9 @@ bool SolveRun::check(std::size_t i) {
   return ok;
 }
 
-bool SolveRun::checkAll() {
+SolveRun::Verdict SolveRun::checkAll(bool deferPlan) {
   for (std::size_t i = 0; i < constraintCount_; ++i) {
+    if (deferPlan && i == planIndex_) return Verdict::Deferred;
     if (!check(i)) {
       if (planIndex_ != SIZE_MAX && failedByStage_[i]) {
         ++result_.constraints[planIndex_].rejections;
@@ -196,10 +197,31 @@ bool SolveRun::checkAll() {
       } else {
         ++result_.constraints[i].rejections;
       }
-      return false;
+      return Verdict::Fails;
     }
   }
-  return true;
+  return Verdict::Holds;
+}
+
+void SolveRun::deferTie() {
+  pendingTies_.push_back(x_);
+  if (pendingTies_.size() > kMaxDeferredTies) pendingTies_.erase(pendingTies_.begin());
+}
+
+void SolveRun::resolveDeferredTies(std::vector<double>& best) {
+  // The latest tie whose plan runs wins, as if each had been dry-run when it was found.
+  for (auto it = pendingTies_.rbegin(); it != pendingTies_.rend(); ++it) {
+    std::copy(it->begin(), it->end(), x_.begin());  // in place: ctx_ points into x_
+    plan_->changed();
+    stageCurrent_ = false;
+    state_[planIndex_] = Dirty;
+    if (check(planIndex_)) {
+      best = x_;
+      break;
+    }
+    ++result_.constraints[planIndex_].rejections;
+  }
+  pendingTies_.clear();
 }
 
 double SolveRun::costOf() {
@@ -371,7 +393,13 @@ SolveResult SolveRun::search() {
       ++result_.prunedByCost;
     } else {
       ++result_.candidatesChecked;
-      if (checkAll()) {
+      // A tie after the first solution defers its dry run to the end (Solver.h): only the latest matters.
+      const bool tie = found && cost == bestCost && csp_.cost != CostKind::None;
+      const Verdict v = checkAll(plan_ != nullptr && tie);
+      if (v == Verdict::Deferred) {
+        ++result_.improvements;
+        deferTie();
+      } else if (v == Verdict::Holds) {
         if (options_.memoryPolicy == MemoryPolicy::Solutions) {
           for (std::size_t i = 0; i < constraintCount_; ++i) remember(i);
         }
@@ -383,6 +411,7 @@ SolveResult SolveRun::search() {
           result_.cost = 0;
           return std::move(result_);
         }
+        if (cost < bestCost) pendingTies_.clear();  // they tied a worse solution
         best = x_;
         bestCost = cost;
       }
@@ -396,6 +425,7 @@ SolveResult SolveRun::search() {
       break;
     }
   }
+  if (found && !pendingTies_.empty()) resolveDeferredTies(best);
   if (found) {
     result_.outcome = SolveOutcome::Solved;
     result_.assignment = std::move(best);

@@ -43,8 +43,14 @@ class SolveRun {
   void attachMemories(std::map<std::uint64_t, Solver::Memory>& memory);
   void remember(std::size_t i);
   bool check(std::size_t i);
-  // True when every constraint holds; charges the first that fails with the rejection.
-  bool checkAll();
+  // What checking a candidate found: a constraint fails (the first one is charged with the rejection), every
+  // constraint holds, or every constraint before PlanExecutes holds and its dry run is deferred (`deferPlan`).
+  enum class Verdict { Fails, Holds, Deferred };
+  Verdict checkAll(bool deferPlan = false);
+  // Ties whose dry run is deferred (the latest kMaxDeferredTies), and their resolution when the search ends.
+  void deferTie();
+  void resolveDeferredTies(std::vector<double>& best);
+  static constexpr std::size_t kMaxDeferredTies = 16;
   double costOf();
   void markWritten(ir::VarId v);
   void writeDrawn(const std::vector<ir::VarId>& writes);
@@ -82,7 +88,8 @@ class SolveRun {
   // Per constraint: its cached Fails came from an undefined stage (charged to PlanExecutes), with the reason.
   std::vector<std::uint8_t> failedByStage_;
   std::vector<sim::PlanVerdict> stageVerdict_;
-  std::size_t planIndex_ = SIZE_MAX;  // PlanExecutes' position in the check order
+  std::size_t planIndex_ = SIZE_MAX;  // PlanExecutes' position in the check order (the last)
+  std::vector<std::vector<double>> pendingTies_;
 
   std::vector<std::uint8_t> state_;
   std::vector<std::uint8_t> termDirty_;

@@ -12,6 +12,14 @@
 //      freshly shuffled order until one produces values, and overwrite the variables it writes.
 // After `maxIters` iterations the best satisfying candidate, if any, is returned.
 //
+// With a staged plan (StagedPlan.h) a tie after the first solution — a candidate whose cost equals the best's and
+// whose every other constraint holds — is counted as an improvement and its dry run is deferred: when the search
+// stops, the latest deferred ties (up to 16) are dry-run from the newest back, and the first whose plan runs is
+// the result (otherwise the best verified solution). Like checking every tie on the spot, the latest tie whose
+// plan runs wins, without dry-running up to maxImprovementAttempts plans per request. Two things differ, by
+// design: a deferred tie counts toward numImprovements before its dry run, and its sub-assignments do not enter
+// the memories. A strictly better candidate is dry-run at once, since it moves the pruning bound.
+//
 // Constraint results are cached per candidate and recomputed only for constraints that read a variable
 // the last move changed: the outcome is exactly that of re-checking everything, for a fraction of the cost.
 // Every time a constraint is found satisfied its sub-assignment enters its memory (FIFO, `memorySize`;

@@ -1,0 +1,107 @@
+// Robot-domain benchmarks (docs/runtime.md, "Speed", has the figures and the command):
+//   BM_RobotTrial/<domain>: one CBTL trial of the paper's protocol — 5,000 training steps, evaluation every 500
+//     steps on 10 held-out tasks — with the domain's default budgets, every plan staged and dry-run. Target:
+//     under 60 s on one core (the reference: 30-90 minutes per trial).
+//   BM_RobotRequest/<domain>: one request (solve, dry run, re-check) against a fresh episode, cycling seeds 0-9;
+//     the time a user waits for `cbtl solve`.
+#include "app/LoadedProgram.h"
+#include "app/SimulatorFacts.h"
+#include "domains/DomainRegistry.h"
+#include "runtime/approach/Experiment.h"
+#include "runtime/approach/Planner.h"
+#include "runtime/approach/ValueBridge.h"
+#include "runtime/model/UserModel.h"
+#include "runtime/solver/Solver.h"
+
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <string>
+
+namespace {
+
+using namespace cbtl;
+
+const char* const kDomains[] = {"cleaning", "books"};
+
+app::LoadedProgram& program(const std::string& domain) {
+  static std::map<std::string, std::unique_ptr<app::LoadedProgram>> loaded;
+  auto& lp = loaded[domain];
+  if (!lp) {
+    lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/" + domain + "/" + domain + ".cbtl");
+    if (!lp->ok()) {
+      std::fprintf(stderr, "%s", lp->errors().c_str());
+      std::abort();
+    }
+  }
+  return *lp;
+}
+
+solver::SolverOptions budgets(const std::string& domain) {
+  const domains::SolverBudgets b = domains::solverBudgets(domain);
+  solver::SolverOptions o;
+  o.maxIters = b.maxIters;
+  o.numImprovements = b.numImprovements;
+  o.maxImprovementAttempts = b.maxImprovementAttempts;
+  return o;
+}
+
+approach::SimulatorFactory factory(const app::LoadedProgram& lp) {
+  const auto facts = std::make_shared<domains::ProgramFacts>(app::simulatorFacts(lp));
+  const std::string domain = lp.graph().domain;
+  return [facts, domain](const sim::SimulatorOptions& o, std::uint64_t seed) {
+    return domains::createSimulator(domain, *facts, o, seed);
+  };
+}
+
+void BM_RobotTrial(benchmark::State& state) {
+  const std::string domain = kDomains[state.range(0)];
+  const auto& lp = program(domain);
+  approach::ExperimentConfig c;
+  c.approach.kind = approach::ApproachKind::Cbtl;
+  c.steps = 5000;
+  c.evalEvery = 500;
+  c.evalTasks = 10;
+  c.solverOptions = budgets(domain);
+  double solved = 0, executed = 0, last = 0;
+  for (auto _ : state) {
+    const auto r = approach::runExperiment(lp, factory(lp), c);
+    solved = r.train.solvedRate();
+    executed = r.train.executedRate();
+    last = r.evals.empty() ? 0 : r.evals.back().mean;
+    benchmark::DoNotOptimize(last);
+  }
+  state.SetLabel(domain);
+  state.counters["train_solved_rate"] = solved;
+  state.counters["train_executed_rate"] = executed;
+  state.counters["final_eval"] = last;
+}
+BENCHMARK(BM_RobotTrial)->DenseRange(0, 1)->Unit(benchmark::kSecond)->Iterations(1);
+
+void BM_RobotRequest(benchmark::State& state) {
+  const std::string domain = kDomains[state.range(0)];
+  auto& lp = program(domain);
+  const auto makeWorld = factory(lp);
+  model::UserModel user(lp.graph());
+  solver::Solver solver(budgets(domain), 1);
+  std::uint64_t seed = 0;
+  std::int64_t solved = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    const auto world = makeWorld({}, seed++ % 10);
+    lp.syncWorld(*world);
+    const std::size_t task = lp.taskFor(*world, 0);
+    const auto obs = approach::observationVector(lp.program(), world->observe());
+    state.ResumeTiming();
+    const approach::Plan plan = approach::makePlan(lp, task, obs, approach::evaluationChoice(), true, solver, user);
+    solved += plan.ok ? 1 : 0;
+  }
+  state.SetLabel(domain);
+  state.counters["solved_rate"] = static_cast<double>(solved) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_RobotRequest)->DenseRange(0, 1)->Unit(benchmark::kMillisecond)->Iterations(20);
+
+}  // namespace

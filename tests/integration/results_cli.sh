@@ -114,6 +114,23 @@ cmp -s "$work/exp/summary.csv" "$work/exp-killed/summary.csv" || fail "the resum
 same_results "$work/exp/cbtl/seed0" "$work/exp-killed/cbtl/seed0"
 same_results "$work/exp/no-personalization/seed1" "$work/exp-killed/no-personalization/seed1"
 
+# Trials on several threads give exactly a serial run's results (--jobs), in Cooking and in a robot domain whose
+# trials share the scene's motion cache.
+"$cbtl" "${exp[@]}" --out "$work/exp-serial" --jobs 1 >/dev/null || fail "the serial experiment failed"
+"$cbtl" "${exp[@]}" --out "$work/exp-parallel" --jobs 3 >/dev/null || fail "the parallel experiment failed"
+cmp -s "$work/exp-serial/summary.csv" "$work/exp-parallel/summary.csv" || fail "--jobs 3 changed summary.csv"
+for t in cbtl/seed0 cbtl/seed1 no-personalization/seed0 no-personalization/seed1; do
+  same_results "$work/exp-serial/$t" "$work/exp-parallel/$t"
+done
+cleaning=$domains/cleaning/cleaning.cbtl
+robot=(experiment "$cleaning" --approaches cbtl,no-personalization --seeds 0..1 --steps 30 --eval-every 30 --eval-tasks 1 -q)
+"$cbtl" "${robot[@]}" --out "$work/robot-serial" --jobs 1 >/dev/null || fail "the serial Cleaning experiment failed"
+"$cbtl" "${robot[@]}" --out "$work/robot-parallel" --jobs 2 >/dev/null || fail "the parallel Cleaning experiment failed"
+cmp -s "$work/robot-serial/summary.csv" "$work/robot-parallel/summary.csv" || fail "--jobs 2 changed Cleaning's summary.csv"
+for t in cbtl/seed0 cbtl/seed1 no-personalization/seed0 no-personalization/seed1; do
+  same_results "$work/robot-serial/$t" "$work/robot-parallel/$t"
+done
+
 if [[ $failures -ne 0 ]]; then
   echo "$failures failure(s)"
   exit 1

@@ -197,6 +197,53 @@ TEST(BooksSimulator, WithoutASceneOrCatalogueItIsAClearError) {
   EXPECT_THROW(BooksSimulator(sceneOnly, {}, 1), std::invalid_argument);
 }
 
+TEST(BooksSimulator, EvaluationEpisodesOfferOneEnjoyedBookAmongFive) {
+  // The hidden user enjoys Cosmos and Pride and Prejudice; a held-out task holds nothing and stocks one of them
+  // with four other books, so an evaluation measures whether the robot picks the enjoyed one.
+  BooksSimulator sim(books(), {}, 1);
+  auto twin = sim.makeEvaluationTwin();
+  const std::set<std::string> enjoyed{"cosmos", "prideAndPrejudice"};
+  std::set<std::string> enjoyedSeen;
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    twin->reset(seed);
+    const auto o = twin->observe();
+    EXPECT_EQ(o.at("heldBody").text, "") << "seed " << seed;
+    const auto& pickable = o.at("pickable").members;
+    ASSERT_EQ(pickable.size(), 5u) << "seed " << seed;
+    int liked = 0;
+    for (const std::string& b : pickable) {
+      if (enjoyed.count(b)) {
+        ++liked;
+        enjoyedSeen.insert(b);
+      }
+    }
+    EXPECT_EQ(liked, 1) << "seed " << seed;
+  }
+  EXPECT_EQ(enjoyedSeen, enjoyed) << "both enjoyed books occur across held-out tasks";
+  // Training episodes keep the paper's random subset (3-9 books, sometimes one in hand).
+  std::set<std::size_t> sizes;
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    sim.reset(seed);
+    sizes.insert(sim.observe().at("pickable").members.size());
+  }
+  EXPECT_GT(sizes.size(), 2u);
+}
+
+TEST(BooksSimulator, ACaregiverResetsARobotThatStaysIdle) {
+  BooksSimulator sim(books(), {}, 2);
+  world::Rng rng(5);
+  ASSERT_TRUE(presentAt(sim, "book_4", 0.5, rng).has_value());  // holding a book at the bed
+  for (int i = 1; i < home::kCaregiverPatience; ++i) EXPECT_FALSE(sim.idle().caregiverReset) << i;
+  const StepResult r = sim.idle();
+  EXPECT_TRUE(r.caregiverReset);
+  const world::WorldState& s = *sim.worldState();
+  EXPECT_EQ(s.base.x, 0.0);
+  EXPECT_EQ(s.base.y, 0.0);
+  EXPECT_FALSE(s.held.has_value()) << "the caregiver takes the book the robot was stuck with";
+  EXPECT_FALSE(sim.observe().at("pickable").members.empty()) << "and the furniture holds books";
+  EXPECT_FALSE(sim.idle().caregiverReset) << "the count starts again";
+}
+
 TEST(BooksSimulator, EvaluationTwinSharesTheUserNotTheWorld) {
   const BooksUser mobyDickOnly(cbtl::textpref::SimulatedUser("moby", "I only like Moby Dick.", {{{"item=mobyDick"}}}),
                                Interval{0.0, 1.0});

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Reproduces every figure in docs/results.md (Cooking). Usage: scripts/results.sh [BUILD_DIR] [OUT_DIR]
+# Reproduces every figure in docs/results.md (Cooking; Cleaning with ROBOT=1, about 40 minutes on 2 cores).
+# Usage: [ROBOT=1] scripts/results.sh [BUILD_DIR] [OUT_DIR]
 # Each block is one `cbtl experiment` command; its table is printed and its CSVs land in OUT_DIR.
 set -euo pipefail
 build=${1:-build}
@@ -29,3 +30,11 @@ echo "-- free-explore, no-adapt"
 "$cbtl" experiment "$cooking" --approaches free-explore --nonstationary no-adapt --shift-every 3000 \
   --seeds 0..9 --steps 10000 --eval-every 100 --eval-tasks 10 --columns 0,2900,3100,3500,4000,5900,6500,8900,10000 \
   --out "$out/figure5-free-explore" --force -q
+
+if [[ ${ROBOT:-0} == 1 ]]; then
+  echo "== Figure 3: Cleaning, 10 seeds, 5,000 steps, eval every 500 on 10 tasks (the paper's protocol)"
+  "$cbtl" experiment domains/cleaning/cleaning.cbtl \
+    --approaches cbtl,no-personalization,free-explore,exploit-only,epsilon-greedy \
+    --seeds 0..9 --steps 5000 --eval-every 500 --eval-tasks 10 --columns 0,500,1000,2000,3000,5000 \
+    --out "$out/figure3-cleaning" --force -q
+fi

@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include <cmath>
 
 using namespace cbtl;
@@ -138,6 +140,37 @@ require differ: e != f;
     EXPECT_EQ(r.assignment[1], 2.0);  // f = c
   }
   EXPECT_EQ(solveHard(*lp, 0, {0, 0, 0, 0}).outcome, solver::SolveOutcome::InfeasibleWithinBudget);
+}
+
+TEST(ObservedDomains, UniformDrawsComeOnlyFromTheObservedMembers) {
+  // A uniform sampler of a variable whose domain is an observed set draws among the listed members only, so the
+  // domain constraint never rejects a draw: no iteration is spent on a member the world does not offer.
+  auto lp = test::compileOrFail("u.cbtl", R"(domain u;
+enum E { a, b, c, d, e, f, g, h }
+observe offered : set<E>;
+var x : E in offered;
+var y : real in 0 .. 1 = 0;
+sample x ~ uniform;
+sample y ~ uniform;
+require moved: y > 0.9;
+)");
+  ASSERT_TRUE(lp->ok());
+  std::set<double> drawn;
+  std::uint64_t domainEvaluations = 0;
+  for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+    // Only a (x's initial value, so the first candidate is in the domain) and g.
+    const auto r = solveHard(*lp, 0, {1, 0, 0, 0, 0, 0, 1, 0}, seed);
+    ASSERT_EQ(r.outcome, solver::SolveOutcome::Solved);
+    drawn.insert(r.assignment[0]);
+    for (const auto& c : r.constraints) {
+      if (c.ref.kind != solver::ConstraintKind::Hard || lp->graph().constraints[c.ref.index].name != "x.domain")
+        continue;
+      domainEvaluations += c.evaluations;
+      EXPECT_EQ(c.rejections, 0u) << "seed " << seed;
+    }
+  }
+  EXPECT_GT(domainEvaluations, 40u);
+  EXPECT_EQ(drawn, (std::set<double>{0.0, 6.0}));
 }
 
 TEST(ObservedDomains, AnInitialValueFromAnObservationMustLieInTheDomain) {

@@ -5,6 +5,9 @@
 #include "runtime/approach/Experiment.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <vector>
 
 #include <filesystem>
 
@@ -29,9 +32,23 @@ approach::ExperimentConfig shortRun(approach::ApproachKind kind, std::uint64_t s
   return c;
 }
 
+// Per process: two test runs on one machine (make test beside make asan) must not share a folder. The
+// folders go when the test program ends.
+struct TempDirs : ::testing::Environment {
+  static std::vector<std::filesystem::path>& made() {
+    static std::vector<std::filesystem::path> paths;
+    return paths;
+  }
+  void TearDown() override {
+    for (const auto& p : made()) std::filesystem::remove_all(p);
+  }
+};
+[[maybe_unused]] ::testing::Environment* const kTempDirs = ::testing::AddGlobalTestEnvironment(new TempDirs);
+
 std::string tempDir(const std::string& name) {
-  const auto p = std::filesystem::temp_directory_path() / ("cbtl_test_" + name);
+  const auto p = std::filesystem::temp_directory_path() / ("cbtl_test_" + std::to_string(::getpid()) + "_" + name);
   std::filesystem::remove_all(p);
+  TempDirs::made().push_back(p);
   return p.string();
 }
 

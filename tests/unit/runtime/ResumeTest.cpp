@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -29,9 +30,23 @@ approach::SimulatorFactory cooking() {
   };
 }
 
+// Per process: two test runs on one machine (make test beside make asan) must not share a folder. The
+// folders go when the test program ends.
+struct TempDirs : ::testing::Environment {
+  static std::vector<fs::path>& made() {
+    static std::vector<fs::path> paths;
+    return paths;
+  }
+  void TearDown() override {
+    for (const auto& p : made()) fs::remove_all(p);
+  }
+};
+[[maybe_unused]] ::testing::Environment* const kTempDirs = ::testing::AddGlobalTestEnvironment(new TempDirs);
+
 std::string tempDir(const std::string& name) {
-  const auto p = fs::temp_directory_path() / ("cbtl_resume_test_" + name);
+  const auto p = fs::temp_directory_path() / ("cbtl_resume_test_" + std::to_string(::getpid()) + "_" + name);
   fs::remove_all(p);
+  TempDirs::made().push_back(p);
   return p.string();
 }
 

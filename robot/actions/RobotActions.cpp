@@ -258,7 +258,11 @@ RobotActionResult RobotActions::grasp(world::World& w, const std::string& body, 
   RobotActionResult r;
   double reach = 0.15;  // builtins::grasp's default: the body's origin near the finger tip
   if (const auto approach = standardGraspTool(w, body)) {
-    if (!posesClose(ws.toolPose(), *approach, 0.01, 0.1)) {
+    // Already at one of the body's standard grasps (a plan moved the arm there): grasp there.
+    bool atGrasp = false;
+    for (int k = 0; k < standardGraspCount(body) && !atGrasp; ++k)
+      atGrasp = posesClose(ws.toolPose(), *standardGraspTool(w, body, k), 0.01, 0.1);
+    if (!atGrasp) {
       ActionResult moved = moveToolIn(w, *approach, mode);
       if (!moved.done()) return failed(moved.status, "approaching the grasp of " + body + ": " + moved.detail);
       r.armPath = std::move(moved.armPath);

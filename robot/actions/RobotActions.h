@@ -38,9 +38,10 @@
 //                               namedConf); an unknown name fails (InvalidArgument, the detail lists the known
 //                               names).
 //   moveBase(pose: SE2)         plan the base in SE(2) with the arm fixed and move there.
-//   grasp(body)                 fails AlreadyHolding / InvalidArgument (unknown body). A body with a standard
-//                               grasp (StandardGrasps.h: the duster) is approached first unless the tool is
-//                               already within 1 cm / 0.1 rad of that grasp; other bodies must be between the
+//   grasp(body)                 fails AlreadyHolding / InvalidArgument (unknown body). A body with standard
+//                               grasps (StandardGrasps.h: the duster) is grasped where the tool is when it is
+//                               within 1 cm / 0.1 rad of one of them, else grasp 0 is approached first; other
+//                               bodies must be between the
 //                               fingers already (finger tip within 0.15 m of the body's origin, OutOfReach
 //                               otherwise). Then the gripper closes, the body is attached at its current
 //                               relative pose, and the tool lifts kLift straight up (NoIk / NoPath if not).

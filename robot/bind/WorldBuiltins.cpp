@@ -1,5 +1,6 @@
 #include "robot/bind/WorldBuiltins.h"
 
+#include "robot/actions/StandardGrasps.h"
 #include "robot/bind/WorldHost.h"
 #include "robot/world/Collision.h"
 #include "robot/world/InverseKinematics.h"
@@ -276,6 +277,17 @@ void fWipeStartPose(const rt::CallContext& cx, Args a, Widths, Out o) {
   if (!p) return writeNaN(o);
   writePose(*p, o.data());
 }
+void fStandardGraspPose(const rt::CallContext& cx, Args a, Widths, Out o) {
+  WorldHost& h = host(cx);
+  const std::string body = text(cx, a[0]);
+  const double k = a[1];
+  const auto p = referencePose(h, body);
+  const auto inBody = std::isfinite(k) && k == std::floor(k) && std::abs(k) < 1e6
+                          ? actions::standardGraspInBody(body, static_cast<int>(k))
+                          : std::nullopt;
+  if (!p || !inBody) return writeNaN(o);
+  writePose(*p * *inBody, o.data());
+}
 void fSideGraspPose(const rt::CallContext& cx, Args a, Widths, Out o) {
   WorldHost& h = host(cx);
   const std::string body = text(cx, a[0]);
@@ -425,6 +437,7 @@ constexpr FunctionEntry kFunctions[] = {
     {"restsOn", fRestsOn, false},
     {"placementClear", fPlacementClear, true},
     {"sideGraspPose", fSideGraspPose, true},
+    {"standardGraspPose", fStandardGraspPose, true},
     {"occlusion", fOcclusion, true},
     {"occlusionHolding", fOcclusionHolding, true},
     {"occlusionByBody", fOcclusionByBody, true},

@@ -90,16 +90,73 @@ double pairPenetration(const mjModel* m, const mjData* d, const Scene::GeomPair&
   return deepest;
 }
 
+// A sphere around everything that moves with the robot (its links and the held object), for the broad phase:
+// a geom whose bounding sphere misses it cannot touch the robot. Planes (rbound 0) never miss it.
+struct MovingBound {
+  mjtNum centre[3] = {0, 0, 0};
+  mjtNum radius = 0;
+};
+
+template <typename Geoms>
+void growBound(const mjModel* m, const mjData* d, const Geoms& geoms, MovingBound& b) {
+  for (int g : geoms) {
+    const mjtNum* x = d->geom_xpos + 3 * g;
+    const mjtNum dx = x[0] - b.centre[0], dy = x[1] - b.centre[1], dz = x[2] - b.centre[2];
+    b.radius = std::max(b.radius, std::sqrt(dx * dx + dy * dy + dz * dz) + m->geom_rbound[g] + m->geom_margin[g]);
+  }
+}
+
+MovingBound movingBound(const mjModel* m, const mjData* d, const Scene& s, int held) {
+  // Centred on the middle of the moving geoms' centres' box, which keeps the sphere tight for an arm that
+  // reaches out to one side.
+  mjtNum lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  auto extend = [&](int g) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], d->geom_xpos[3 * g + k]);
+      hi[k] = std::max(hi[k], d->geom_xpos[3 * g + k]);
+    }
+  };
+  for (int g : s.robotGeoms()) extend(g);
+  if (held >= 0)
+    for (int g : s.objectSubtree(held).geoms()) extend(g);
+  MovingBound b;
+  for (int k = 0; k < 3; ++k) b.centre[k] = 0.5 * (lo[k] + hi[k]);
+  growBound(m, d, s.robotGeoms(), b);
+  if (held >= 0) growBound(m, d, s.objectSubtree(held).geoms(), b);
+  return b;
+}
+
+// near[g]: geom g's bounding sphere (grown by its margin) reaches the moving bound.
+void markNear(const mjModel* m, const mjData* d, const MovingBound& b, std::vector<char>& near) {
+  near.assign(static_cast<size_t>(m->ngeom), 1);
+  for (int g = 0; g < m->ngeom; ++g) {
+    const mjtNum r = m->geom_rbound[g];
+    if (r <= 0) continue;
+    const mjtNum* x = d->geom_xpos + 3 * g;
+    const mjtNum dx = x[0] - b.centre[0], dy = x[1] - b.centre[1], dz = x[2] - b.centre[2];
+    const mjtNum reach = b.radius + r + m->geom_margin[g];
+    near[static_cast<size_t>(g)] = dx * dx + dy * dy + dz * dz <= reach * reach;
+  }
+}
+
 CollisionReport checkPairs(Workspace& ws, const CollisionOptions& options) {
   const mjModel* m = ws.model();
   const mjData* d = ws.data();
   const Scene& s = ws.scene();
   thread_local std::vector<mjContact> buf(mjMAXCONPAIR);
+  thread_local std::vector<char> near;
   const int held = ws.heldObject();
   auto report = [&](CollisionStatus st, const Scene::GeomPair& p, double depth) {
     return CollisionReport{st, s.geomName(p.g1), s.geomName(p.g2), depth};
   };
+  // Broad phase: a pair is visited only when both of its geoms reach the moving bound (the robot side
+  // always does). Pairs are still visited in the scene's order, so the first contact reported is unchanged.
+  markNear(m, d, movingBound(m, d, s, held), near);
+  auto bothNear = [&](const Scene::GeomPair& p) {
+    return near[static_cast<size_t>(p.g1)] && near[static_cast<size_t>(p.g2)];
+  };
   for (const auto& p : s.robotPairs()) {
+    if (!bothNear(p)) continue;
     CollisionStatus st = CollisionStatus::RobotWorld;
     if (held >= 0) {
       const int b1 = m->geom_bodyid[p.g1], b2 = m->geom_bodyid[p.g2];
@@ -115,6 +172,7 @@ CollisionReport checkPairs(Workspace& ws, const CollisionOptions& options) {
   }
   if (held >= 0) {
     for (const auto& p : s.objectPairs(held)) {
+      if (!bothNear(p)) continue;
       const double depth = pairPenetration(m, d, p, buf.data());
       if (depth > options.tolerance) return report(CollisionStatus::HeldObject, p, depth);
     }

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
 
 namespace cbtl::world {
 
@@ -54,29 +53,29 @@ ErrorTerms poseError(const Pose3& target, const Pose3& current) {
   return t;
 }
 
-// The 6x7 Jacobian (linear over angular, world frame) of `site` with respect to the arm joints.
-void siteJacobian(Workspace& ws, int site, std::vector<mjtNum>& buf, Jac& J) {
-  const mjModel* m = ws.model();
-  mjData* d = ws.data();
-  const int nv = m->nv;
-  buf.resize(static_cast<size_t>(6 * nv));
-  mj_comPos(m, d);  // mj_jacSite reads cdof and subtree_com, which mj_kinematics does not fill
-  mj_jacSite(m, d, buf.data(), buf.data() + 3 * nv, site);
-  for (int c = 0; c < kArmDof; ++c) {
-    const int dof = ws.scene().armDofAdr(c);
-    for (int r = 0; r < 3; ++r) {
-      J(r, c) = buf[static_cast<size_t>(r * nv + dof)];
-      J(r + 3, c) = buf[static_cast<size_t>(3 * nv + r * nv + dof)];
-    }
-  }
-}
-
 }  // namespace
+
+// The 6x7 Jacobian (linear over angular, world frame) of `site` with respect to the arm joints. Every arm joint
+// is a hinge, so column c is (axis × (site − anchor), axis) with the joint's world axis and anchor, which the
+// kinematics pass leaves in mjData (the same Jacobian mj_jacSite gives, without mj_comPos's pass over every
+// body; test WorldIk.ArmJacobianEqualsMujocos).
+Jac armJacobian(const Workspace& ws, int site) {
+  Jac J;
+  const mjData* d = ws.data();
+  const Eigen::Vector3d p(d->site_xpos[3 * site], d->site_xpos[3 * site + 1], d->site_xpos[3 * site + 2]);
+  for (int c = 0; c < kArmDof; ++c) {
+    const int j = ws.scene().armJointId(c);
+    const Eigen::Vector3d axis(d->xaxis[3 * j], d->xaxis[3 * j + 1], d->xaxis[3 * j + 2]);
+    const Eigen::Vector3d anchor(d->xanchor[3 * j], d->xanchor[3 * j + 1], d->xanchor[3 * j + 2]);
+    J.block<3, 1>(0, c) = axis.cross(p - anchor);
+    J.block<3, 1>(3, c) = axis;
+  }
+  return J;
+}
 
 IkResult solveIk(Workspace& ws, const Pose3& target, const ArmConfig& seed, Rng& rng, const IkOptions& o) {
   const Scene& s = ws.scene();
   const int site = o.site >= 0 ? o.site : s.toolSite();
-  std::vector<mjtNum> buf;
   IkResult result;
   double bestScore = INFINITY;
   bool anyConverged = false;
@@ -125,7 +124,7 @@ IkResult solveIk(Workspace& ws, const Pose3& target, const ArmConfig& seed, Rng&
       }
       if (it == o.maxIterations) break;
       ++result.iterations;
-      siteJacobian(ws, site, buf, J);
+      J = armJacobian(ws, site);
       const Eigen::Matrix<double, 6, 6> JJt = J * J.transpose();
       const Eigen::Matrix<double, 6, 6> A = JJt + lambda2 * Eigen::Matrix<double, 6, 6>::Identity();
       Vec7 dq = J.transpose() * A.ldlt().solve(err.e);

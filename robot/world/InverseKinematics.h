@@ -50,6 +50,10 @@ struct IkResult {
 
 IkResult solveIk(Workspace& ws, const Pose3& target, const ArmConfig& seed, Rng& rng, const IkOptions& options = {});
 
+// The 6x7 Jacobian of `site`'s world position (rows 0-2) and orientation (rows 3-5) with respect to the seven arm
+// joints, at the Workspace's current state.
+Eigen::Matrix<double, 6, kArmDof> armJacobian(const Workspace& ws, int site);
+
 // A uniformly random configuration within the joint ranges (continuous joints in [-pi, pi)).
 ArmConfig randomConfig(const Scene& scene, Rng& rng);
 

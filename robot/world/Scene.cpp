@@ -58,6 +58,7 @@ std::string Scene::initialise() {
     const std::string name = fmt::format("joint_{}", i + 1);
     const int j = mj_name2id(m, mjOBJ_JOINT, name.c_str());
     if (j < 0 || m->jnt_type[j] != mjJNT_HINGE) return fmt::format("no hinge joint named '{}' (the Gen3 arm)", name);
+    armJoint_[i] = j;
     armQpos_[i] = m->jnt_qposadr[j];
     armDof_[i] = m->jnt_dofadr[j];
     continuous_[i] = m->jnt_limited[j] == 0;
@@ -71,10 +72,24 @@ std::string Scene::initialise() {
   if (armRoot < 0 || ee < 0) return "no bodies named 'base_link' and 'end_effector_link'";
 
   static constexpr const char* kBaseJoints[3] = {"base_x", "base_y", "base_yaw"};
+  std::array<int, 3> baseJointBody{-1, -1, -1};
   for (int i = 0; i < 3; ++i) {
     const int j = mj_name2id(m, mjOBJ_JOINT, kBaseJoints[i]);
     baseQpos_[i] = j >= 0 ? m->jnt_qposadr[j] : -1;
+    baseJointBody[i] = j >= 0 ? m->jnt_bodyid[j] : -1;
   }
+  // A subtree serves as a fast path only if it holds the bodies of every joint it stands for.
+  auto subtreeOf = [m](int root, const int* jointBodies, int n) {
+    KinematicSubtree tree(m, root);
+    for (int i = 0; i < n; ++i)
+      if (std::find(tree.bodies().begin(), tree.bodies().end(), jointBodies[i]) == tree.bodies().end())
+        return KinematicSubtree();
+    return tree;
+  };
+  if (baseJointBody[0] >= 0) baseSubtree_ = subtreeOf(baseJointBody[0], baseJointBody.data(), 3);
+  std::array<int, kArmDof> armJointBody{};
+  for (int i = 0; i < kArmDof; ++i) armJointBody[i] = m->jnt_bodyid[armJoint_[i]];
+  armSubtree_ = subtreeOf(armJointBody[0], armJointBody.data(), kArmDof);
   if ((baseQpos_[0] >= 0) != (baseQpos_[2] >= 0) || (baseQpos_[1] >= 0) != (baseQpos_[2] >= 0))
     return "a mobile base needs all of base_x, base_y and base_yaw";
   static constexpr const char* kFingers[2] = {"finger_left", "finger_right"};
@@ -106,6 +121,7 @@ std::string Scene::initialise() {
       objectOfBody_[b] = objectOfBody_[static_cast<size_t>(parent)];
     }
   }
+  for (const ObjectInfo& o : objects_) objectSubtrees_.emplace_back(m, o.body);
   buildPairs();
   return {};
 }
@@ -136,6 +152,8 @@ void Scene::buildPairs() {
     const BodyKind k = kinds_[static_cast<size_t>(m->geom_bodyid[g])];
     return k == BodyKind::Robot || k == BodyKind::Gripper;
   };
+  for (int g = 0; g < m->ngeom; ++g)
+    if (robotGeom(g)) robotGeoms_.push_back(g);
   for (int a = 0; a < m->ngeom; ++a) {
     for (int b = a + 1; b < m->ngeom; ++b) {
       if (!mujocoWouldCollide(a, b)) continue;

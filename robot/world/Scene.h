@@ -9,6 +9,7 @@
 #pragma once
 
 #include "robot/world/Pose.h"
+#include "robot/world/SubtreeKinematics.h"
 
 #include <mujoco/mujoco.h>
 
@@ -95,12 +96,23 @@ class Scene {
   struct GeomPair {
     int g1, g2;
   };
+  // Geoms of robot bodies (BodyKind Robot or Gripper), in id order.
+  const std::vector<int>& robotGeoms() const { return robotGeoms_; }
   const std::vector<GeomPair>& selfPairs() const { return selfPairs_; }    // robot × robot
   const std::vector<GeomPair>& robotPairs() const { return robotPairs_; }  // robot × scenery/object
   // Geoms of object `index` × scenery and other objects' geoms (used when that object is held).
   const std::vector<GeomPair>& objectPairs(int index) const { return objectPairs_[static_cast<size_t>(index)]; }
   // True when the model defines explicit <pair> contacts, which the pair lists above do not model.
   bool hasExplicitPairs() const { return model_->npair > 0; }
+
+  // The bodies whose poses depend on the arm joints (rooted at joint_1's body), on the base joints (rooted at
+  // the mobile base; empty without one), and on movable object `index`'s free joint: the Workspace recomputes
+  // only these when only those joints change (SubtreeKinematics.h).
+  const KinematicSubtree& armSubtree() const { return armSubtree_; }
+  const KinematicSubtree& baseSubtree() const { return baseSubtree_; }
+  const KinematicSubtree& objectSubtree(int index) const { return objectSubtrees_[static_cast<size_t>(index)]; }
+  // The MuJoCo joint id of arm joint i (0..6).
+  int armJointId(int i) const { return armJoint_[i]; }
 
   // The motion-planning answers of every Workspace over this scene (MotionQuery.h). The one mutable part of a
   // Scene: shared, locked, and transparent (a cached answer equals a fresh one).
@@ -114,7 +126,7 @@ class Scene {
   std::string initialise();  // returns an error message, empty on success
 
   mjModel* model_ = nullptr;
-  std::array<int, kArmDof> armQpos_{}, armDof_{};
+  std::array<int, kArmDof> armQpos_{}, armDof_{}, armJoint_{};
   std::array<bool, kArmDof> continuous_{};
   std::array<double, kArmDof> lower_{}, upper_{};
   std::array<int, 3> baseQpos_{-1, -1, -1};
@@ -124,8 +136,11 @@ class Scene {
   std::vector<BodyKind> kinds_;
   std::vector<int> objectOfBody_;
   std::vector<ObjectInfo> objects_;
+  std::vector<int> robotGeoms_;
   std::vector<GeomPair> selfPairs_, robotPairs_;
   std::vector<std::vector<GeomPair>> objectPairs_;
+  KinematicSubtree armSubtree_, baseSubtree_;
+  std::vector<KinematicSubtree> objectSubtrees_;
   std::unique_ptr<MotionCache> motionCache_;
 };
 

@@ -65,7 +65,7 @@ StateStatus Workspace::setState(const WorldState& state) {
 void Workspace::setArm(const ArmConfig& q) {
   state_.arm = q;
   for (int i = 0; i < kArmDof; ++i) data_->qpos[scene_->armQposAdr(i)] = q[i];
-  recompute();
+  recompute(scene_->armSubtree());
 }
 
 void Workspace::setBase(const Pose2& base) {
@@ -75,7 +75,7 @@ void Workspace::setBase(const Pose2& base) {
     data_->qpos[scene_->baseQposAdr(1)] = base.y;
     data_->qpos[scene_->baseQposAdr(2)] = base.yaw;
   }
-  recompute();
+  recompute(scene_->baseSubtree());
 }
 
 StateStatus Workspace::setHeld(const std::optional<std::string>& object) {
@@ -99,7 +99,7 @@ StateStatus Workspace::setObjectPose(std::string_view object, const Pose3& pose)
   if (idx == heldIndex_) return StateStatus::Ok;
   state_.objects[std::string(object)] = pose;
   writeObject(idx, pose);
-  recompute();
+  recompute(scene_->objectSubtree(idx));
   return StateStatus::Ok;
 }
 
@@ -115,13 +115,20 @@ void Workspace::writeObject(int index, const Pose3& pose) {
   q[6] = o.z();
 }
 
-void Workspace::recompute() {
-  mj_kinematics(scene_->model(), data_);
+void Workspace::recompute(const KinematicSubtree& moved) {
+  if (moved.supported())
+    moved.update(scene_->model(), data_);
+  else
+    mj_kinematics(scene_->model(), data_);
   if (heldIndex_ >= 0 && state_.held) {
     const Pose3 pose = toolPose() * state_.held->toolToObject;
     writeObject(heldIndex_, pose);
     state_.objects[state_.held->object] = pose;
-    mj_kinematics(scene_->model(), data_);
+    const KinematicSubtree& object = scene_->objectSubtree(heldIndex_);
+    if (object.supported())
+      object.update(scene_->model(), data_);
+    else
+      mj_kinematics(scene_->model(), data_);
   }
 }
 

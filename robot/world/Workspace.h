@@ -63,7 +63,9 @@ class Workspace {
 
  private:
   void writeObject(int index, const Pose3& pose);
-  void recompute();
+  // Recomputes the kinematics after a change of the joints of `moved` (the default, an empty subtree, means
+  // anything may have changed: a full mj_kinematics pass), then the held object's pose from the tool's.
+  void recompute(const KinematicSubtree& moved = KinematicSubtree());
 
   std::shared_ptr<const Scene> scene_;
   mjData* data_ = nullptr;

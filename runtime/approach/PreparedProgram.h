@@ -85,7 +85,7 @@ class PreparedProgram {
   std::vector<std::vector<rt::PersonalInstance>> instances_;
   std::vector<TaskActions> actions_;
   std::unique_ptr<Learner> learner_;
-  std::vector<int> dryRunTiers_{0, 1000};
+  std::vector<int> dryRunTiers_{0, 100, 1000};
 };
 
 }  // namespace cbtl::approach

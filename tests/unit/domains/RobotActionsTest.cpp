@@ -6,6 +6,7 @@
 #include "robot/actions/RobotActions.h"
 #include "robot/actions/StandardGrasps.h"
 #include "robot/actions/SurfaceGeometry.h"
+#include "robot/world/InverseKinematics.h"
 #include "tests/unit/domains/HomeTestSupport.h"
 
 #include <gtest/gtest.h>
@@ -237,3 +238,33 @@ TEST(StandardGrasps, TheSceneSiteIsTheDusterGrasp) {
   EXPECT_LT((inBody.position - expected.position).norm(), 1e-6);
   EXPECT_LT(inBody.orientation.angularDistance(expected.orientation), 1e-6);
 }
+
+namespace {
+
+// Every standard grasp of the duster has a collision-free IK solution from the main table's approach base, and
+// grasp() takes the duster at the standard grasp the tool is at (not at grasp 0).
+TEST_F(RobotActionsTest, EveryDusterGraspIsReachableAndGraspedWhereTheToolIs) {
+  ASSERT_TRUE(run("moveBase", {Value::vec({0.0, -0.1, 0.0})}).done());
+  ASSERT_EQ(actions::standardGraspCount("duster"), actions::kDusterGraspCount);
+  EXPECT_EQ(actions::standardGraspCount("book_0"), 0);
+  EXPECT_FALSE(actions::standardGraspTool(w, "duster", actions::kDusterGraspCount).has_value());
+  const world::WorldState start = w.workspace().state();
+  for (int k = 0; k < actions::kDusterGraspCount; ++k) {
+    ASSERT_EQ(w.workspace().setState(start), world::StateStatus::Ok);
+    const auto tool = actions::standardGraspTool(w, "duster", k);
+    ASSERT_TRUE(tool.has_value());
+    world::Rng ikRng(5);
+    const world::IkResult ik = world::solveIk(w.workspace(), *tool, start.arm, ikRng);
+    ASSERT_TRUE(ik.solved()) << "grasp " << k << ": " << world::toString(ik.status) << " " << ik.collision.first << "/"
+                             << ik.collision.second;
+    ASSERT_EQ(w.workspace().setState(start), world::StateStatus::Ok);
+    ASSERT_TRUE(run("moveArm", {Value::vec(std::vector<double>(ik.q.begin(), ik.q.end()))}).done()) << k;
+    const RobotActionResult r = run("grasp", {Value::name("duster")});
+    ASSERT_TRUE(r.done()) << "grasp " << k << ": " << r.detail;
+    const world::Pose3 held = w.workspace().state().held->toolToObject.inverse();
+    const world::Pose3 expected = actions::dusterToolInBody(k);
+    EXPECT_LT((held.position - expected.position).norm(), 2e-3) << "grasp " << k;
+  }
+}
+
+}  // namespace

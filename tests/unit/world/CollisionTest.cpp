@@ -90,6 +90,14 @@ TEST(WorldCollision, FastCheckAgreesWithFullScenePass) {
   st.base = {0.0, -0.1, 0.0};
   ASSERT_EQ(home.setState(st), StateStatus::Ok);
   expectMethodsAgree(home, rng, 1500);
+  // In front of the bookshelf, holding a book (the broad phase must keep the held object's neighbours).
+  st.base = {0.0, 0.3, 1.5708};
+  ASSERT_EQ(home.setState(st), StateStatus::Ok);
+  expectMethodsAgree(home, rng, 1500);
+  home.setArm(configs::kHome);
+  ASSERT_EQ(home.setObjectPose("book_4", home.toolPose() * Pose3::fromPosition({0, 0, 0.06})), StateStatus::Ok);
+  ASSERT_EQ(home.setHeld(std::string("book_4")), StateStatus::Ok);
+  expectMethodsAgree(home, rng, 1500);
 }
 
 TEST(WorldCollision, UnknownObjectInStateIsRejected) {

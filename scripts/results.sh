@@ -37,11 +37,13 @@ if [[ ${ROBOT:-0} == 1 ]]; then
     --approaches cbtl,no-personalization,free-explore,exploit-only,epsilon-greedy \
     --seeds 0..9 --steps 5000 --eval-every 500 --eval-tasks 10 --columns 0,500,1000,2000,3000,5000 \
     --out "$out/figure3-cleaning" --force -q
+  echo "-- Cleaning: what was learned (surfacePreferred vs the hidden user)"
+  python3 scripts/learned-vs-hidden.py cleaning "$out/figure3-cleaning"
   echo "== Figure 3: Books, 10 seeds, 5,000 steps, eval every 500 on 10 tasks (the paper's protocol)"
   "$cbtl" experiment domains/books/books.cbtl \
     --approaches cbtl,no-personalization,free-explore,exploit-only,epsilon-greedy \
     --seeds 0..9 --steps 5000 --eval-every 500 --eval-tasks 10 --columns 0,500,1000,2000,3000,5000 \
     --out "$out/figure3-books" --force -q
-  echo "-- Books: what CBTL learned (range of motion vs the hidden [0.1, 0.3] m, enjoyed book first)"
-  python3 scripts/books-learned.py "$out/figure3-books"
+  echo "-- Books: what was learned (range of motion vs the hidden [0.1, 0.3] m, enjoyed book first)"
+  python3 scripts/learned-vs-hidden.py books "$out/figure3-books"
 fi

@@ -214,8 +214,7 @@ RobotActionResult RobotActions::standard(world::World& w, const sim::ActionCall&
   }
   if (n == "handOver") {
     if (auto e = checkArguments(call, {}); !e.empty()) return illFormed(e);
-    if (w.workspace().heldObject() < 0) return failed(ActionStatus::NotHolding, "nothing to hand over");
-    return from(world::builtins::say(w, "Here you go!"));
+    return handOver(w);
   }
   if (n == "wipe") {
     if (auto e = checkArguments(call, {kNameArg, kSe2Arg}); !e.empty()) return illFormed(e);
@@ -278,6 +277,23 @@ RobotActionResult RobotActions::grasp(world::World& w, const std::string& body, 
   r.armPath.insert(r.armPath.end(), lift.armPath.begin(), lift.armPath.end());
   restore.commit();
   return r;
+}
+
+RobotActionResult RobotActions::handOver(world::World& w) const {
+  world::Workspace& ws = w.workspace();
+  if (ws.heldObject() < 0) return failed(ActionStatus::NotHolding, "nothing to hand over");
+  // When the user takes the object the gripper opens where it is, and the arm then moves on from there: that
+  // state must be free too (the object stays attached for the check; its contacts with the gripper never count).
+  const world::WorldState holding = ws.state();
+  world::WorldState open = holding;
+  open.gripper = 1.0;
+  world::CollisionReport opened;
+  if (ws.setState(open) == world::StateStatus::Ok) opened = world::checkRobotCollisions(ws);
+  ws.setState(holding);
+  if (!opened.free())
+    return failed(ActionStatus::Blocked, fmt::format("the gripper could not open to let go of {}: {} would touch {}",
+                                                     holding.held->object, opened.first, opened.second));
+  return from(world::builtins::say(w, "Here you go!"));
 }
 
 RobotActionResult RobotActions::release(world::World& w) const {

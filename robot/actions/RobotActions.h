@@ -57,8 +57,11 @@
 //                               unless it is already within 1 mm / 0.01 rad of it, releases the body settled
 //                               exactly at `pose` (z snapped onto the face), opens the gripper and retracts the
 //                               tool kRetract along its -z (NoIk / NoPath if that is impossible).
-//   handOver()                  NotHolding if empty-handed; otherwise holds the object out where the tool is
-//                               and says "Here you go!". Whether the user takes it is the domain's business.
+//   handOver()                  NotHolding if empty-handed; Blocked when the gripper could not open where it
+//                               is (an open finger would touch the scenery or the user: the user may take the
+//                               object, and the gripper opens to let go). Otherwise holds the object out where
+//                               the tool is and says "Here you go!". Whether the user takes it is the domain's
+//                               business.
 //   wipe(surface, base: SE2)    WipeSweep.h sweepSurface.
 //   say(utterance)              recorded in World::utterances().
 //   waitForUser(signal)         nothing happens in the world; domains with a user interpret the signal.
@@ -126,6 +129,7 @@ class RobotActions {
   RobotActionResult standard(world::World& w, const sim::ActionCall& call, ExecutionMode mode) const;
   RobotActionResult grasp(world::World& w, const std::string& body, ExecutionMode mode) const;
   RobotActionResult release(world::World& w) const;
+  RobotActionResult handOver(world::World& w) const;
   RobotActionResult place(world::World& w, const std::string& surface, const world::Pose3& pose,
                           ExecutionMode mode) const;
 

@@ -6,12 +6,14 @@
 #include "robot/actions/RobotActions.h"
 #include "robot/actions/StandardGrasps.h"
 #include "robot/actions/SurfaceGeometry.h"
+#include "robot/world/Collision.h"
 #include "robot/world/InverseKinematics.h"
 #include "tests/unit/domains/HomeTestSupport.h"
 
 #include <gtest/gtest.h>
 
 #include <numbers>
+#include <optional>
 #include <random>
 
 namespace {
@@ -202,6 +204,39 @@ TEST_F(RobotActionsTest, HandOverSaysHereYouGo) {
   ASSERT_FALSE(w.utterances().empty());
   EXPECT_EQ(w.utterances().back(), "Here you go!");
   EXPECT_TRUE(w.workspace().state().held.has_value());  // the domain decides whether the user takes it
+}
+
+// The user may take the object, and the gripper opens to let go: a handover where an open finger would touch
+// something is refused (the runtime's dry run then rejects the plan instead of the arm being stuck afterwards).
+TEST_F(RobotActionsTest, HandOverWhereTheGripperCannotOpenIsBlocked) {
+  holdBook(world::configs::kHome);
+  world::Workspace& ws = w.workspace();
+  world::WorldState closed = ws.state();
+  closed.gripper = 0.0;
+  ASSERT_EQ(ws.setState(closed), world::StateStatus::Ok);
+  // book_0 stands beside the held book, 1 mm from it, where the right finger goes when the gripper opens: in the
+  // end effector's frame the closed finger spans x in [-0.017, -0.001] (inside the held book, which spans
+  // [-0.02, 0.02]), the open one [-0.038, -0.022]; book_0 spans [-0.061, -0.021], its long side along y, its
+  // 0.10 m side from z = 0.11 to 0.21 (above the gripper's base, which ends at z = 0.095).
+  const world::Pose3 ee = ws.bodyPose(ws.scene().bodyId("end_effector_link"));
+  const world::Pose3 local{Eigen::Vector3d(-0.041, 0.0, 0.16),
+                           Eigen::Quaterniond(Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitX()))};
+  ASSERT_EQ(ws.setObjectPose("book_0", ee * local), world::StateStatus::Ok);
+  ASSERT_TRUE(world::checkRobotCollisions(ws).free())
+      << world::checkRobotCollisions(ws).first << "/" << world::checkRobotCollisions(ws).second;
+  const world::WorldState before = ws.state();
+  const RobotActionResult r = run("handOver", {});
+  EXPECT_EQ(r.status, ActionStatus::Blocked) << r.detail;
+  EXPECT_NE(r.detail.find("could not open"), std::string::npos) << r.detail;
+  EXPECT_NE(r.detail.find("book_0"), std::string::npos) << r.detail;
+  EXPECT_EQ(ws.state().gripper, before.gripper);  // nothing changed
+  EXPECT_EQ(ws.state().arm, before.arm);
+  ASSERT_TRUE(ws.state().held.has_value());
+  // Moved 3 cm further out, book_0 leaves room for the finger: the handover goes ahead.
+  ASSERT_EQ(ws.setObjectPose("book_0", ee * world::Pose3{Eigen::Vector3d(-0.071, 0.0, 0.16), local.orientation}),
+            world::StateStatus::Ok);
+  const RobotActionResult free = run("handOver", {});
+  EXPECT_TRUE(free.done()) << free.detail;
 }
 
 TEST_F(RobotActionsTest, SayWaitAndGripper) {

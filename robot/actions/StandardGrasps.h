@@ -33,7 +33,7 @@ inline constexpr int kDusterGraspPoints = 5;         // points of the pole the d
 inline constexpr int kDusterGraspCount = 2 * kDusterGraspPoints;
 
 // The tool frame in the duster's body frame at standard grasp `k` (0 <= k < kDusterGraspCount): the pole point
-// 0.32, 0.26, 0.20, 0.14 or 0.36 m from the head centre (k mod 5; grasp 0 at the scene's duster_grasp site,
+// 0.32, 0.26, 0.20, 0.16 or 0.36 m from the head centre (k mod 5; grasp 0 at the scene's duster_grasp site,
 // (0, -0.32, -0.03) in home.xml), the tool leaned kDusterGraspTilt about the pole, and for k >= 5 the fingers
 // turned kDusterGraspTwist about the tool's z (still closing across the pole).
 world::Pose3 dusterToolInBody(int k = 0);

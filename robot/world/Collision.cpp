@@ -97,8 +97,7 @@ struct MovingBound {
   mjtNum radius = 0;
 };
 
-template <typename Geoms>
-void growBound(const mjModel* m, const mjData* d, const Geoms& geoms, MovingBound& b) {
+void growBound(const mjModel* m, const mjData* d, const std::vector<int>& geoms, MovingBound& b) {
   for (int g : geoms) {
     const mjtNum* x = d->geom_xpos + 3 * g;
     const mjtNum dx = x[0] - b.centre[0], dy = x[1] - b.centre[1], dz = x[2] - b.centre[2];

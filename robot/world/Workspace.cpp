@@ -116,19 +116,18 @@ void Workspace::writeObject(int index, const Pose3& pose) {
 }
 
 void Workspace::recompute(const KinematicSubtree& moved) {
-  if (moved.supported())
-    moved.update(scene_->model(), data_);
-  else
-    mj_kinematics(scene_->model(), data_);
+  auto update = [this](const KinematicSubtree& tree) {
+    if (tree.supported())
+      tree.update(scene_->model(), data_);
+    else
+      mj_kinematics(scene_->model(), data_);
+  };
+  update(moved);
   if (heldIndex_ >= 0 && state_.held) {
     const Pose3 pose = toolPose() * state_.held->toolToObject;
     writeObject(heldIndex_, pose);
     state_.objects[state_.held->object] = pose;
-    const KinematicSubtree& object = scene_->objectSubtree(heldIndex_);
-    if (object.supported())
-      object.update(scene_->model(), data_);
-    else
-      mj_kinematics(scene_->model(), data_);
+    update(scene_->objectSubtree(heldIndex_));
   }
 }
 

@@ -125,6 +125,7 @@ personalClause
     | MODEL modelFactor (STAR modelFactor)* (PER ident (COMMA ident)*)? SEMI    # modelClause
     | ACCEPT expr SEMI                                                          # acceptClause
     | FALLBACK expr SEMI                                                        # fallbackClause
+    | EXPLORE ident SEMI                                                        # exploreClause
     | IF expr SEMI                                                              # guardClause
     | LEARN ident LPAREN (learnBinder (COMMA learnBinder)*)? RPAREN
             ARROW_FAT labelItem (COMMA labelItem)* (IF expr)? SEMI              # learnClause
@@ -237,6 +238,7 @@ MODEL    : 'model' ;
 PER      : 'per' ;
 ACCEPT   : 'accept' ;
 FALLBACK : 'fallback' ;
+EXPLORE  : 'explore' ;
 LEARN    : 'learn' ;
 GLOB     : 'glob' ;
 REGEX    : 'regex' ;

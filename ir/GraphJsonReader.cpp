@@ -463,6 +463,12 @@ class GraphReader {
     g.guard = optExpr(n, "guard");
     g.accept = n.number("accept");
     g.fallback = n.number("fallback");
+    // Optional: graphs written before the clause existed explore anywhere.
+    const std::string explore = n.optText("explore");
+    if (explore != "" && explore != "anywhere" && explore != "accepted") {
+      fail(GraphReadOutcome::UnknownName, n.at("explore"), fmt::format("unknown exploration mode '{}'", explore));
+    }
+    g.exploreAccepted = explore == "accepted";
     eachIn(n, "learn", [&](const Node& r) { g.learnRules.push_back(learnRule(r)); });
     g.span = span(n);
     return g;

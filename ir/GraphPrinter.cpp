@@ -213,7 +213,8 @@ std::string toText(const ConstraintGraph& g) {
       o << "\n";
     }
     if (gen.guard) o << "  if " << exprText(*gen.guard, g) << "\n";
-    o << "  accept " << num(gen.accept) << ", fallback " << num(gen.fallback) << "\n";
+    o << "  accept " << num(gen.accept) << ", fallback " << num(gen.fallback)
+      << (gen.exploreAccepted ? ", explore accepted" : "") << "\n";
     for (const auto& r : gen.learnRules) {
       o << "  learn " << r.event << "(";
       for (std::size_t i = 0; i < r.binders.size(); ++i) o << (i ? ", " : "") << r.binders[i];
@@ -394,6 +395,7 @@ std::string toJson(const ConstraintGraph& g) {
                                {"guard", optExpr(gen.guard)},
                                {"accept", gen.accept},
                                {"fallback", gen.fallback},
+                               {"explore", gen.exploreAccepted ? "accepted" : "anywhere"},
                                {"learn", rules},
                                {"span", spanJson(gen.span)}});
   }

@@ -350,6 +350,8 @@ struct PersonalDecl : Decl {
   std::vector<SourceRange> modelRanges;  // one per `model` clause
   std::vector<ExprPtr> accepts;
   std::vector<ExprPtr> fallbacks;
+  // `explore accepted;` / `explore anywhere;` (the mode's name and where it was written); at most one.
+  std::vector<Ident> explores;
   // `if EXPR;` guards over the parameters: where one is false the constraint does not apply (holds, with
   // no uncertainty). Several guards are conjoined.
   std::vector<ExprPtr> guards;

@@ -204,6 +204,8 @@ std::unique_ptr<Decl> AstBuilder::personal(P::PersonalDeclContext* ctx) {
       d->accepts.push_back(expr(a->expr()));
     } else if (auto* fb = dynamic_cast<P::FallbackClauseContext*>(clause)) {
       d->fallbacks.push_back(expr(fb->expr()));
+    } else if (auto* ex = dynamic_cast<P::ExploreClauseContext*>(clause)) {
+      d->explores.push_back(ident(ex->ident()));
     } else if (auto* gc = dynamic_cast<P::GuardClauseContext*>(clause)) {
       d->guards.push_back(expr(gc->expr()));
     } else if (auto* l = dynamic_cast<P::LearnClauseContext*>(clause)) {

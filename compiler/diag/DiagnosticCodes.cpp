@@ -177,10 +177,13 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
        "A personalized constraint generator needs at least one parameter: its arity is the number of\n"
        "parameters, and a constraint is made for each matching tuple of variables.\nFix: add parameters."},
       {"E0414", "repeated clause",
-       "A generator has more than one 'accept', 'fallback' or 'when' clause.\nFix: keep one."},
+       "A generator has more than one 'accept', 'fallback', 'explore' or 'when' clause.\nFix: keep one."},
       {"E0415", "parameter type cannot be a variable's",
        "A generator parameter's type must be a type that CSP variables can have (real, int, bool, text,\n"
        "vec, SE2, SE3, Conf, an enum or an item type).\nFix: change the type."},
+      {"E0416", "unknown exploration mode",
+       "A generator's 'explore' clause names a mode other than 'accepted' (CBTL explores only where the\n"
+       "model accepts) or 'anywhere' (the default).\nFix: write one of the two."},
       // --- E05xx: skills and tasks ---------------------------------------------------------------
       {"E0501", "skill used twice",
        "A task runs the same skill twice without naming the instances, so their variables would clash.\n"

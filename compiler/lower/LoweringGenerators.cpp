@@ -53,6 +53,7 @@ void Lowerer::lowerGenerator(const PersonalDecl& p) {
   }
   if (!p.accepts.empty()) g.accept = p.accepts[0]->number;
   if (!p.fallbacks.empty()) g.fallback = p.fallbacks[0]->number;
+  g.exploreAccepted = !p.explores.empty() && p.explores[0].name == "accepted";
   for (const auto& rule : p.learnRules) g.learnRules.push_back(lowerLearnRule(p, rule, none));
   warnIfUnmatched(p, g);
   g_.generators.push_back(std::move(g));

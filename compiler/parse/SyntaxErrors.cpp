@@ -138,6 +138,7 @@ bool isDeclarationKeyword(std::size_t type) {
     case CbtlParser::LEARN:
     case CbtlParser::ACCEPT:
     case CbtlParser::FALLBACK:
+    case CbtlParser::EXPLORE:
     case CbtlParser::DO:
     case CbtlParser::RUN:
     case CbtlParser::RBRACE:

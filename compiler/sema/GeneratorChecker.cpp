@@ -49,6 +49,7 @@ class GenChecker {
     checkModel(g);
     checkProbability(g.accepts, "accept", /*allowZero=*/false);
     checkProbability(g.fallbacks, "fallback", /*allowZero=*/true);
+    checkExplore(g);
     for (auto& rule : g.learnRules) checkRule(g, rule);
     if (g.learnRules.empty()) {
       diags_.warning("W0402", g.name.range,
@@ -256,6 +257,22 @@ class GenChecker {
       if (!literal || e->number > 1 || e->number < 0 || (!allowZero && e->number == 0)) {
         diags_.error("E0411", e->range,
                      fmt::format("'{}' takes a number in {}", what, allowZero ? "[0, 1]" : "(0, 1]"));
+      }
+    }
+  }
+
+  void checkExplore(const PersonalDecl& g) {
+    for (std::size_t i = 0; i < g.explores.size(); ++i) {
+      const Ident& mode = g.explores[i];
+      if (i > 0) {
+        diags_.error("E0414", mode.range, "a generator has one 'explore' clause");
+        continue;
+      }
+      if (mode.name != "accepted" && mode.name != "anywhere") {
+        Diagnostic& d = diags_.error("E0416", mode.range, fmt::format("unknown exploration mode '{}'", mode.name));
+        const std::string guess = closestMatch(mode.name, {"accepted", "anywhere"});
+        d.help(guess.empty() ? "write 'explore accepted;' or 'explore anywhere;'"
+                             : fmt::format("did you mean '{}'?", guess));
       }
     }
   }

@@ -33,6 +33,11 @@ double Factor::probability(double feature) const {
   return 0.5;
 }
 
+double Factor::posterior(double feature) const {
+  if (const auto* i = std::get_if<IntervalModel>(&model_)) return i->posterior(feature);
+  return probability(feature);
+}
+
 double Factor::probability(const std::string& key) const {
   if (const auto* t = std::get_if<TableModel>(&model_)) return t->probability(key);
   return 0.5;

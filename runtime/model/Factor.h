@@ -34,7 +34,10 @@ class Factor {
   bool isTable() const { return std::holds_alternative<TableModel>(model_); }
   bool isText() const { return std::holds_alternative<TextFactor>(model_); }
 
-  double probability(double feature) const;          // interval / threshold
+  double probability(double feature) const;  // interval / threshold
+  // interval: the full posterior predictive for the entropy of exploration (IntervalModel::posterior);
+  // threshold: probability()
+  double posterior(double feature) const;
   double probability(const std::string& key) const;  // table
   // text: see TextFactor::probability (`available` is the subject's domain for relative scaling)
   double probability(const textpref::Item& subject, std::span<const textpref::Item> available) const;

@@ -31,9 +31,21 @@ void IntervalModel::refit() {
     }
   }
   hasPositive_ = minP <= maxP;
+  gapEnds_.clear();
+  gapMass_ = 0;
   if (!hasPositive_) {
     x1_ = x2_ = lo_;
     x3_ = x4_ = hi_;
+    gapEnds_.push_back(lo_);
+    for (const auto& [x, y] : data_) {
+      if (lo_ < x && x < hi_) gapEnds_.push_back(x);
+    }
+    gapEnds_.push_back(hi_);
+    std::sort(gapEnds_.begin() + 1, gapEnds_.end() - 1);
+    for (std::size_t g = 0; g + 1 < gapEnds_.size(); ++g) {
+      const double w = gapEnds_[g + 1] - gapEnds_[g];
+      gapMass_ += w * w / 2;
+    }
     return;
   }
   x2_ = std::clamp(minP, lo_, hi_);
@@ -65,6 +77,16 @@ double IntervalModel::probability(double x) const {
   else
     pb = (x4_ - x) / (x4_ - x3_);
   return std::clamp(pa * pb, 0.0, 1.0);
+}
+
+double IntervalModel::posterior(double x) const {
+  if (hasPositive_ || !(gapMass_ > 0)) return probability(x);
+  if (!(lo_ < x && x < hi_)) return 0;
+  // The gap holding x: the first end above it, and the one before.
+  const auto above = std::upper_bound(gapEnds_.begin(), gapEnds_.end(), x);
+  if (above == gapEnds_.begin() || above == gapEnds_.end()) return 0;
+  const double u = *(above - 1), v = *above;
+  return std::clamp((x - u) * (v - x) / gapMass_, 0.0, 1.0);
 }
 
 }  // namespace cbtl::model

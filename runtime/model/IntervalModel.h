@@ -5,7 +5,16 @@
 // predictive is exact: P(holds | x) = P(a <= x) * P(b >= x) with a ~ U[x1, x2], b ~ U[x3, x4], where
 // x2 = min P, x3 = max P, x1 = the largest negative below x2 (else lo), x4 = the smallest negative above x3
 // (else hi) — a trapezoid. Before the first positive the model predicts 1 on [lo, hi] and 0 outside (as the
-// reference does: no uncertainty until something is liked).
+// reference does: the constraint is optimistic until something is liked).
+//
+// posterior() is the full posterior predictive under a uniform prior over the intervals lo <= a <= b <= hi,
+// which the paper uses for the entropy of active learning (its appendix: maximum-likelihood values for the
+// constraint, the full posterior for entropy). Once a positive is known it equals probability() (the
+// trapezoid is that posterior). Before, it is what the optimistic constraint hides: with negatives
+// n_1 < ... < n_k splitting [lo, hi] into gaps [u, v], the interval lies inside one gap, so
+// P(x) = (x - u)(v - x) / sum over gaps of (v - u)^2 / 2 for x in gap [u, v]: 0 at every negative, at most
+// 1/2 (the middle of [lo, hi] with no data). Without it CBTL has no uncertainty to follow before its first
+// positive and, on a robot, repeats a refused handover spot.
 //
 // Differences from the reference, on purpose: the hypothesis is closed (x = hi is inside the known range,
 // the reference's half-open test made the top of the range impossible); negatives lying between positives
@@ -29,6 +38,7 @@ class IntervalModel {
   void observeAll(std::span<const std::pair<double, bool>> points);
   void reset();
   double probability(double x) const;
+  double posterior(double x) const;
 
   double lo() const { return lo_; }
   double hi() const { return hi_; }
@@ -47,6 +57,8 @@ class IntervalModel {
   double x1_, x2_, x3_, x4_;
   bool hasPositive_ = false;
   std::vector<std::pair<double, bool>> data_;
+  std::vector<double> gapEnds_;  // before the first positive: lo, the negatives inside (lo, hi) sorted, hi
+  double gapMass_ = 0;           // sum over gaps of (v - u)^2 / 2
 };
 
 }  // namespace cbtl::model

@@ -24,11 +24,24 @@ Csp makeCsp(const rt::Program& program, std::uint32_t taskIndex, const std::vect
           {ConstraintKind::Personal, i, (std::uint64_t{1} << 63) | (std::uint64_t{taskIndex} << 32) | i});
     }
   }
-  for (std::uint32_t c : csp.task->constraints) csp.constraints.push_back({ConstraintKind::Hard, c, c});
-  if (cost == CostKind::Entropy) {
-    for (std::uint32_t i = 0; i < instances.size(); ++i) csp.entropyTerms.push_back(i);
+  // CBTL's exploration keeps the constraints of generators that explore only where they accept.
+  if (personal == PersonalMode::Exclude && cost == CostKind::Entropy) {
+    for (std::uint32_t i = 0; i < instances.size(); ++i) {
+      if (!program.graph().generators.at(instances[i].generator).exploreAccepted) continue;
+      csp.constraints.push_back(
+          {ConstraintKind::Personal, i, (std::uint64_t{1} << 63) | (std::uint64_t{taskIndex} << 32) | i});
+    }
   }
-  if (cost == CostKind::Declared && csp.task->costs.empty()) csp.cost = CostKind::None;
+  for (std::uint32_t c : csp.task->constraints) csp.constraints.push_back({ConstraintKind::Hard, c, c});
+  // Exploiting without a declared cost, the robot does what the user most likely welcomes: among the solutions the
+  // personalized constraints accept (P >= accept), the one with the highest P; not merely the first (on a robot the
+  // first is often a remembered value at the edge of what the model accepts, right where it is least sure).
+  if (cost == CostKind::Declared && csp.task->costs.empty()) {
+    csp.cost = personal == PersonalMode::Include && !instances.empty() ? CostKind::Likelihood : CostKind::None;
+  }
+  if (csp.cost == CostKind::Entropy || csp.cost == CostKind::Likelihood) {
+    for (std::uint32_t i = 0; i < instances.size(); ++i) csp.scoredInstances.push_back(i);
+  }
   csp.samplers = csp.task->samplers;
   return csp;
 }

@@ -17,9 +17,11 @@
 namespace cbtl::solver {
 
 enum class CostKind {
-  None,      // first feasible assignment wins
-  Entropy,   // CBTL exploration: minimize 1 - mean Bernoulli entropy (bits) of the personalized constraints
-  Declared,  // the task's `minimize` / `maximize` expressions, summed
+  None,        // first feasible assignment wins
+  Entropy,     // CBTL exploration: minimize 1 - mean Bernoulli entropy (bits) of the personalized posteriors
+  Declared,    // the task's `minimize` / `maximize` expressions, summed
+  Likelihood,  // exploiting a task that declares no cost: minimize 1 - the product of the personalized
+               // constraints' P(holds), i.e. the most likely welcome solution; the search stops at P = 1
 };
 
 enum class ConstraintKind : std::uint8_t {
@@ -44,9 +46,9 @@ struct Csp {
   std::vector<double> observation;
   std::vector<double> initial;
 
-  std::vector<ConstraintRef> constraints;   // checked in this order (personalized first)
-  std::vector<std::uint32_t> entropyTerms;  // instance indices entering the entropy cost
-  std::vector<std::uint32_t> samplers;      // program sampler indices
+  std::vector<ConstraintRef> constraints;      // checked in this order (personalized first)
+  std::vector<std::uint32_t> scoredInstances;  // instance indices the entropy or likelihood cost reads
+  std::vector<std::uint32_t> samplers;         // program sampler indices
   CostKind cost = CostKind::None;
 
   // Robot domains: the task's plan, evaluated skill by skill and dry-run while the solver searches
@@ -57,7 +59,9 @@ struct Csp {
   std::vector<std::uint32_t> constraintStage, samplerStage, instanceStage;
 };
 
-// Which personalized constraints a CSP contains: none (hard constraints only) or all of the task's.
+// Which personalized constraints a CSP contains: none (hard constraints only) or all of the task's. One exception:
+// with the entropy cost (CBTL's exploration), Exclude keeps the instances of generators that explore only where
+// they accept (`explore accepted`, ir::Generator::exploreAccepted).
 enum class PersonalMode { Exclude, Include };
 
 // Builds a CSP for `task`. `observation` is laid out as Program::observationSlots() says.

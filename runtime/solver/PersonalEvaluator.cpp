@@ -90,7 +90,7 @@ std::string PersonalEvaluator::key(std::uint32_t instance, const rt::EvalContext
 PersonalValue PersonalEvaluator::evaluate(std::uint32_t instance, const rt::EvalContext& ctx) {
   const auto& inst = instances_[instance];
   const auto& pool = program_.pool();
-  if (inst.guard && !pool.evalBool(*inst.guard, ctx)) return PersonalValue{false, 1.0};
+  if (inst.guard && !pool.evalBool(*inst.guard, ctx)) return PersonalValue{false, 1.0, 1.0};
   const auto& state = user_.generator(inst.generator);
   Cache& c = cache_[instance];
   bool stale = c.factors == nullptr || c.version != state.version();
@@ -110,22 +110,28 @@ PersonalValue PersonalEvaluator::evaluate(std::uint32_t instance, const rt::Eval
     c.factors = &state.factors(key(instance, ctx));
     c.version = state.version();
   }
-  double p = 1.0;
+  double p = 1.0, posterior = 1.0;
   const auto& factors = *c.factors;
   for (std::size_t k = 0; k < factors.size(); ++k) {
     const std::uint32_t feature = inst.features[k];
     if (factors[k].isTable()) {
       if (feature == UINT32_MAX) continue;
       pool.eval(feature, ctx, v);
-      p *= factors[k].probability(program_.render(inst.featureTypes[k], v));
+      const double pk = factors[k].probability(program_.render(inst.featureTypes[k], v));
+      p *= pk;
+      posterior *= pk;
     } else if (factors[k].isText()) {
       if (feature == UINT32_MAX || k >= c.text.size()) continue;
-      p *= textProbability(inst, k, factors[k], c.text[k], pool.evalScalar(feature, ctx), ctx);
-    } else {
-      p *= feature == UINT32_MAX ? 1.0 : factors[k].probability(pool.evalScalar(feature, ctx));
+      const double pk = textProbability(inst, k, factors[k], c.text[k], pool.evalScalar(feature, ctx), ctx);
+      p *= pk;
+      posterior *= pk;
+    } else if (feature != UINT32_MAX) {
+      const double x = pool.evalScalar(feature, ctx);
+      p *= factors[k].probability(x);
+      posterior *= factors[k].posterior(x);
     }
   }
-  return PersonalValue{true, p};
+  return PersonalValue{true, p, posterior};
 }
 
 bool PersonalEvaluator::holds(std::uint32_t instance, const PersonalValue& v) const {

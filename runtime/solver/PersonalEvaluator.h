@@ -27,7 +27,8 @@ namespace cbtl::solver {
 
 struct PersonalValue {
   bool applies = true;
-  double probability = 1.0;
+  double probability = 1.0;  // P(holds) that the constraint thresholds (the model's maximum-likelihood reading)
+  double posterior = 1.0;    // P(holds) under the full posterior, for the entropy of exploration (Factor.h)
 };
 
 class PersonalEvaluator {

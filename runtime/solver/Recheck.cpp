@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
 namespace cbtl::solver {
 namespace {
@@ -102,15 +103,16 @@ RecheckResult recheck(const Csp& csp, const std::vector<double>& assignment) {
                                          rt::Program::where(graph.constraints[c].span)));
     }
   }
-  const bool personal =
-      std::any_of(csp.constraints.begin(), csp.constraints.end(), [](const ConstraintRef& c) { return c.personal(); });
-  if (personal) {
-    PersonalEvaluator fresh(program, *csp.instances, *csp.user);  // a new evaluator: nothing cached
-    for (std::uint32_t i = 0; i < csp.instances->size(); ++i) {
-      ++r.constraintsChecked;
-      if (!enter(i < csp.instanceStage.size() ? csp.instanceStage[i] : 0) || !fresh.holds(i, fresh.evaluate(i, ctx))) {
-        r.violations.push_back(fmt::format("personalized constraint '{}' does not hold", (*csp.instances)[i].name));
-      }
+  // The personalized constraints the CSP enforces: all of them when it personalizes, and in CBTL's exploration
+  // those whose generator explores only where it accepts (Csp.h).
+  std::optional<PersonalEvaluator> fresh;  // a new evaluator: nothing cached
+  for (const ConstraintRef& c : csp.constraints) {
+    if (!c.personal()) continue;
+    if (!fresh) fresh.emplace(program, *csp.instances, *csp.user);
+    const std::uint32_t i = c.index;
+    ++r.constraintsChecked;
+    if (!enter(i < csp.instanceStage.size() ? csp.instanceStage[i] : 0) || !fresh->holds(i, fresh->evaluate(i, ctx))) {
+      r.violations.push_back(fmt::format("personalized constraint '{}' does not hold", (*csp.instances)[i].name));
     }
   }
   if (csp.plan != nullptr) {

@@ -56,6 +56,7 @@ SolveRun::SolveRun(const SolverOptions& options, rt::Rng& rng, std::map<std::uin
   for (std::size_t i = 0; i < constraintCount_; ++i) result_.constraints[i].ref = csp.constraints[i];
   attachMemories(memory);
   userSamplers_ = csp.samplers.size();
+  buildDependents();
   order_.resize(userSamplers_ + memorySamplers_.size());
   swaps_.resize(order_.size());
   for (std::uint32_t k = 0; k < order_.size(); ++k) order_[k] = k;
@@ -81,7 +82,7 @@ void SolveRun::buildIndexTables() {
   instanceCount_ = csp_.instances->size();
   Rows termVars;
   for (std::size_t t = 0; t < instanceCount_; ++t) {
-    if (std::find(csp_.entropyTerms.begin(), csp_.entropyTerms.end(), t) != csp_.entropyTerms.end()) {
+    if (std::find(csp_.scoredInstances.begin(), csp_.scoredInstances.end(), t) != csp_.scoredInstances.end()) {
       for (ir::VarId v : (*csp_.instances)[t].hyperedge) termVars.items.push_back(v);
     }
     termVars.endRow();
@@ -95,6 +96,67 @@ void SolveRun::buildIndexTables() {
     for (std::size_t i = 0; i < constraintCount_; ++i)
       if (csp_.constraints[i].kind == ConstraintKind::PlanExecutes) planIndex_ = i;
   }
+}
+
+void SolveRun::buildDependents() {
+  // Sampler k guards its proposals with the CSP's personalized constraints on its variables alone. Sampler j
+  // depends on sampler k when it reads a variable that k, or a sampler depending on k, writes.
+  const auto& samplers = program_.samplers();
+  const auto writesReadBy = [&](std::uint32_t from, std::uint32_t to) {
+    const auto& writes = samplers[csp_.samplers[from]].writes;
+    const auto& reads = samplers[csp_.samplers[to]].source->reads;
+    return std::any_of(reads.begin(), reads.end(),
+                       [&](ir::VarId v) { return std::find(writes.begin(), writes.end(), v) != writes.end(); });
+  };
+  dependents_.assign(userSamplers_, {});
+  guards_.assign(userSamplers_, {});
+  for (std::uint32_t k = 0; k < userSamplers_; ++k) {
+    const auto& writes = samplers[csp_.samplers[k]].writes;
+    for (std::uint32_t i = 0; i < constraintCount_; ++i) {
+      if (!csp_.constraints[i].personal()) continue;
+      const auto& edge = (*csp_.instances)[csp_.constraints[i].index].hyperedge;
+      if (std::all_of(edge.begin(), edge.end(),
+                      [&](ir::VarId v) { return std::find(writes.begin(), writes.end(), v) != writes.end(); })) {
+        guards_[k].push_back(i);
+      }
+    }
+    std::vector<std::uint8_t> in(userSamplers_, 0);
+    std::vector<std::uint32_t> frontier = {k};
+    while (!frontier.empty()) {
+      const std::uint32_t f = frontier.back();
+      frontier.pop_back();
+      for (std::uint32_t j = 0; j < userSamplers_; ++j) {
+        if (j == k || in[j] || !writesReadBy(f, j)) continue;
+        in[j] = 1;
+        frontier.push_back(j);
+      }
+    }
+    // Redraw order: a dependent after the dependents it reads from (declaration order among equals, and for
+    // samplers that read each other's variables, which no order can satisfy).
+    std::vector<std::uint32_t>& order = dependents_[k];
+    while (order.size() < static_cast<std::size_t>(std::count(in.begin(), in.end(), 1))) {
+      std::uint32_t pick = UINT32_MAX, firstLeft = UINT32_MAX;
+      for (std::uint32_t j = 0; j < userSamplers_ && pick == UINT32_MAX; ++j) {
+        if (in[j] != 1) continue;
+        if (firstLeft == UINT32_MAX) firstLeft = j;
+        bool waits = false;
+        for (std::uint32_t i = 0; i < userSamplers_ && !waits; ++i) waits = i != j && in[i] == 1 && writesReadBy(i, j);
+        if (!waits) pick = j;
+      }
+      if (pick == UINT32_MAX) pick = firstLeft;
+      in[pick] = 2;
+      order.push_back(pick);
+    }
+  }
+}
+
+bool SolveRun::proposalAccepted(std::uint32_t k) {
+  // Judged in the state the sampler drew in (runSampler): a filter on proposals; check() decides.
+  for (std::uint32_t i : guards_[k]) {
+    const std::uint32_t instance = csp_.constraints[i].index;
+    if (!personal_.holds(instance, personal_.evaluate(instance, ctx_))) return false;
+  }
+  return true;
 }
 
 SolveRun::Rows SolveRun::dirtyRows(const Rows& own, const std::vector<std::uint32_t>& stages) const {
@@ -225,10 +287,11 @@ void SolveRun::resolveDeferredTies(std::vector<double>& best) {
 }
 
 double SolveRun::costOf() {
-  if (csp_.cost == CostKind::Entropy) {
-    double sum = 0;
+  if (csp_.cost == CostKind::Entropy || csp_.cost == CostKind::Likelihood) {
+    const bool entropy = csp_.cost == CostKind::Entropy;
+    double sum = 0, product = 1;
     std::size_t active = 0;
-    for (std::uint32_t t : csp_.entropyTerms) {
+    for (std::uint32_t t : csp_.scoredInstances) {
       if (termDirty_[t]) {
         if (enter(t < csp_.instanceStage.size() ? csp_.instanceStage[t] : 0)) {
           termValue_[t] = personal_.evaluate(t, ctx_);
@@ -239,9 +302,14 @@ double SolveRun::costOf() {
         termDirty_[t] = 0;
       }
       if (!termValue_[t].applies) continue;
-      sum += model::bernoulliEntropyBits(termValue_[t].probability);
+      if (entropy) {
+        sum += model::bernoulliEntropyBits(termValue_[t].posterior);
+      } else {
+        product *= termValue_[t].probability;
+      }
       ++active;
     }
+    if (!entropy) return 1.0 - product;
     return active == 0 ? 1.0 : 1.0 - sum / static_cast<double>(active);
   }
   if (csp_.cost == CostKind::Declared) {
@@ -367,6 +435,10 @@ bool SolveRun::move() {
     std::swap(order_[pos], order_[swaps_[pos]]);
     const std::uint32_t k = order_[pos];
     moved = k < userSamplers_ ? runSampler(k) : runMemorySampler(memorySamplers_[k - userSamplers_]);
+    if (moved && k < userSamplers_) {
+      for (std::uint32_t draw = 1; draw < kGuidedDraws && !proposalAccepted(k); ++draw) runSampler(k);
+      for (std::uint32_t j : dependents_[k]) runSampler(j);
+    }
   }
   while (pos-- > 0) std::swap(order_[pos], order_[swaps_[pos]]);
   return moved;
@@ -384,8 +456,10 @@ SolveResult SolveRun::search() {
   std::vector<double> best;
   std::uint64_t attempts = 0;
   for (std::uint64_t iter = 0; iter < options_.maxIters; ++iter) {
-    if (found && (attempts >= options_.maxImprovementAttempts || result_.improvements >= options_.numImprovements))
-      break;
+    if (found && (attempts >= options_.maxImprovementAttempts || result_.improvements >= options_.numImprovements ||
+                  (csp_.cost == CostKind::Likelihood && bestCost <= 0))) {
+      break;  // (nothing is more likely than certain)
+    }
     if (found) ++attempts;
     ++result_.iterations;
     const double cost = csp_.cost == CostKind::None ? 0 : costOf();

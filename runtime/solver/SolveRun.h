@@ -60,8 +60,12 @@ class SolveRun {
   // assignment untouched.
   bool drawUniform(const rt::CompiledSampler& cs);
   bool runMemorySampler(std::uint32_t i);
-  // One move: samplers in a lazily drawn uniform order until one produces values. False when none did.
+  // One move: samplers in a lazily drawn uniform order until one produces values (redrawn while a personalized
+  // constraint of the CSP on its variables alone rejects them, up to kGuidedDraws draws in all), then every
+  // sampler that depends on it (dependents_). False when none did.
   bool move();
+  void buildDependents();
+  bool proposalAccepted(std::uint32_t sampler);
 
   const SolverOptions& options_;
   rt::Rng& rng_;
@@ -98,6 +102,15 @@ class SolveRun {
   std::vector<std::uint32_t> memorySamplers_;  // constraints with memory when the solve started
   std::vector<Solver::Memory*> memories_;
   std::size_t userSamplers_ = 0;
+  // Per user sampler: the samplers that read what it writes, transitively, in CSP order. They redraw in the same
+  // move, so a candidate never pairs a new value with one drawn from the old (a handover position with the
+  // arm configuration sampled for the previous position).
+  std::vector<std::vector<std::uint32_t>> dependents_;
+  // Per user sampler: the CSP's personalized constraints whose variables it alone writes (positions in
+  // csp_.constraints). A proposal they reject is drawn again, as the paper's reference draws a handover only
+  // inside the shell its range-of-motion model accepts: the same candidates survive, in fewer iterations.
+  std::vector<std::vector<std::uint32_t>> guards_;
+  static constexpr std::uint32_t kGuidedDraws = 16;
   std::vector<std::uint32_t> order_, swaps_;
 
   // Sized from the program: a family of any size can be drawn by one sampler.

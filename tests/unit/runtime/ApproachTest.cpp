@@ -82,7 +82,11 @@ TEST(Approach, CspContentsFollowTheChoice) {
   EXPECT_EQ(count(include), 4u);
   EXPECT_TRUE(include.constraints.front().personal()) << "personalized constraints are checked first";
   EXPECT_EQ(count(exclude), 0u);
-  EXPECT_EQ(exclude.entropyTerms.size(), 4u);
+  EXPECT_EQ(exclude.scoredInstances.size(), 4u);
   EXPECT_EQ(include.constraints.size() - 4, exclude.constraints.size());
-  EXPECT_EQ(include.cost, CostKind::None) << "cooking declares no cost";
+  EXPECT_EQ(include.cost, CostKind::Likelihood) << "cooking declares no cost: exploiting picks the likeliest";
+  EXPECT_EQ(include.scoredInstances.size(), 4u);
+  const auto hardOnly =
+      solver::makeCsp(lp->program(), 0, lp->instances(0), user, obs, PersonalMode::Exclude, CostKind::Declared);
+  EXPECT_EQ(hardOnly.cost, CostKind::None) << "nothing personal to score: the first solution wins";
 }

@@ -9,7 +9,9 @@
 //   3. check the constraints in order, stopping at the first that fails (it is charged with the rejection);
 //      without a cost the first satisfying candidate is returned;
 //   4. move: try the samplers (the CSP's own, then one memory sampler per constraint that has memory) in a
-//      freshly shuffled order until one produces values, and overwrite the variables it writes.
+//      freshly shuffled order until one produces values, and overwrite the variables it writes. Beyond the
+//      reference: one of the CSP's own samplers draws again while a personalized constraint on its variables
+//      alone rejects the values (up to 16 draws), and the samplers that read what it wrote draw again too.
 // After `maxIters` iterations the best satisfying candidate, if any, is returned.
 //
 // With a staged plan (StagedPlan.h) a tie after the first solution — a candidate whose cost equals the best's and

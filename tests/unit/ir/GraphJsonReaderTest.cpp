@@ -124,6 +124,47 @@ TEST(GraphJsonReader, UnknownName) {
   EXPECT_EQ(r.describe("g.json"), "g.json: /variables/0/kind: unknown type kind 'complex'");
 }
 
+// smallGraph with a generator on x that CBTL explores only where it accepts.
+ConstraintGraph graphWithGenerator() {
+  ConstraintGraph g = smallGraph();
+  Generator gen;
+  gen.name = "lowX";
+  gen.params.push_back({"v", {TypeKind::Real, "real"}});
+  gen.patterns.push_back({"v", 0, PatternKind::Glob, "x", {"t.cbtl", 4, 1, 4, 10}});
+  ModelFactor f;
+  f.label = "interval";
+  f.kind = FactorKind::Interval;
+  f.lo = 0;
+  f.hi = 1;
+  f.params = {"v"};
+  Expr param{Op::Param, {TypeKind::Real, "real"}};
+  param.text = "v";
+  param.id = 0;
+  f.feature = param;
+  gen.factors.push_back(f);
+  gen.exploreAccepted = true;
+  gen.span = {"t.cbtl", 4, 1, 8, 1};
+  g.generators.push_back(gen);
+  return g;
+}
+
+TEST(GraphJsonReader, ExplorationModeRoundTripsAndDefaultsToAnywhere) {
+  const GraphReadResult r = readGraphJson(toJson(graphWithGenerator()));
+  ASSERT_TRUE(r.ok()) << r.describe("t.json");
+  ASSERT_EQ(r.graph.generators.size(), 1u);
+  EXPECT_TRUE(r.graph.generators[0].exploreAccepted);
+  json doc = json::parse(toJson(graphWithGenerator()));
+  EXPECT_EQ(doc["generators"][0]["explore"], "accepted");
+  doc["generators"][0].erase("explore");  // a graph written before the clause existed
+  GraphReadResult old = readEdited(doc);
+  ASSERT_TRUE(old.ok()) << old.describe("t.json");
+  EXPECT_FALSE(old.graph.generators[0].exploreAccepted);
+  doc["generators"][0]["explore"] = "inside";
+  const GraphReadResult bad = readEdited(doc);
+  EXPECT_EQ(bad.outcome, GraphReadOutcome::UnknownName);
+  EXPECT_EQ(bad.describe("g.json"), "g.json: /generators/0/explore: unknown exploration mode 'inside'");
+}
+
 TEST(GraphJsonReader, OutOfRange) {
   json doc = document();
   doc["tasks"][0]["constraints"][0] = 3;

@@ -45,6 +45,40 @@ TEST(IntervalModel, EntropyIsMaximalAtTheRampMidpoints) {
   EXPECT_EQ(bernoulliEntropyBits(m.probability(0.5)), 0.0);
 }
 
+TEST(IntervalModel, PosteriorIsTheTrapezoidOnceAPositiveIsKnown) {
+  IntervalModel m(0, 1);
+  m.observe(0.2, false);
+  m.observe(0.4, true);
+  m.observe(0.8, false);
+  for (int i = -10; i <= 110; ++i) EXPECT_EQ(m.posterior(i / 100.0), m.probability(i / 100.0)) << i;
+}
+
+TEST(IntervalModel, PosteriorBeforeTheFirstPositiveIsUncertainAndZeroAtNegatives) {
+  // Uniform prior over the intervals 0 <= a <= b <= 1: P(a <= x <= b) = 2 x (1 - x), at most 1/2.
+  IntervalModel m(0, 1);
+  EXPECT_NEAR(m.posterior(0.5), 0.5, 1e-12);
+  EXPECT_NEAR(m.posterior(0.25), 2 * 0.25 * 0.75, 1e-12);
+  EXPECT_EQ(m.posterior(0.0), 0.0);
+  EXPECT_EQ(m.posterior(1.2), 0.0);
+  EXPECT_EQ(m.probability(0.25), 1.0) << "the constraint stays optimistic";
+  // A negative at 0.5: the interval lies in [0, 0.5] or in [0.5, 1]; each gap's mass is 0.5^2 / 2.
+  m.observe(0.5, false);
+  EXPECT_EQ(m.posterior(0.5), 0.0) << "a refused value is never uncertain again";
+  EXPECT_NEAR(m.posterior(0.25), 0.25 * 0.25 / 0.25, 1e-12);
+  EXPECT_NEAR(m.posterior(0.75), 0.25, 1e-12);
+  EXPECT_EQ(m.probability(0.5), 1.0);
+  // Entropy now leads away from the refused value, towards the middles of the gaps.
+  EXPECT_GT(bernoulliEntropyBits(m.posterior(0.25)), bernoulliEntropyBits(m.posterior(0.45)));
+  // Negatives outside the bounds, or repeated, change nothing.
+  IntervalModel n(0, 1);
+  n.observe(0.5, false);
+  n.observe(0.5, false);
+  n.observe(1.5, false);
+  EXPECT_NEAR(n.posterior(0.25), 0.25, 1e-12);
+  n.observe(0.3, true);
+  EXPECT_EQ(n.posterior(0.3), 1.0);
+}
+
 TEST(IntervalModel, StaysInUnitIntervalOnInconsistentData) {
   IntervalModel m(0, 1);
   m.observe(0.5, true);

@@ -1,5 +1,7 @@
 #include "robot/actions/RobotActions.h"
 
+#include "robot/world/CartesianPath.h"
+#include "robot/world/MotionPlanner.h"
 #include "robot/world/MotionQuery.h"
 #include "robot/world/NamedConfigurations.h"
 
@@ -131,6 +133,24 @@ ActionResult moveToolIn(world::World& w, const world::Pose3& target, ExecutionMo
     ActionResult r;
     r.status = ActionStatus::NoIk;
     r.detail = world::toString(ik.status);
+    return r;
+  }
+  if (mode != ExecutionMode::Execute) return moveArmIn(w, ik.q, mode);
+  // The straight joint segment first; where it bows off the tool's line into something, the line itself;
+  // the planner last.
+  ActionResult r;
+  if (world::armSegmentFree(ws, start, ik.q, w.planning.resolution, w.planning.collision)) {
+    r.armPath = {start, ik.q};
+    ws.setArm(ik.q);
+    return r;
+  }
+  ws.setArm(start);
+  world::CartesianPathOptions line;
+  line.resolution = w.planning.resolution;
+  line.collision = w.planning.collision;
+  if (auto path = world::cartesianToolPath(ws, target, w.ik, line)) {
+    r.armPath = std::move(*path);
+    ws.setArm(r.armPath.back());
     return r;
   }
   return moveArmIn(w, ik.q, mode);

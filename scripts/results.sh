@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Reproduces every figure in docs/results.md (Cooking; Cleaning and Books with ROBOT=1, about 1.5 hours more on 2 cores).
+# Reproduces every figure in docs/results.md (Cooking; Cleaning and Books with ROBOT=1, about 40 minutes more on 2 cores).
 # Usage: [ROBOT=1] scripts/results.sh [BUILD_DIR] [OUT_DIR]
 # Each block is one `cbtl experiment` command; its table is printed and its CSVs land in OUT_DIR.
 set -euo pipefail
@@ -32,18 +32,15 @@ echo "-- free-explore, no-adapt"
   --out "$out/figure5-free-explore" --force -q
 
 if [[ ${ROBOT:-0} == 1 ]]; then
-  echo "== Figure 3: Cleaning, 10 seeds, 5,000 steps, eval every 500 on 10 tasks (the paper's protocol)"
-  "$cbtl" experiment domains/cleaning/cleaning.cbtl \
-    --approaches cbtl,no-personalization,free-explore,exploit-only,epsilon-greedy \
-    --seeds 0..9 --steps 5000 --eval-every 500 --eval-tasks 10 --columns 0,500,1000,2000,3000,5000 \
-    --out "$out/figure3-cleaning" --force -q
-  echo "-- Cleaning: what was learned (surfacePreferred vs the hidden user)"
-  python3 scripts/learned-vs-hidden.py cleaning "$out/figure3-cleaning"
-  echo "== Figure 3: Books, 10 seeds, 5,000 steps, eval every 500 on 10 tasks (the paper's protocol)"
-  "$cbtl" experiment domains/books/books.cbtl \
-    --approaches cbtl,no-personalization,free-explore,exploit-only,epsilon-greedy \
-    --seeds 0..9 --steps 5000 --eval-every 500 --eval-tasks 10 --columns 0,500,1000,2000,3000,5000 \
-    --out "$out/figure3-books" --force -q
-  echo "-- Books: what was learned (range of motion vs the hidden [0.1, 0.3] m, enjoyed book first)"
-  python3 scripts/learned-vs-hidden.py books "$out/figure3-books"
+  # Cleaning: surfacePreferred vs the hidden user; Books: the range of motion vs the hidden [0.1, 0.3] m and the
+  # enjoyed book handed over first.
+  for domain in cleaning books; do
+    echo "== Figure 3: $domain, 10 seeds, 5,000 steps, eval every 500 on 10 tasks (the paper's protocol)"
+    "$cbtl" experiment "domains/$domain/$domain.cbtl" \
+      --approaches cbtl,no-personalization,free-explore,exploit-only,epsilon-greedy \
+      --seeds 0..9 --steps 5000 --eval-every 500 --eval-tasks 10 --columns 0,500,1000,2000,3000,5000 \
+      --out "$out/figure3-$domain" --force -q
+    echo "-- $domain: what was learned, against the hidden user"
+    python3 scripts/learned-vs-hidden.py "$domain" "$out/figure3-$domain"
+  done
 fi

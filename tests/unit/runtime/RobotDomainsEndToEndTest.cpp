@@ -194,25 +194,44 @@ TEST(RobotDomainsEndToEnd, FeedingEveryTaskOnSeedsZeroToNine) {
   EXPECT_GE(kinds["giveDrink"], 10);
 }
 
-// Training as `cbtl run books.cbtl --approach no-personalization --seed 5` does: by step 221 the robot had stowed
-// Anne Frank 1.8 cm from the shelf's side support and held another book the user could not reach; the only book
-// left to fetch could not be grasped again (the joint segment into its grasp touched the support), so eight
-// requests in a row exhausted every dry-run tier until a caregiver reset. Now every request is solved.
-TEST(RobotDomainsEndToEnd, BooksTrainingWorldOfSeedFiveNeverGetsStuck) {
+// Trains No Personalization on Books as `cbtl run domains/books/books.cbtl --approach no-personalization --seed
+// SEED --steps STEPS --eval-every 500 --eval-tasks 2` does (the same training world).
+approach::ExperimentResult trainBooksWithoutPersonalization(std::uint64_t seed, std::int64_t steps) {
   auto lp = loadDomain("books");
   approach::ExperimentConfig c;
   c.approach.kind = approach::ApproachKind::NoPersonalization;
-  c.seed = 5;
-  c.steps = 240;
-  c.evalEvery = 500;  // as the command above with --eval-every 500 --eval-tasks 2: the same training world
+  c.seed = seed;
+  c.steps = steps;
+  c.evalEvery = 500;
   c.evalTasks = 2;
   c.solverOptions = domainBudgets("books");
   const auto facts = app::simulatorFacts(*lp);
-  const approach::SimulatorFactory factory = [&](const sim::SimulatorOptions& o, std::uint64_t seed) {
-    return domains::createSimulator("books", facts, o, seed);
+  const approach::SimulatorFactory factory = [&](const sim::SimulatorOptions& o, std::uint64_t s) {
+    return domains::createSimulator("books", facts, o, s);
   };
-  const approach::ExperimentResult r = approach::runExperiment(*lp, factory, c);
+  return approach::runExperiment(*lp, factory, c);
+}
+
+// Seed 5: on 2026-12-02 the robot had stowed Anne Frank 1.8 cm from the shelf's side support by step 221 and
+// held another book the user could not reach; the only book left could not be grasped again (the joint segment
+// into its grasp touched the support), so eight requests in a row exhausted every dry-run tier until a caregiver
+// reset. moveTool now follows the tool's line (RobotActionsTest.MoveToolFollowsTheToolLineWhereTheJointSegmentTouches
+// pins that case; this run need not meet it again once other changes alter the walk).
+TEST(RobotDomainsEndToEnd, BooksTrainingWorldOfSeedFiveNeverGetsStuck) {
+  const approach::ExperimentResult r = trainBooksWithoutPersonalization(5, 240);
   EXPECT_GE(r.train.requests, 15);
+  EXPECT_EQ(r.train.solved, r.train.requests);
+  EXPECT_EQ(r.train.failed, 0);
+  EXPECT_EQ(r.train.caregiverResets, 0);
+}
+
+// Seed 0 up to step 1,490: the robot used to put books away on a side table at yaw 0, where their side grasp
+// faces sideways from the table's approach base; with Pride and Prejudice stowed so and the only book left, five
+// requests in a row found no reachable pre-grasp (steps 1,482-1,486) until a caregiver reset. Books are now put
+// away at the yaw of the scene's own slots on each surface (books.cbtl, stowYaw).
+TEST(RobotDomainsEndToEnd, BooksStowedOnASideTableCanBeFetchedAgain) {
+  const approach::ExperimentResult r = trainBooksWithoutPersonalization(0, 1490);
+  EXPECT_GE(r.train.requests, 100);
   EXPECT_EQ(r.train.solved, r.train.requests);
   EXPECT_EQ(r.train.failed, 0);
   EXPECT_EQ(r.train.caregiverResets, 0);

@@ -14,8 +14,8 @@ std::optional<std::vector<ArmConfig>> cartesianToolPath(Workspace& ws, const Pos
   const Pose3 from = ws.toolPose();
   const double travel = (target.position - from.position).norm();
   const double turn = rotationDistance(from.orientation, target.orientation);
-  const int steps =
-      std::max(1, static_cast<int>(std::ceil(std::max(travel / options.maxStep, turn / options.maxAngle))));
+  const double wanted = std::ceil(std::max(travel / options.maxStep, turn / options.maxAngle));
+  const int steps = std::isfinite(wanted) ? static_cast<int>(std::clamp(wanted, 1.0, double(options.maxSteps))) : 1;
   IkOptions stepIk = ik;
   stepIk.maxAttempts = 1;  // from the previous configuration only: a restart would leave the line's branch
   stepIk.requireCollisionFree = true;

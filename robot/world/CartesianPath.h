@@ -27,6 +27,7 @@ struct CartesianPathOptions {
   double maxAngle = 0.05;      // rad of tool rotation per step
   double maxJointStep = 0.25;  // rad (L∞) between consecutive configurations: larger is a branch jump
   double resolution = 0.005;   // rad (L∞) between collision checks along each step
+  int maxSteps = 500;          // a longer move takes larger steps (bounded work; the joint checks still hold)
   CollisionOptions collision;
 };
 

@@ -212,17 +212,20 @@ approach::ExperimentResult trainBooksWithoutPersonalization(std::uint64_t seed, 
   return approach::runExperiment(*lp, factory, c);
 }
 
+void expectNeverStuck(const approach::ExperimentResult& r, std::int64_t minRequests) {
+  EXPECT_GE(r.train.requests, minRequests);
+  EXPECT_EQ(r.train.solved, r.train.requests);
+  EXPECT_EQ(r.train.failed, 0);
+  EXPECT_EQ(r.train.caregiverResets, 0);
+}
+
 // Seed 5: on 2026-12-02 the robot had stowed Anne Frank 1.8 cm from the shelf's side support by step 221 and
 // held another book the user could not reach; the only book left could not be grasped again (the joint segment
 // into its grasp touched the support), so eight requests in a row exhausted every dry-run tier until a caregiver
 // reset. moveTool now follows the tool's line (RobotActionsTest.MoveToolFollowsTheToolLineWhereTheJointSegmentTouches
 // pins that case; this run need not meet it again once other changes alter the walk).
 TEST(RobotDomainsEndToEnd, BooksTrainingWorldOfSeedFiveNeverGetsStuck) {
-  const approach::ExperimentResult r = trainBooksWithoutPersonalization(5, 240);
-  EXPECT_GE(r.train.requests, 15);
-  EXPECT_EQ(r.train.solved, r.train.requests);
-  EXPECT_EQ(r.train.failed, 0);
-  EXPECT_EQ(r.train.caregiverResets, 0);
+  expectNeverStuck(trainBooksWithoutPersonalization(5, 240), 15);
 }
 
 // Seed 0 up to step 1,490: the robot used to put books away on a side table at yaw 0, where their side grasp
@@ -230,9 +233,5 @@ TEST(RobotDomainsEndToEnd, BooksTrainingWorldOfSeedFiveNeverGetsStuck) {
 // requests in a row found no reachable pre-grasp (steps 1,482-1,486) until a caregiver reset. Books are now put
 // away at the yaw of the scene's own slots on each surface (books.cbtl, stowYaw).
 TEST(RobotDomainsEndToEnd, BooksStowedOnASideTableCanBeFetchedAgain) {
-  const approach::ExperimentResult r = trainBooksWithoutPersonalization(0, 1490);
-  EXPECT_GE(r.train.requests, 100);
-  EXPECT_EQ(r.train.solved, r.train.requests);
-  EXPECT_EQ(r.train.failed, 0);
-  EXPECT_EQ(r.train.caregiverResets, 0);
+  expectNeverStuck(trainBooksWithoutPersonalization(0, 1490), 100);
 }

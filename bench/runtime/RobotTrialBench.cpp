@@ -4,6 +4,7 @@
 //     under 60 s on one core (the reference: 30-90 minutes per trial).
 //   BM_RobotRequest/<domain>: one request (solve, dry run, re-check) against a fresh episode, cycling seeds 0-9;
 //     the time a user waits for `cbtl solve`.
+#include "app/DomainSolverOptions.h"
 #include "app/LoadedProgram.h"
 #include "app/SimulatorFacts.h"
 #include "domains/DomainRegistry.h"
@@ -40,15 +41,6 @@ app::LoadedProgram& program(const std::string& domain) {
   return *lp;
 }
 
-solver::SolverOptions budgets(const std::string& domain) {
-  const domains::SolverBudgets b = domains::solverBudgets(domain);
-  solver::SolverOptions o;
-  o.maxIters = b.maxIters;
-  o.numImprovements = b.numImprovements;
-  o.maxImprovementAttempts = b.maxImprovementAttempts;
-  return o;
-}
-
 approach::SimulatorFactory factory(const app::LoadedProgram& lp) {
   const auto facts = std::make_shared<domains::ProgramFacts>(app::simulatorFacts(lp));
   const std::string domain = lp.graph().domain;
@@ -65,7 +57,7 @@ void BM_RobotTrial(benchmark::State& state) {
   c.steps = 5000;
   c.evalEvery = 500;
   c.evalTasks = 10;
-  c.solverOptions = budgets(domain);
+  c.solverOptions = app::domainSolverOptions(domain);
   double solved = 0, executed = 0, last = 0;
   for (auto _ : state) {
     const auto r = approach::runExperiment(lp, factory(lp), c);
@@ -86,7 +78,7 @@ void BM_RobotRequest(benchmark::State& state) {
   auto& lp = program(domain);
   const auto makeWorld = factory(lp);
   model::UserModel user(lp.graph());
-  solver::Solver solver(budgets(domain), 1);
+  solver::Solver solver(app::domainSolverOptions(domain), 1);
   std::uint64_t seed = 0;
   std::int64_t solved = 0;
   for (auto _ : state) {

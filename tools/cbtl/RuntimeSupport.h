@@ -3,6 +3,7 @@
 // printed, the domain simulators by name, and the text-preference backend of `model text(...)` factors.
 #pragma once
 
+#include "app/DomainSolverOptions.h"
 #include "app/LoadedProgram.h"
 #include "app/SimulatorFacts.h"
 #include "domains/DomainRegistry.h"
@@ -88,11 +89,10 @@ inline void addSolverOptions(CLI::App* cmd, SolverArgs& o) {
 
 // The solver options for a program of `domain`: what the command line gave, the domain's budgets otherwise.
 inline solver::SolverOptions solverOptionsFor(const SolverArgs& a, const std::string& domain) {
-  const domains::SolverBudgets budgets = domains::solverBudgets(domain);
-  solver::SolverOptions o;
-  o.maxIters = a.maxIters.value_or(budgets.maxIters);
-  o.numImprovements = a.numImprovements.value_or(budgets.numImprovements);
-  o.maxImprovementAttempts = a.maxImprovementAttempts.value_or(budgets.maxImprovementAttempts);
+  solver::SolverOptions o = app::domainSolverOptions(domain);
+  o.maxIters = a.maxIters.value_or(o.maxIters);
+  o.numImprovements = a.numImprovements.value_or(o.numImprovements);
+  o.maxImprovementAttempts = a.maxImprovementAttempts.value_or(o.maxImprovementAttempts);
   o.memorySize = a.memorySize;
   o.memoryPolicy = a.memoryPolicy;
   return o;

@@ -62,6 +62,7 @@ void IntervalModel::refit() {
 }
 
 double IntervalModel::probability(double x) const {
+  if (!hasPositive_ && nearRefusal(x)) return 0;
   double pa;  // P(a <= x), a ~ U[x1, x2]
   if (x >= x2_)
     pa = 1;
@@ -77,6 +78,16 @@ double IntervalModel::probability(double x) const {
   else
     pb = (x4_ - x) / (x4_ - x3_);
   return std::clamp(pa * pb, 0.0, 1.0);
+}
+
+bool IntervalModel::nearRefusal(double x) const {
+  if (gapEnds_.size() <= 2) return false;  // no negative inside the bounds
+  const double radius = kRefusalRadius * (hi_ - lo_);
+  // gapEnds_ is lo, the negatives inside (lo, hi) in ascending order, hi: the nearest negative is next to x.
+  const auto negativesBegin = gapEnds_.begin() + 1, negativesEnd = gapEnds_.end() - 1;
+  const auto above = std::lower_bound(negativesBegin, negativesEnd, x);
+  if (above != negativesEnd && *above - x < radius) return true;
+  return above != negativesBegin && x - *(above - 1) < radius;
 }
 
 double IntervalModel::posterior(double x) const {

@@ -5,7 +5,11 @@
 // predictive is exact: P(holds | x) = P(a <= x) * P(b >= x) with a ~ U[x1, x2], b ~ U[x3, x4], where
 // x2 = min P, x3 = max P, x1 = the largest negative below x2 (else lo), x4 = the smallest negative above x3
 // (else hi) — a trapezoid. Before the first positive the model predicts 1 on [lo, hi] and 0 outside (as the
-// reference does: the constraint is optimistic until something is liked).
+// reference does: the constraint is optimistic until something is liked), except within kRefusalRadius of the
+// bounds' width (1 %) of a negative, where it predicts 0: a value the user just refused is not offered again
+// while nothing is known to be liked. The radius is what separates "the same value again" from a new one: a
+// robot's executed handover point differs from the one the solver chose by its IK tolerance, so an exact match
+// never recurs, and without it Books' solver handed the same refused spot over up to nine times in a row.
 //
 // posterior() is the full posterior predictive under a uniform prior over the intervals lo <= a <= b <= hi,
 // which the paper uses for the entropy of active learning (its appendix: maximum-likelihood values for the
@@ -30,6 +34,8 @@ namespace cbtl::model {
 
 class IntervalModel {
  public:
+  static constexpr double kRefusalRadius = 0.01;  // fraction of hi - lo (see above)
+
   IntervalModel(double lo, double hi);
 
   void observe(double x, bool holds);
@@ -52,6 +58,7 @@ class IntervalModel {
 
  private:
   void refit();
+  bool nearRefusal(double x) const;  // within kRefusalRadius (hi - lo) of a negative inside the bounds
 
   double lo_, hi_;
   double x1_, x2_, x3_, x4_;

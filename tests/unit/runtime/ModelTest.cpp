@@ -66,7 +66,7 @@ TEST(IntervalModel, PosteriorBeforeTheFirstPositiveIsUncertainAndZeroAtNegatives
   EXPECT_EQ(m.posterior(0.5), 0.0) << "a refused value is never uncertain again";
   EXPECT_NEAR(m.posterior(0.25), 0.25 * 0.25 / 0.25, 1e-12);
   EXPECT_NEAR(m.posterior(0.75), 0.25, 1e-12);
-  EXPECT_EQ(m.probability(0.5), 1.0);
+  EXPECT_EQ(m.probability(0.5), 0.0) << "nor offered again before anything is liked";
   // Entropy now leads away from the refused value, towards the middles of the gaps.
   EXPECT_GT(bernoulliEntropyBits(m.posterior(0.25)), bernoulliEntropyBits(m.posterior(0.45)));
   // Negatives outside the bounds, or repeated, change nothing.
@@ -77,6 +77,27 @@ TEST(IntervalModel, PosteriorBeforeTheFirstPositiveIsUncertainAndZeroAtNegatives
   EXPECT_NEAR(n.posterior(0.25), 0.25, 1e-12);
   n.observe(0.3, true);
   EXPECT_EQ(n.posterior(0.3), 1.0);
+}
+
+TEST(IntervalModel, BeforeTheFirstPositiveARefusedValueAndItsNeighbourhoodAreNotAccepted) {
+  IntervalModel m(0, 1.25);  // Books' range of motion: the radius is 1 % of 1.25 m = 12.5 mm
+  m.observe(0.4158, false);
+  EXPECT_EQ(m.probability(0.4158), 0.0);
+  EXPECT_EQ(m.probability(0.4158 + 0.0009), 0.0) << "the same spot, up to an IK tolerance";
+  EXPECT_EQ(m.probability(0.4158 - 0.012), 0.0);
+  EXPECT_EQ(m.probability(0.4158 + 0.013), 1.0) << "a new value";
+  EXPECT_EQ(m.probability(0.4158 - 0.013), 1.0);
+  m.observe(0.9, false);  // the nearest negative decides, on either side
+  EXPECT_EQ(m.probability(0.895), 0.0);
+  EXPECT_EQ(m.probability(0.65), 1.0);
+  // Negatives outside the bounds refuse nothing inside them.
+  IntervalModel n(0, 1);
+  n.observe(1.005, false);
+  EXPECT_EQ(n.probability(1.0), 1.0);
+  // Once something is liked the trapezoid decides: a negative far outside the positives only bounds the ramp.
+  m.observe(0.2, true);
+  EXPECT_EQ(m.probability(0.2), 1.0);
+  EXPECT_GT(m.probability(0.41), 0.0);
 }
 
 TEST(IntervalModel, StaysInUnitIntervalOnInconsistentData) {

@@ -9,7 +9,7 @@
 // bounds' width (1 %) of a negative, where it predicts 0: a value the user just refused is not offered again
 // while nothing is known to be liked. The radius is what separates "the same value again" from a new one: a
 // robot's executed handover point differs from the one the solver chose by its IK tolerance, so an exact match
-// never recurs, and without it Books' solver handed the same refused spot over up to nine times in a row.
+// never recurs, and without it Books' solver handed one refused spot over four times in a row (seed 7).
 //
 // posterior() is the full posterior predictive under a uniform prior over the intervals lo <= a <= b <= hi,
 // which the paper uses for the entropy of active learning (its appendix: maximum-likelihood values for the

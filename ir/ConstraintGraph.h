@@ -217,8 +217,10 @@ struct Generator {
   std::optional<Expr> guard;  // bool over the parameters; false: the constraint does not apply
   double accept = 0.5;
   double fallback = 0.5;
-  // `explore accepted`: CBTL's exploration keeps this constraint (P >= accept) while it maximizes entropy;
-  // false (`explore anywhere`, the default): the paper's exploration, the constraint only steers the entropy.
+  // `explore accepted`: CBTL's exploration keeps this constraint (P >= accept) while it maximizes entropy, and the
+  // constraint's entropy is that of its maximum-likelihood reading (none before an interval's first positive);
+  // false (`explore anywhere`, the default): the paper's exploration, the constraint only steers the entropy, by
+  // its full posterior.
   bool exploreAccepted = false;
   std::vector<LearnRule> learnRules;
   Span span;

@@ -26,8 +26,9 @@ PersonalEvaluator::PersonalEvaluator(const rt::Program& program, const std::vect
                                      const model::UserModel& user)
     : program_(program), instances_(instances), user_(user), cache_(instances.size()) {
   for (const auto& inst : instances_) {
-    const double accept = program_.graph().generators.at(inst.generator).accept;
-    acceptThreshold_.push_back(accept * std::exp(-1e-3));
+    const ir::Generator& g = program_.graph().generators.at(inst.generator);
+    acceptThreshold_.push_back(g.accept * std::exp(-1e-3));
+    entropyFromAccepted_.push_back(g.exploreAccepted);
     std::size_t dynamic = 0;
     for (const auto& part : inst.key) dynamic += part.fromValue ? part.type.width : 0;
     Cache& c = cache_[acceptThreshold_.size() - 1];
@@ -127,8 +128,9 @@ PersonalValue PersonalEvaluator::evaluate(std::uint32_t instance, const rt::Eval
       posterior *= pk;
     } else if (feature != UINT32_MAX) {
       const double x = pool.evalScalar(feature, ctx);
-      p *= factors[k].probability(x);
-      posterior *= factors[k].posterior(x);
+      const double pk = factors[k].probability(x);
+      p *= pk;
+      posterior *= entropyFromAccepted_[instance] ? pk : factors[k].posterior(x);
     }
   }
   return PersonalValue{true, p, posterior};

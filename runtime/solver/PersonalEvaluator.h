@@ -1,7 +1,10 @@
 // PersonalEvaluator.h — P(holds) of personalized constraint instances under the current user model.
 //
 // An instance whose guard is false does not apply: it holds, with probability 1 and no entropy. Otherwise
-// P = the product of the generator's factors for the instance's model key. The factors for a key are looked
+// P = the product of the generator's factors for the instance's model key. The posterior (for entropy) is the
+// product of the factors' full posteriors, except for a generator declared `explore accepted`: its exploration is
+// confined to what it accepts, and its entropy is that of the same reading (an interval model before its first
+// positive accepts everything with P = 1, so it steers nothing there). The factors for a key are looked
 // up once and cached until the key's value or the user model changes, so evaluation in the solve loop
 // allocates nothing for interval, threshold and table factors.
 //
@@ -69,6 +72,7 @@ class PersonalEvaluator {
   const model::UserModel& user_;
   std::vector<Cache> cache_;
   std::vector<double> acceptThreshold_;
+  std::vector<bool> entropyFromAccepted_;  // per instance: its generator explores only where it accepts
 };
 
 }  // namespace cbtl::solver

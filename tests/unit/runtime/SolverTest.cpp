@@ -4,6 +4,7 @@
 
 #include "runtime/model/UserModel.h"
 #include "runtime/solver/Csp.h"
+#include "runtime/solver/PersonalEvaluator.h"
 #include "runtime/solver/Recheck.h"
 #include "runtime/solver/Solver.h"
 
@@ -277,4 +278,45 @@ TEST(Solver, CbtlExplorationKeepsTheConstraintsOfGeneratorsThatExploreWhereTheyA
   farOutside[lp->program().slot(lp->graph().variables[1].id).offset] = 9.0;  // far(b) rejects 9
   EXPECT_TRUE(solver::recheck(explore, farOutside).holds());
   EXPECT_FALSE(solver::recheck(exploit, farOutside).holds());
+}
+
+TEST(Solver, BeforeItsFirstPositiveAGeneratorThatExploresWhereItAcceptsSteersNoExploration) {
+  auto lp = test::compileOrFail("two.cbtl", kTwoGeneratorsSource);
+  model::UserModel user(lp->graph());
+  const auto& instances = lp->instances(0);
+  const auto instanceNamed = [&](const std::string& name) {
+    for (std::uint32_t i = 0; i < instances.size(); ++i) {
+      if (instances[i].name == name) return i;
+    }
+    ADD_FAILURE() << name;
+    return 0u;
+  };
+  const std::uint32_t near = instanceNamed("near(a)"), far = instanceNamed("far(b)");
+  const auto valueAt = [&](std::uint32_t instance, double v) {
+    std::vector<double> x = lp->program().initialAssignment();
+    x[lp->program().slot(lp->graph().variables[0].id).offset] = v;
+    x[lp->program().slot(lp->graph().variables[1].id).offset] = v;
+    std::vector<double> frame(64), obs(lp->program().observationWidth() + 1);
+    rt::EvalContext ctx{x.data(), obs.data(), frame.data()};
+    solver::PersonalEvaluator evaluator(lp->program(), instances, user);
+    return evaluator.evaluate(instance, ctx);
+  };
+  // No data: both accept everything; only the one that explores anywhere has uncertainty to follow (the middle of
+  // the bounds under the uniform prior over intervals).
+  EXPECT_DOUBLE_EQ(valueAt(near, 5).probability, 1.0);
+  EXPECT_DOUBLE_EQ(valueAt(near, 5).posterior, 1.0);
+  EXPECT_DOUBLE_EQ(valueAt(far, 5).probability, 1.0);
+  EXPECT_NEAR(valueAt(far, 5).posterior, 0.5, 1e-12);
+  // A refusal: near(a) rejects its neighbourhood and still steers nothing elsewhere.
+  user.generator(0).mutableFactors("")[0].observe(5.0, false);
+  EXPECT_DOUBLE_EQ(valueAt(near, 5.05).probability, 0.0);
+  EXPECT_DOUBLE_EQ(valueAt(near, 8).posterior, 1.0);
+  // Once something is liked, the accepted reading is the full posterior: both generators follow it alike.
+  for (std::uint32_t g : {0u, 1u}) user.generator(g).mutableFactors("")[0].observe(2.0, true);
+  user.generator(1).mutableFactors("")[0].observe(5.0, false);
+  for (double v : {1.0, 3.0, 4.9}) {
+    EXPECT_DOUBLE_EQ(valueAt(near, v).posterior, valueAt(near, v).probability) << v;
+    EXPECT_DOUBLE_EQ(valueAt(near, v).posterior, valueAt(far, v).posterior) << v;
+  }
+  EXPECT_NEAR(valueAt(near, 1.0).posterior, 0.5, 1e-12);
 }

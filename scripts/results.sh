@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Reproduces every figure in docs/results.md (Cooking; Cleaning and Books with ROBOT=1, about 40 minutes more on 2 cores).
+# Reproduces every figure in docs/results.md (Cooking; Cleaning and Books with ROBOT=1, about 30 minutes more on 2 cores).
 # Usage: [ROBOT=1] scripts/results.sh [BUILD_DIR] [OUT_DIR]
 # Each block is one `cbtl experiment` command; its table is printed and its CSVs land in OUT_DIR.
 set -euo pipefail

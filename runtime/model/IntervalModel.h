@@ -18,7 +18,9 @@
 // n_1 < ... < n_k splitting [lo, hi] into gaps [u, v], the interval lies inside one gap, so
 // P(x) = (x - u)(v - x) / sum over gaps of (v - u)^2 / 2 for x in gap [u, v]: 0 at every negative, at most
 // 1/2 (the middle of [lo, hi] with no data). Without it CBTL has no uncertainty to follow before its first
-// positive and, on a robot, repeats a refused handover spot.
+// positive (Cooking's first meals were random). A generator declared `explore accepted` takes its entropy from
+// probability() instead (solver/PersonalEvaluator.h): Books' range of motion, whose bounds are loose around
+// the user's, so that the middle of a gap is far out of reach.
 //
 // Differences from the reference, on purpose: the hypothesis is closed (x = hi is inside the known range,
 // the reference's half-open test made the top of the range impossible); negatives lying between positives

@@ -155,6 +155,9 @@ sim::Observation FeedingSimulator::observe() const {
   o["plateXY"] = sim::Value::vec({plate.position.x(), plate.position.y()});
   o["drinkXY"] = sim::Value::vec({drink.position.x(), drink.position.y()});
   o["dipsOnTable"] = sim::Value::names(dips_);
+  std::vector<std::string> choices = dips_;
+  choices.push_back("noDip");
+  o["dipChoices"] = sim::Value::names(choices);
   o["foodOnPlate"] = sim::Value::name(food_);
   return o;
 }

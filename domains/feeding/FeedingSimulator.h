@@ -24,7 +24,8 @@
 // release() of the utensil at its mount puts it back in the mount (the mount is not a surface), and the
 // domain's own actions dipInto(sauce: text), acquireFood() (the tool must be within 0.1 m of the plate centre
 // horizontally, holding the utensil) and waitForReady(signal: ReadySignal), one step each.
-// Observations: plateXY, drinkXY (vec<2>), dipsOnTable (set of Dip entries), foodOnPlate (text).
+// Observations: plateXY, drinkXY (vec<2>), dipsOnTable (set of Dip entries), dipChoices (the same and noDip: what
+// the robot may offer), foodOnPlate (text).
 //
 // Determinism: reset(seed) reseeds the simulator's world::Rng; the episode draws, in order, the plate
 // position, the position in the request cycle, the food, the two dips on the table (and, for a prepare

@@ -238,6 +238,8 @@ TEST(WorldBuiltins, FeedingTasksSolveAgainstTheScene) {
   obs[plate + 1] = 0.30;
   obs[drink] = 0.34;
   obs[drink + 1] = 0.70;
+  // No sauce on the table: the dip the robot may offer is "no dip" alone (the fifth Dip entry).
+  obs[*program.observationOffset("dipChoices") + 4] = 1;
   for (const char* task : {"feedBite", "prepareDrink", "giveDrink"}) {
     const auto r = solveHard(*lp, static_cast<std::size_t>(lp->taskIndex(task)), obs);
     EXPECT_EQ(r.outcome, solver::SolveOutcome::Solved) << task;

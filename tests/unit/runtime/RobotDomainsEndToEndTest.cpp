@@ -43,15 +43,16 @@ struct RequestLog {
 };
 
 // One request: the task the world asks for, solved with the personalized constraints (an untrained user model,
-// so they hold everywhere) and executed call by call until its task ends or its calls are used up.
+// so they hold everywhere; with `fallback`, re-solved without them if they cannot hold) and executed call by call
+// until its task ends or its calls are used up.
 RequestLog runRequest(app::LoadedProgram& lp, sim::DomainSimulator& world, solver::Solver& solver,
-                      model::UserModel& user) {
+                      model::UserModel& user, bool fallback = true) {
   RequestLog log;
   lp.syncWorld(world);
   const std::size_t task = lp.taskFor(world, 0);
   log.task = lp.graph().tasks[task].name;
   const auto obs = approach::observationVector(lp.program(), world.observe());
-  approach::Plan plan = approach::makePlan(lp, task, obs, approach::evaluationChoice(), true, solver, user);
+  approach::Plan plan = approach::makePlan(lp, task, obs, approach::evaluationChoice(), fallback, solver, user);
   log.solved = plan.ok;
   log.dryRun = plan.dryRun();
   for (const auto& call : plan.calls) {
@@ -197,6 +198,35 @@ TEST(RobotDomainsEndToEnd, FeedingEveryTaskOnSeedsZeroToNine) {
   EXPECT_GE(kinds["feedBite"], static_cast<int>(kSeeds));
   EXPECT_GE(kinds["prepareDrink"], static_cast<int>(kSeeds));
   EXPECT_GE(kinds["giveDrink"], static_cast<int>(kSeeds));
+}
+
+// A user who likes ketchup and nothing else, at meals without ketchup: the dip is drawn from what the table offers
+// (dipChoices), so dipPreferred's relative scaling compares those and every bite is still served. Drawn from all
+// five dips, no dip on such a table reached 0.95 of ketchup and the bite was unsatisfiable.
+TEST(RobotDomainsEndToEnd, FeedingServesABiteWhenTheFavouriteSauceIsNotOnTheTable) {
+  auto lp = loadDomain("feeding");
+  int bitesWithoutTheFavourite = 0;
+  for (std::uint64_t seed = 0; seed < 10; ++seed) {  // all ten even under the sanitizers: only some lack ketchup
+    auto world = domains::createSimulator("feeding", app::simulatorFacts(*lp), {}, seed);
+    ASSERT_NE(world, nullptr);
+    const std::vector<std::string> onTable = world->observe().at("dipsOnTable").members;
+    if (std::find(onTable.begin(), onTable.end(), "ketchup") != onTable.end()) continue;  // the meal's sauces are fixed
+    solver::Solver solver(app::domainSolverOptions("feeding"), seed);
+    model::UserModel user(lp->graph());
+    for (const char* other : {"bbqSauce", "ranch", "hummus", "noDip"}) {
+      const auto report = lp->learner().learn(
+          {sim::FeedbackEvent{
+              "dipAnswer", {sim::Value::name("french fries"), sim::Value::name(other), sim::Value::name("ketchup")}}},
+          user, approach::StepWorld{});
+      ASSERT_TRUE(report.problems.empty()) << report.problems.front();
+    }
+    for (int request = 0; request < 4; ++request) {
+      const RequestLog r = runRequest(*lp, *world, solver, user, false);  // as CBTL's evaluation: no fallback
+      expectCompetent(r, seed);
+      if (r.task == "feedBite") ++bitesWithoutTheFavourite;
+    }
+  }
+  EXPECT_GT(bitesWithoutTheFavourite, 0);
 }
 
 // Trains No Personalization on Books as `cbtl run domains/books/books.cbtl --approach no-personalization --seed

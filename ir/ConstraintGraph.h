@@ -180,6 +180,15 @@ enum class ThresholdDirection : std::uint8_t { None, Above, Below };
 enum class TextScale : std::uint8_t { Absolute, Relative };
 enum class TextRating : std::uint8_t { Digits, Options };
 
+// One part of a text model's context (`context: [foodOnPlate, mealSetting]`): the situation the subject is judged
+// in, as the paper's ConstraintPrompt takes the observation with the values. `value` is an observation or a
+// generator parameter, of a discrete scalar type (text, enum, item, bool, int).
+struct ContextEntry {
+  std::string name;                 // as written; the key the models see
+  Expr value;                       // the name, lowered (Obs or Param)
+  std::vector<std::string> params;  // generator parameters it reads (a learning rule must bind them)
+};
+
 struct ModelFactor {
   std::string label;  // factor name (defaults to the kind, numbered if repeated)
   FactorKind kind = FactorKind::Interval;
@@ -189,7 +198,8 @@ struct ModelFactor {
   std::string prompt, learning;                             // text
   TextScale scale = TextScale::Absolute;                    // text
   TextRating rating = TextRating::Digits;                   // text
-  std::vector<std::string> params;                          // generator parameters the factor reads
+  std::vector<ContextEntry> context;                        // text: what the subject is judged in
+  std::vector<std::string> params;                          // generator parameters the feature reads
   Span span;
 };
 

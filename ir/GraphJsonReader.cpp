@@ -421,6 +421,12 @@ class GraphReader {
     f.learning = n.text("learning");
     f.scale = readScale(n);
     f.rating = readRating(n);
+    // Optional: graphs emitted before text models took a context have none.
+    if (n.has("context")) {
+      eachIn(n, "context", [&](const Node& c) {
+        f.context.push_back({c.text("name"), expr(c.object("value")), c.texts("params")});
+      });
+    }
     f.params = n.texts("params");
     f.span = span(n);
     return f;

@@ -204,6 +204,11 @@ std::string toText(const ConstraintGraph& g) {
         if (!f.prompt.empty()) o << ", prompt " << nlohmann::json(f.prompt).dump();
         if (!f.learning.empty()) o << ", learning " << nlohmann::json(f.learning).dump();
         o << ", scale " << name(f.scale) << ", rating " << name(f.rating);
+        if (!f.context.empty()) {
+          o << ", context [";
+          for (std::size_t i = 0; i < f.context.size(); ++i) o << (i ? ", " : "") << exprText(f.context[i].value, g);
+          o << "]";
+        }
       }
       o << ")\n";
     }
@@ -362,6 +367,9 @@ std::string toJson(const ConstraintGraph& g) {
                           {"span", spanJson(p.span)}});
     }
     for (const auto& f : gen.factors) {
+      json context = json::array();
+      for (const auto& c : f.context)
+        context.push_back({{"name", c.name}, {"value", exprJson(c.value)}, {"params", c.params}});
       factors.push_back({{"label", f.label},
                          {"kind", name(f.kind)},
                          {"feature", optExpr(f.feature)},
@@ -372,6 +380,7 @@ std::string toJson(const ConstraintGraph& g) {
                          {"learning", f.learning},
                          {"scale", name(f.scale)},
                          {"rating", name(f.rating)},
+                         {"context", context},
                          {"params", f.params},
                          {"span", spanJson(f.span)}});
     }

@@ -77,6 +77,8 @@ ir::ModelFactor Lowerer::lowerFactor(const PersonalDecl& p, const ModelFactor& f
       mf.scale = ir::textScaleFromName(a.value->text).value_or(ir::TextScale::Absolute);
     else if (a.name.name == "rating")
       mf.rating = ir::textRatingFromName(a.value->text).value_or(ir::TextRating::Digits);
+    else if (a.name.name == "context")
+      lowerTextContext(p, *a.value, mf, none);
   }
   // Positional arguments: the feature, then its range, then a threshold's direction.
   if (!positional.empty()) {
@@ -90,6 +92,20 @@ ir::ModelFactor Lowerer::lowerFactor(const PersonalDecl& p, const ModelFactor& f
   if (positional.size() >= 3)
     mf.direction = ir::thresholdDirectionFromName(positional[2]->value->text).value_or(ir::ThresholdDirection::None);
   return mf;
+}
+
+void Lowerer::lowerTextContext(const PersonalDecl& p, const Expr& context, ir::ModelFactor& mf, Ctx& none) {
+  std::vector<const Expr*> entries;
+  if (context.kind == ExprKind::List) {
+    for (const auto& e : context.operands) entries.push_back(e.get());
+  } else {
+    entries.push_back(&context);
+  }
+  for (const Expr* e : entries) {
+    ir::ContextEntry entry{e->text, lower(e, none), {}};
+    for (int i : paramsRead(e)) entry.params.push_back(p.params[i].name.name);
+    mf.context.push_back(std::move(entry));
+  }
 }
 
 ir::LearnRule Lowerer::lowerLearnRule(const PersonalDecl& p, const LearnRule& rule, Ctx& none) {

@@ -172,6 +172,8 @@ class Lowerer {
   void lowerGenerator(const PersonalDecl& p);
   // A generator belongs to no task: its expressions are lowered in one empty context, `none`.
   ir::ModelFactor lowerFactor(const PersonalDecl& p, const ModelFactor& f, Ctx& none);
+  // A text model's `context:` names, lowered in the generator's scope (observations and parameters).
+  void lowerTextContext(const PersonalDecl& p, const Expr& context, ir::ModelFactor& mf, Ctx& none);
   ir::LearnRule lowerLearnRule(const PersonalDecl& p, const LearnRule& rule, Ctx& none);
   // W0401: some parameter's pattern (with its type) matches no variable of any task.
   void warnIfUnmatched(const PersonalDecl& p, const ir::Generator& g);

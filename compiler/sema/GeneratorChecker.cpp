@@ -193,7 +193,8 @@ class GenChecker {
         }
       } else if (k == "text") {
         needArgs(f, 1,
-                 "text(subject, prompt: \"...\", learning: \"...\", scale: relative|absolute, rating: digits|options)");
+                 "text(subject, prompt: \"...\", learning: \"...\", scale: relative|absolute, rating: digits|options, "
+                 "context: [name, ...])");
         if (first && first->type && !first->type->isError() && first->type->kind != TypeKind::Item &&
             first->type->kind != TypeKind::Enum && first->type->kind != TypeKind::Text) {
           diags_.error(
@@ -213,9 +214,11 @@ class GenChecker {
             if (a.value->kind != ExprKind::Name || (a.value->text != "digits" && a.value->text != "options")) {
               diags_.error("E0406", a.range, "'rating' is 'digits' or 'options'");
             }
+          } else if (a.name.name == "context") {
+            checkTextContext(a);
           } else {
             diags_.error("E0406", a.name.range, fmt::format("a text model has no argument '{}'", a.name.name))
-                .help("its named arguments are prompt, learning, scale and rating");
+                .help("its named arguments are prompt, learning, scale, rating and context");
           }
         }
       } else {
@@ -242,6 +245,39 @@ class GenChecker {
         diags_.error(
             "E0412", key.range,
             fmt::format("'{}' is neither a capture of the 'when' patterns nor a discrete parameter", key.name));
+      }
+    }
+  }
+
+  // `context: name` or `context: [name, ...]`: observations or generator parameters of a discrete scalar type, each
+  // named once. The names are the keys the text models see, so an expression (which has no name) is not allowed.
+  void checkTextContext(const Arg& a) {
+    std::vector<const Expr*> entries;
+    if (a.value->kind == ExprKind::List) {
+      for (const auto& e : a.value->operands) entries.push_back(e.get());
+      if (entries.empty()) diags_.error("E0406", a.value->range, "an empty context; leave 'context' out instead");
+    } else {
+      entries.push_back(a.value.get());
+    }
+    std::set<std::string> seen;
+    for (const Expr* e : entries) {
+      const bool named =
+          e->kind == ExprKind::Name && (e->ref.kind == RefKind::Observation || e->ref.kind == RefKind::Param);
+      if (!named) {
+        if (e->kind != ExprKind::Name || e->ref.kind != RefKind::Unresolved)  // unknown names are reported already
+          diags_.error("E0406", e->range, "a text model's context names observations or generator parameters")
+              .help("write the names, e.g. context: [foodOnPlate, mealSetting]");
+        continue;
+      }
+      if (!seen.insert(e->text).second) {
+        diags_.error("E0406", e->range, fmt::format("'{}' is in the context twice", e->text));
+        continue;
+      }
+      if (e->type && !e->type->isError() && !e->type->isDiscrete()) {
+        diags_
+            .error("E0406", e->range,
+                   fmt::format("a context value is text, an enum, an item, bool or int, not {}", e->type->spelling))
+            .help("the models compare contexts by equality; a continuous value is never seen twice");
       }
     }
   }

@@ -351,6 +351,11 @@ void TypeChecker::checkPersonal(PersonalDecl& g) {
   for (auto& f : g.factors) {
     for (auto& a : f.args) {
       if (a.value && a.value->kind == ExprKind::Name && a.value->ref.kind == RefKind::Unresolved) continue;
+      // A text model's context is a list of names of different types, each typed on its own.
+      if (f.kind.name == "text" && a.name.name == "context" && a.value && a.value->kind == ExprKind::List) {
+        for (auto& element : a.value->operands) check(element.get());
+        continue;
+      }
       check(a.value.get());
     }
   }

@@ -24,8 +24,11 @@ constexpr double kDrinkX0 = 0.30, kDrinkX1 = 0.38, kDrinkY0 = 0.15, kDrinkY1 = 0
 // Where the drink waits while it is not in use: off the table, out of every check of the table.
 constexpr double kDrinkParkedX = 0.55, kDrinkParkedY = 1.60;
 
-const std::vector<std::string> kFoods = {"french fries", "potato wedges", "tater tots", "carrot sticks"};
-const std::vector<std::string> kDips = {"ketchup", "bbqSauce", "ranch", "hummus"};  // noDip is always possible
+// The paper's five foods and four sauces (noDip is always possible), and its meal settings (MealSetting).
+const std::vector<std::string> kFoods = {"french fries", "raw vegetables", "potato wedges", "carrot sticks",
+                                         "tater tots"};
+const std::vector<std::string> kDips = {"ketchup", "bbqSauce", "ranch", "hummus"};
+const std::vector<std::string> kSettings = {"alone", "withFriend", "withTv", "withFriendAndTv"};
 
 sim::StepResult unknownAction(std::string message) {
   sim::StepResult r;
@@ -84,6 +87,11 @@ void FeedingSimulator::reset(std::uint64_t seed) {
   world_->workspace().setState(s);
   world_->utterances().clear();
   cycle_ = rng_.index(4);
+  serveMeal();
+  startRequest(cycle_ == 2 ? Request::Prepare : cycle_ == 3 ? Request::Drink : Request::Food);
+}
+
+void FeedingSimulator::serveMeal() {
   food_ = kFoods[rng_.index(kFoods.size())];
   std::vector<std::string> dips = kDips;
   const std::size_t first = rng_.index(dips.size());
@@ -92,7 +100,7 @@ void FeedingSimulator::reset(std::uint64_t seed) {
   std::swap(dips[1], dips[second]);
   dips_ = {dips[0], dips[1]};
   std::sort(dips_.begin(), dips_.end());
-  startRequest(cycle_ == 2 ? Request::Prepare : cycle_ == 3 ? Request::Drink : Request::Food);
+  setting_ = kSettings[rng_.index(kSettings.size())];
 }
 
 void FeedingSimulator::startRequest(Request r) {
@@ -122,6 +130,7 @@ void FeedingSimulator::startRequest(Request r) {
 
 void FeedingSimulator::nextRequest() {
   cycle_ = (cycle_ + 1) % 4;
+  if (cycle_ == 0) serveMeal();  // the drink is back with the user: the next meal
   startRequest(cycle_ == 2 ? Request::Prepare : cycle_ == 3 ? Request::Drink : Request::Food);
 }
 
@@ -147,6 +156,10 @@ std::string FeedingSimulator::requestedTask() const {
   return {};
 }
 
+std::vector<std::string> FeedingSimulator::judgedPreferences() const {
+  return {"bite", "view", "dip", "signal", "verbosity"};
+}
+
 sim::Observation FeedingSimulator::observe() const {
   const world::Workspace& ws = world_->workspace();
   const Pose3 plate = *ws.objectPose("plate");
@@ -159,6 +172,7 @@ sim::Observation FeedingSimulator::observe() const {
   choices.push_back("noDip");
   o["dipChoices"] = sim::Value::names(choices);
   o["foodOnPlate"] = sim::Value::name(food_);
+  o["mealSetting"] = sim::Value::name(setting_);
   return o;
 }
 
@@ -226,16 +240,23 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
         step.message = "the user was never fed";
         return complete(std::move(step), false);
       }
-      const std::string idealDip = user_->idealDip(food_, dips_);
+      const std::string idealDip = user_->idealDip(food_, setting_, dips_);
+      const std::string idealSignal = user_->idealSignal(setting_);
+      const std::string idealVerbosity = user_->idealVerbosity(setting_);
       const int spoke = static_cast<int>(world_->utterances().size()) - progress_.utterancesAtStart;
       const std::string verbosity = FeedingUser::perceivedVerbosity(spoke);
       const std::string signalGiven = progress_.signal.empty() ? "autoContinue" : progress_.signal;
       step.feedback.push_back(
           {"dipAnswer", {sim::Value::name(food_), sim::Value::name(progress_.dip), sim::Value::name(idealDip)}});
-      step.feedback.push_back({"signalAnswer", {sim::Value::name(signalGiven), sim::Value::name(user_->readySignal)}});
-      step.feedback.push_back({"verbosityAnswer", {sim::Value::name(verbosity), sim::Value::name(user_->verbosity)}});
-      const bool satisfied = !progress_.viewBlocked && progress_.dip == idealDip && signalGiven == user_->readySignal &&
-                             verbosity == user_->verbosity;
+      step.feedback.push_back({"signalAnswer", {sim::Value::name(signalGiven), sim::Value::name(idealSignal)}});
+      step.feedback.push_back({"verbosityAnswer", {sim::Value::name(verbosity), sim::Value::name(idealVerbosity)}});
+      step.preferences = {{"view", !progress_.viewBlocked},
+                          {"dip", progress_.dip == idealDip},
+                          {"signal", signalGiven == idealSignal},
+                          {"verbosity", verbosity == idealVerbosity}};
+      const bool satisfied =
+          std::all_of(step.preferences.begin(), step.preferences.end(), [](const auto& p) { return p.second; });
+      step.preferences.insert(step.preferences.begin(), {"bite", satisfied});
       return complete(std::move(step), satisfied);
     }
     return step;
@@ -245,6 +266,7 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
     drink.position.x() = kDrinkParkedX;  // the user keeps the drink by them; the table is clear again
     drink.position.y() = kDrinkParkedY;
     ws.setObjectPose("drink", drink);
+    step.preferences = {{"view", !progress_.viewBlocked}};
     return complete(std::move(step), !progress_.viewBlocked);
   }
   return step;

@@ -3,14 +3,17 @@
 // FeedingUser who eats, drinks and answers questions.
 //
 // Requests cycle with period 4, as in the reference: food, food, prepare (the drink appears on the table at a
-// random spot clear of the plate), drink. requestedTask() names the .cbtl task of the current request:
+// random spot clear of the plate), drink. Each cycle is one meal: when it starts again, a new meal is served
+// (the food, two of the four sauces and the setting, drawn anew; the paper's five meals changed food, sauces and
+// company too). requestedTask() names the .cbtl task of the current request:
 // feedBite, prepareDrink, giveDrink. A request ends (taskDone, satisfaction +1 or -1) when
 //   feedBite:     waitForUser("done") after waitForUser("biteTaken"); the user answers dipAnswer(food, offered
-//                 dip, ideal dip), signalAnswer(offered, ideal) and verbosityAnswer(perceived, ideal) and is
-//                 satisfied (+1) iff all three match and their view was never blocked during the bite;
+//                 dip, ideal dip), signalAnswer(offered, ideal) and verbosityAnswer(perceived, ideal) (the ideals
+//                 for this food and setting) and is satisfied (+1) iff all three match and their view was never
+//                 blocked during the bite; the step reports each of the four (view, dip, signal, verbosity);
 //   prepareDrink: moveDrink succeeds (+1);
 //   giveDrink:    the arm is back at a named configuration, empty-handed, after waitForUser("done") (+1 iff
-//                 the view was never blocked during the request);
+//                 the view was never blocked during the request; the step reports view);
 // and as a failure (-1) when any action fails (no IK, no path, a grasp out of reach, ...): the caregiver then
 // puts the utensil back, opens the gripper and folds the arm to `retract`.
 // View feedback: after every successful moveArm(q) (the configurations the CSP chose), the user says
@@ -25,11 +28,12 @@
 // domain's own actions dipInto(sauce: text), acquireFood() (the tool must be within 0.1 m of the plate centre
 // horizontally, holding the utensil) and waitForReady(signal: ReadySignal), one step each.
 // Observations: plateXY, drinkXY (vec<2>), dipsOnTable (set of Dip entries), dipChoices (the same and noDip: what
-// the robot may offer), foodOnPlate (text).
+// the robot may offer), foodOnPlate (text), mealSetting (MealSetting member).
 //
 // Determinism: reset(seed) reseeds the simulator's world::Rng; the episode draws, in order, the plate
-// position, the position in the request cycle, the food, the two dips on the table (and, for a prepare
-// request, the drink position). SimulatorOptions (preference shifts, unsatisfiable stock) do not apply.
+// position, the position in the request cycle, the meal (food, the two dips on the table, setting), and after
+// that, request by request, a prepare request's drink position and each new cycle's meal. SimulatorOptions
+// (preference shifts, unsatisfiable stock) do not apply.
 #pragma once
 
 #include "domains/ProgramFacts.h"
@@ -63,12 +67,15 @@ class FeedingSimulator final : public sim::DomainSimulator {
   sim::StepResult idle() override;
   const world::WorldState* worldState() const override { return &world_->workspace().state(); }
   std::string requestedTask() const override;
+  // bite (every preference of a bite met), view, dip, signal, verbosity
+  std::vector<std::string> judgedPreferences() const override;
   // Shares the user; its own world and RNG, reset with seed 0 until the caller resets it.
   std::unique_ptr<sim::DomainSimulator> makeEvaluationTwin() const override;
 
   Request request() const { return request_; }
   const std::string& food() const { return food_; }
   const std::vector<std::string>& dipsOnTable() const { return dips_; }
+  const std::string& setting() const { return setting_; }
   const FeedingUser& user() const { return *user_; }
   world::World& world() { return *world_; }
 
@@ -83,6 +90,7 @@ class FeedingSimulator final : public sim::DomainSimulator {
     std::string dip = "noDip";
     std::string signal;
   };
+  void serveMeal();  // draws the next meal: food, the two sauces on the table, the setting
   void startRequest(Request r);
   void nextRequest();
   void restoreHome();
@@ -100,6 +108,7 @@ class FeedingSimulator final : public sim::DomainSimulator {
   Request request_ = Request::Food;
   std::string food_;
   std::vector<std::string> dips_;
+  std::string setting_;
   Progress progress_;
 };
 

@@ -3,7 +3,8 @@
 // talk. The robot never reads these; it learns them from the feedback events the simulator derives here.
 //
 // Names are those of domains/feeding/feeding.cbtl: Dip entries (ketchup, bbqSauce, ranch, hummus, noDip),
-// ReadySignal members (mouthOpen, button, autoContinue), Verbosity members (silent, brief, chatty).
+// ReadySignal members (mouthOpen, button, autoContinue), Verbosity members (silent, brief, chatty), MealSetting
+// members (alone, withFriend, withTv, withFriendAndTv).
 #pragma once
 
 #include <map>
@@ -16,17 +17,26 @@ class FeedingUser {
  public:
   // The user of our experiments (documented in docs/domains-feeding.md): complains from an occlusion score
   // of 0.05 (the reference user's threshold), likes ketchup with fries and tater tots, BBQ sauce with potato
-  // wedges, hummus with carrot sticks, ranch as the second choice with fries and carrots; presses the button;
-  // wants brief talk.
+  // wedges, hummus with carrot sticks, ranch with raw vegetables, ranch as the second choice with fries and
+  // carrots, hummus with raw vegetables; presses the button; wants brief talk, and silence when a friend is there
+  // to talk to.
   static FeedingUser paperDefault();
 
   double occlusionThreshold = 0.05;                            // view blocked at score >= this, in [0, 1]
   std::map<std::string, std::vector<std::string>> dipRanking;  // food -> Dip entries, best first
-  std::string readySignal = "button";
-  std::string verbosity = "brief";
+  // food|setting -> Dip entries, best first: where the setting changes the dip (e.g. nothing messy with a friend)
+  std::map<std::string, std::vector<std::string>> dipRankingInSetting;
+  std::string readySignal = "button";                       // ReadySignal member
+  std::map<std::string, std::string> readySignalInSetting;  // MealSetting member -> ReadySignal member
+  std::string verbosity = "brief";                          // Verbosity member
+  std::map<std::string, std::string> verbosityInSetting;    // MealSetting member -> Verbosity member
 
-  // The dip the user wants with `food` among those on the table: the best-ranked one there, else noDip.
-  std::string idealDip(const std::string& food, const std::vector<std::string>& onTable) const;
+  // The dip the user wants with `food` in `setting` among those on the table: the best-ranked one there (the
+  // setting's ranking for that food if there is one, else the food's), else noDip.
+  std::string idealDip(const std::string& food, const std::string& setting,
+                       const std::vector<std::string>& onTable) const;
+  std::string idealSignal(const std::string& setting) const;
+  std::string idealVerbosity(const std::string& setting) const;
   bool viewBlocked(double occlusionScore) const { return occlusionScore >= occlusionThreshold; }
   // The verbosity the user perceived from how many times the robot spoke during one bite.
   static std::string perceivedVerbosity(int utterances);

@@ -141,7 +141,10 @@ json toJson(const ExperimentResult& r) {
   for (const auto& e : r.evals) {
     json sat = json::array();
     for (double s : e.satisfaction) sat.push_back(num(s));
+    json preferences = json::object();
+    for (const auto& [name, t] : e.preferences) preferences[name] = {t.met, t.judged};
     evals.push_back({{"step", e.step},
+                     {"preferences", preferences},
                      {"satisfaction", sat},
                      {"mean", num(e.mean)},
                      {"task_success_rate", num(e.taskSuccessRate)},
@@ -178,6 +181,10 @@ ExperimentResult experimentResultFromJson(const json& j) {
     p.preferencesMetRate = numFrom(e.at("preferences_met_rate"));
     p.replans = e.at("replans").get<int>();
     p.competence = competenceFromJson(e.at("competence"));
+    if (e.contains("preferences")) {  // absent in checkpoints written before preferences were tallied
+      for (const auto& [name, t] : e.at("preferences").items())
+        p.preferences[name] = PreferenceTally{t.at(0).get<int>(), t.at(1).get<int>()};
+    }
     r.evals.push_back(std::move(p));
   }
   r.mealsServed = j.at("meals_served").get<std::int64_t>();

@@ -71,6 +71,7 @@ class RecordingSimulator final : public sim::DomainSimulator {
   sim::StepResult idle() override;
   const world::WorldState* worldState() const override { return inner_->worldState(); }
   std::string requestedTask() const override { return inner_->requestedTask(); }
+  std::vector<std::string> judgedPreferences() const override { return inner_->judgedPreferences(); }
   std::unique_ptr<sim::DomainSimulator> makeEvaluationTwin() const override { return inner_->makeEvaluationTwin(); }
 
   // Lines logged since the last call (each ends in '\n'), and the number of calls logged so far.

@@ -83,6 +83,7 @@ sim::StepResult executeStep(sim::DomainSimulator& world, const std::vector<sim::
     sim::StepResult r = world.act(call);
     requireApplied(r, call);
     for (auto& f : r.feedback) merged.feedback.push_back(std::move(f));
+    for (auto& p : r.preferences) merged.preferences.push_back(std::move(p));
     if (r.hasSatisfaction) {
       merged.hasSatisfaction = true;
       merged.satisfaction += r.satisfaction;
@@ -162,12 +163,13 @@ std::string trainHeader() {
          "labels_learned\n";
 }
 
-std::string evalHeader(int evalTasks) {
+std::string evalHeader(int evalTasks, const std::vector<std::string>& preferences) {
   std::string h = "training_step,training_execution_time";
   for (int i = 0; i < evalTasks; ++i) h += fmt::format(",eval_episode_{}_user_satisfaction", i);
-  return h +
-         ",eval_mean_user_satisfaction,eval_task_success_rate,eval_preferences_met_rate,eval_replans,"
-         "eval_requests_solved_rate,eval_plans_executed_rate,eval_dry_run_mismatches\n";
+  h += ",eval_mean_user_satisfaction,eval_task_success_rate,eval_preferences_met_rate,eval_replans,"
+       "eval_requests_solved_rate,eval_plans_executed_rate,eval_dry_run_mismatches";
+  for (const auto& p : preferences) h += fmt::format(",eval_{}_met_rate", p);
+  return h + "\n";
 }
 
 // Everything one trial carries from step to step; a checkpoint saves exactly this (Checkpoint.h).
@@ -254,6 +256,11 @@ void evaluate(Trial& tr, std::int64_t step) {
         countExecution(point.competence, open, plan.dryRun(), r, next < plan.calls.size());
         if (r.consumedStep) ++steps;
         if (r.hasSatisfaction) satisfaction += r.satisfaction;
+        for (const auto& [name, met] : r.preferences) {
+          PreferenceTally& tally = point.preferences[name];
+          tally.met += met ? 1 : 0;
+          ++tally.judged;
+        }
         done = r.taskDone;
         failed = failed || r.taskFailed;
       }
@@ -273,7 +280,13 @@ void evaluate(Trial& tr, std::int64_t step) {
     row += fmt::format(",{:.6g},{:.6g},{:.6g},{},{:.6g},{:.6g},{}\n", point.mean, point.taskSuccessRate,
                        point.preferencesMetRate, point.replans, point.competence.solvedRate(),
                        point.competence.executedRate(), point.competence.dryRunMismatches);
-    tr.out.evalRow(row);
+    row.pop_back();  // the preferences' columns follow
+    for (const auto& name : tr.trainWorld.judgedPreferences()) {
+      auto it = point.preferences.find(name);
+      row += it == point.preferences.end() || it->second.judged == 0 ? std::string(",nan")
+                                                                     : fmt::format(",{:.6g}", it->second.rate());
+    }
+    tr.out.evalRow(row + "\n");
     tr.out.writeModel(step, tr.user.toJson());
     if (config.testHook) config.testHook("model", step);
   }
@@ -402,12 +415,13 @@ ExperimentResult runExperiment(const PreparedProgram& lp, const SimulatorFactory
   sim::SimulatorOptions simOptions = config.simulator;
   if (config.nonstationary && config.adaptation == Adaptation::UserReset) simOptions.announceShifts = true;
   textpref::beginRunFaults(config.textBackend.get());
-  RunOutput out(config.outDir, config.runMode, configJson(lp, config, simOptions, task), trainHeader(),
-                evalHeader(config.evalTasks));
-  out.hook = config.testHook;
-  if (out.completed()) return *out.completed();  // --resume of a complete run
+  // The world first: eval.csv has a column per preference it judges.
   auto world = factory(simOptions, config.seed);
   if (!world) throw std::runtime_error(fmt::format("no simulator for domain '{}'", lp.graph().domain));
+  RunOutput out(config.outDir, config.runMode, configJson(lp, config, simOptions, task), trainHeader(),
+                evalHeader(config.evalTasks, world->judgedPreferences()));
+  out.hook = config.testHook;
+  if (out.completed()) return *out.completed();  // --resume of a complete run
   Trial tr(lp, config, out, std::move(world), static_cast<std::size_t>(task));
   std::int64_t start = 0;
   if (out.resumeFrom()) {

@@ -10,7 +10,8 @@
 // scores 0 and counts as a failed task.
 //
 // Outputs (when `outDir` is set): train.csv, eval.csv (the reference's columns plus task-success and
-// preferences-met rates), config.json (with the text backend, server and model), models/<step>.json at every
+// preferences-met rates, and one met rate per preference the domain judges, sim::DomainSimulator::
+// judgedPreferences), config.json (with the text backend, server and model), models/<step>.json at every
 // checkpoint and, at the end, profile.json, llm.json (the text backend and its failure counts, RunReport.h) and
 // then the completion marker complete.json. A folder that already holds a run is refused, replaced or resumed
 // as `runMode` says; every evaluation point is a checkpoint that `--resume` continues from exactly
@@ -27,6 +28,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -85,14 +87,21 @@ struct Competence {
   void add(const Competence& o);
 };
 
+// How often one of the user's preferences (sim::StepResult::preferences) was met in a checkpoint's episodes.
+struct PreferenceTally {
+  int met = 0, judged = 0;
+  double rate() const { return judged > 0 ? static_cast<double>(met) / judged : 0.0; }
+};
+
 struct EvalPoint {
   std::int64_t step = 0;
   std::vector<double> satisfaction;  // per episode
   double mean = 0;
-  double taskSuccessRate = 0;     // episodes that completed their task
-  double preferencesMetRate = 0;  // episodes whose user was satisfied
-  int replans = 0;                // episodes that had to drop the personalized constraints
-  Competence competence;          // over this checkpoint's episodes
+  double taskSuccessRate = 0;                          // episodes that completed their task
+  double preferencesMetRate = 0;                       // episodes whose user was satisfied
+  int replans = 0;                                     // episodes that had to drop the personalized constraints
+  Competence competence;                               // over this checkpoint's episodes
+  std::map<std::string, PreferenceTally> preferences;  // by name, over this checkpoint's episodes
 };
 
 struct ExperimentResult {

@@ -1,6 +1,7 @@
 #include "runtime/approach/Learner.h"
 
 #include "runtime/approach/ValueBridge.h"
+#include "runtime/core/TextContext.h"
 
 #include <fmt/format.h>
 
@@ -98,7 +99,13 @@ LearnReport Learner::learn(const std::vector<sim::FeedbackEvent>& events, model:
                               g.source->name, type.typeName, value));
               continue;
             }
-            if (const textpref::Status s = f.observe(*subject, holds); !s.ok()) {
+            textpref::Context context;
+            if (const auto& compiled = r.contexts[l]; !compiled.empty()) {
+              std::vector<double> values;
+              rt::evaluateContext(program_, compiled, ctx, values);
+              context = rt::renderContext(program_, compiled, values);
+            }
+            if (const textpref::Status s = f.observe(*subject, holds, context); !s.ok()) {
               report.modelErrors.push_back(fmt::format("{}: learning from '{}' about '{}': {}", g.source->name, ev.name,
                                                        subject->name, s.error().describe()));
             }

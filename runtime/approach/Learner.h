@@ -6,7 +6,9 @@
 // (wrong arity or kinds) are reported, never applied.
 //
 // A text factor learns (subject, label) with the subject as the same textpref::Item the evaluator shows it
-// (the Program's ItemDescriptors; a text subject becomes an item named by the text). A text model that cannot
+// (the Program's ItemDescriptors; a text subject becomes an item named by the text), in the factor's context
+// evaluated over the rule's frame and the step's observation (the situation the user reacted in). A text model
+// that cannot
 // rewrite theta (a language-model server that fails) keeps the record and its old theta; that is a model error,
 // reported apart from malformed events because the feedback itself was fine.
 #pragma once

@@ -1,6 +1,7 @@
 #include "runtime/core/Personalization.h"
 
 #include "runtime/core/ProgramCompiler.h"
+#include "runtime/core/TextContext.h"
 
 #include "ir/Pattern.h"
 
@@ -104,6 +105,7 @@ std::vector<PersonalInstance> personalize(Program& program, const ir::Task& task
     for (const auto& f : g.factors) {
       inst.features.push_back(f.feature ? compiler.compile(*f.feature, scope) : UINT32_MAX);
       inst.featureTypes.push_back(f.feature ? program.typeOf(f.feature->type) : ValueType{});
+      inst.contexts.push_back(compileContext(compiler, program, f, scope));
     }
     for (const auto& keyName : g.perKeys) {
       ModelKeyPart part;

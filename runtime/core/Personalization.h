@@ -23,14 +23,15 @@ struct ModelKeyPart {
 };
 
 struct PersonalInstance {
-  std::uint32_t generator = 0;          // index into Program::generators()
-  std::string name;                     // "gen(var, var, ...)"
-  std::vector<ir::VarId> vars;          // one per parameter
-  std::vector<ir::VarId> hyperedge;     // sorted, unique
-  std::vector<std::string> captures;    // one per generator capture
-  std::optional<std::uint32_t> guard;   // node; false: the constraint does not apply
-  std::vector<std::uint32_t> features;  // per factor: feature node over the instance's variables, or UINT32_MAX
-  std::vector<ValueType> featureTypes;  // per factor (tables render the feature's value as their key)
+  std::uint32_t generator = 0;            // index into Program::generators()
+  std::string name;                       // "gen(var, var, ...)"
+  std::vector<ir::VarId> vars;            // one per parameter
+  std::vector<ir::VarId> hyperedge;       // sorted, unique
+  std::vector<std::string> captures;      // one per generator capture
+  std::optional<std::uint32_t> guard;     // node; false: the constraint does not apply
+  std::vector<std::uint32_t> features;    // per factor: feature node over the instance's variables, or UINT32_MAX
+  std::vector<ValueType> featureTypes;    // per factor (tables render the feature's value as their key)
+  std::vector<CompiledContext> contexts;  // per factor: a text factor's context over the instance's variables
   std::vector<ModelKeyPart> key;
 };
 

@@ -61,6 +61,14 @@ struct CompiledConstraint {
   std::uint32_t root = 0;
 };
 
+// A text factor's `context:` compiled against one scope (TextContext.h): one scalar node per entry.
+struct CompiledContext {
+  std::vector<std::string> names;    // per entry: the key the models see (the name as written)
+  std::vector<std::uint32_t> nodes;  // per entry
+  std::vector<ValueType> types;      // per entry
+  bool empty() const { return nodes.empty(); }
+};
+
 struct CompiledFactor {
   const ir::ModelFactor* source = nullptr;
 };
@@ -74,6 +82,7 @@ struct CompiledLearnRule {
   std::vector<ValueType> binderTypes;
   std::vector<std::pair<int, std::uint32_t>> labels;  // (factor index, label node)
   std::vector<std::uint32_t> features;                // per label: the factor's feature node, or UINT32_MAX
+  std::vector<CompiledContext> contexts;              // per label: a text factor's context, over the rule's frame
   std::optional<std::uint32_t> condition;
   std::uint32_t frameWidth = 0;
 };

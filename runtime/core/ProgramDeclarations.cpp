@@ -2,6 +2,7 @@
 // samplers (with their `uniform` plans), generators (factors and learning rules) and costs. Each sets the
 // location errors are reported at to the declaration it compiles, and clears it when done.
 #include "runtime/core/ProgramCompiler.h"
+#include "runtime/core/TextContext.h"
 
 #include <fmt/format.h>
 
@@ -190,6 +191,19 @@ CompiledLearnRule ProgramCompiler::compileLearnRule(const ir::Generator& g, cons
     if (factor < 0) throw RuntimeError(Program::where(r.span), fmt::format("label names no factor of '{}'", g.name));
     const auto& f = g.factors[static_cast<std::size_t>(factor)];
     std::uint32_t featureNode = UINT32_MAX;
+    for (const auto& entry : f.context) {
+      for (const auto& pn : entry.params) {
+        for (std::size_t p = 0; p < g.params.size(); ++p) {
+          if (g.params[p].name == pn && scope.params[p] == UINT32_MAX) {
+            throw RuntimeError(Program::where(r.span),
+                               fmt::format("learning rule '{}' does not bind parameter '{}', which the context of "
+                                           "factor '{}' reads",
+                                           r.event, pn, f.label));
+          }
+        }
+      }
+    }
+    cr.contexts.push_back(compileContext(*this, program_, f, scope));
     if (f.feature) {
       for (const auto& pn : f.params) {
         for (std::size_t p = 0; p < g.params.size(); ++p) {

@@ -43,8 +43,9 @@ double Factor::probability(const std::string& key) const {
   return 0.5;
 }
 
-double Factor::probability(const textpref::Item& subject, std::span<const textpref::Item> available) const {
-  if (const auto* t = std::get_if<TextFactor>(&model_)) return t->probability(subject, available);
+double Factor::probability(const textpref::Item& subject, std::span<const textpref::Item> available,
+                           const KeyedContext& context) const {
+  if (const auto* t = std::get_if<TextFactor>(&model_)) return t->probability(subject, available, context);
   return 0.5;
 }
 
@@ -67,8 +68,8 @@ void Factor::observe(const std::string& key, bool holds) {
   if (auto* t = std::get_if<TableModel>(&model_)) t->observe(key, holds);
 }
 
-textpref::Status Factor::observe(const textpref::Item& subject, bool holds) {
-  if (auto* t = std::get_if<TextFactor>(&model_)) return t->learn(subject, holds);
+textpref::Status Factor::observe(const textpref::Item& subject, bool holds, const textpref::Context& context) {
+  if (auto* t = std::get_if<TextFactor>(&model_)) return t->learn(subject, holds, context);
   return {};
 }
 

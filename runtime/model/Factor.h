@@ -40,13 +40,15 @@ class Factor {
   double posterior(double feature) const;
   double probability(const std::string& key) const;  // table
   // text: see TextFactor::probability (`available` is the subject's domain for relative scaling)
-  double probability(const textpref::Item& subject, std::span<const textpref::Item> available) const;
+  double probability(const textpref::Item& subject, std::span<const textpref::Item> available,
+                     const KeyedContext& context = KeyedContext::none()) const;
   void observe(double feature, bool holds);
   // interval / threshold: observes every (feature, holds) in order, the same as one observe() each but linear.
   void observeAll(std::span<const std::pair<double, bool>> points);
   void observe(const std::string& key, bool holds);
-  // text: learns one (subject, liked) record; the status says whether theta could be updated
-  textpref::Status observe(const textpref::Item& subject, bool holds);
+  // text: learns one (subject, context, liked) record; the status says whether theta could be updated
+  textpref::Status observe(const textpref::Item& subject, bool holds,
+                           const textpref::Context& context = textpref::Context{});
   void reset();
 
   const Model& model() const { return model_; }

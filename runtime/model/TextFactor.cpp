@@ -13,6 +13,20 @@ std::shared_ptr<const textpref::TextBackend> defaultTextBackend() {
   return backend;
 }
 
+KeyedContext::KeyedContext(textpref::Context c) : context(std::move(c)) {
+  // Unit and record separators cannot occur in a .cbtl name, and the value is the last part of each field.
+  for (const auto& [field, values] : context.fields) {
+    key += field;
+    for (const auto& v : values) key += '\x1f' + v;
+    key += '\x1e';
+  }
+}
+
+const KeyedContext& KeyedContext::none() {
+  static const KeyedContext empty;
+  return empty;
+}
+
 TextFactor::TextFactor(const ir::ModelFactor& spec, double fallback,
                        std::shared_ptr<const textpref::TextBackend> backend)
     : backend_(backend ? std::move(backend) : defaultTextBackend()),
@@ -49,8 +63,8 @@ TextFactor& TextFactor::operator=(const TextFactor& other) {
 
 void TextFactor::forget() const { cache_.clear(); }
 
-textpref::Assessment TextFactor::assess(const textpref::Item& subject) const {
-  const auto result = model_->assess(subject, textpref::Context{});
+textpref::Assessment TextFactor::assess(const textpref::Item& subject, const textpref::Context& context) const {
+  const auto result = model_->assess(subject, context);
   if (!result.ok()) {
     ++fallbacks_;
     lastError_ = result.error().describe();
@@ -58,26 +72,28 @@ textpref::Assessment TextFactor::assess(const textpref::Item& subject) const {
   return textpref::assessOrFallback(result, textpref::FallbackPolicy{fallback_});
 }
 
-double TextFactor::absolute(const textpref::Item& subject) const {
-  if (auto it = cache_.find(subject.name); it != cache_.end()) return it->second;
-  const double p = assess(subject).probability;
-  cache_.emplace(subject.name, p);
+double TextFactor::absolute(const textpref::Item& subject, const KeyedContext& context) const {
+  auto& bySubject = cache_[context.key];  // allocates only the first time a context is seen
+  if (auto it = bySubject.find(subject.name); it != bySubject.end()) return it->second;
+  const double p = assess(subject, context.context).probability;
+  bySubject.emplace(subject.name, p);
   return p;
 }
 
-double TextFactor::probability(const textpref::Item& subject, std::span<const textpref::Item> available) const {
-  const double p = absolute(subject);
+double TextFactor::probability(const textpref::Item& subject, std::span<const textpref::Item> available,
+                               const KeyedContext& context) const {
+  const double p = absolute(subject, context);
   if (scale_ != Scale::Relative || available.empty()) return p;
   // The same rule as textpref::scaleRelativeToBest, over probabilities that are cached anyway. Recomputed on
   // every call: the available values differ from CSP to CSP (a few cached look-ups).
   double best = 0.0;
-  for (const auto& item : available) best = std::max(best, absolute(item));
+  for (const auto& item : available) best = std::max(best, absolute(item, context));
   if (best <= 0.0) return p;
   return std::clamp(p / best, 0.0, 1.0);
 }
 
-textpref::Status TextFactor::learn(const textpref::Item& subject, bool liked) {
-  const textpref::FeedbackRecord record{subject, textpref::Context{}, std::string(), liked};
+textpref::Status TextFactor::learn(const textpref::Item& subject, bool liked, const textpref::Context& context) {
+  const textpref::FeedbackRecord record{subject, context, std::string(), liked};
   const textpref::Status status = model_->learn(std::span<const textpref::FeedbackRecord>(&record, 1));
   forget();  // the history changed even when theta could not be rewritten
   return status;

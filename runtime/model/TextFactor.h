@@ -6,13 +6,16 @@
 // (subject, liked) records.
 //
 // Contracts:
+//  - A generator may name a context (`context: [foodOnPlate, mealSetting]`): the subject is judged in it (the
+//    ConstraintPrompt shows it; the offline model has features per context value and subject), and every learned
+//    record carries the context of the observation the feedback was about.
 //  - Copying deep-copies what was learned: the copy gets a fresh model from the same backend and loads the
 //    original's saveState(), so learning on a copy never changes the original (the evaluation agent works on a
 //    copy of the training agent's user model). A language-model backend's client and response cache are shared
 //    between copies; they hold no learned state. A copy throws std::runtime_error only if the fresh model rejects
 //    the original's own state (a backend bug).
-//  - probability() is called in the solver's inner loop. Assessments are cached per subject name until the
-//    next learn(), loadState() or reset(); a cache hit looks a name up in a hash map and allocates nothing. A
+//  - probability() is called in the solver's inner loop. Assessments are cached per context and subject name until
+//    the next learn(), loadState() or reset(); a cache hit looks two names up in hash maps and allocates nothing. A
 //    failed assessment gives the generator's `fallback` (textpref::assessOrFallback) and is cached too, so an
 //    unreachable server is asked once per subject and learning step, not once per candidate.
 //  - `scale: relative` (the reference's rule) divides by the best probability among the available
@@ -46,6 +49,18 @@ namespace cbtl::model {
 // The offline descriptor backend with default options, shared by every user model that is not given another.
 std::shared_ptr<const textpref::TextBackend> defaultTextBackend();
 
+// The context a subject is judged in (the parts of the observation the generator's `context:` names), with the
+// key that identifies it in the factor's cache. Built once per change of the context, not per candidate.
+struct KeyedContext {
+  textpref::Context context;
+  std::string key;  // "" for the empty context
+
+  KeyedContext() = default;
+  explicit KeyedContext(textpref::Context c);
+  // The shared empty context.
+  static const KeyedContext& none();
+};
+
 class TextFactor {
  public:
   enum class Scale { Absolute, Relative };
@@ -60,15 +75,20 @@ class TextFactor {
   TextFactor& operator=(TextFactor&&) noexcept = default;
   ~TextFactor();
 
-  // P(holds) for `subject`. `available`: the subjects the CSP can choose, for relative scaling (empty: absolute).
-  double probability(const textpref::Item& subject, std::span<const textpref::Item> available) const;
-  // The model's own assessment of `subject` (absolute, with its rating bins and provenance), the fallback on error.
-  textpref::Assessment assess(const textpref::Item& subject) const;
+  // P(holds) for `subject` in `context`. `available`: the subjects the CSP can choose, for relative scaling (empty:
+  // absolute); the best of them is taken in the same context.
+  double probability(const textpref::Item& subject, std::span<const textpref::Item> available,
+                     const KeyedContext& context = KeyedContext::none()) const;
+  // The model's own assessment of `subject` in `context` (absolute, with its rating bins and provenance), the
+  // fallback on error.
+  textpref::Assessment assess(const textpref::Item& subject,
+                              const textpref::Context& context = textpref::Context{}) const;
 
-  // Learns that the user liked (or did not like) `subject`: one FeedbackRecord {subject, no context, no text,
-  // liked}. On failure (a language model could not rewrite theta) the record stays in the history, theta is kept
-  // and the error is returned.
-  textpref::Status learn(const textpref::Item& subject, bool liked);
+  // Learns that the user liked (or did not like) `subject` in `context`: one FeedbackRecord {subject, context, no
+  // text, liked}. On failure (a language model could not rewrite theta) the record stays in the history, theta is
+  // kept and the error is returned.
+  textpref::Status learn(const textpref::Item& subject, bool liked,
+                         const textpref::Context& context = textpref::Context{});
   // Back to the prior: a fresh model.
   void reset();
 
@@ -86,7 +106,7 @@ class TextFactor {
   const std::string& lastError() const { return lastError_; }
 
  private:
-  double absolute(const textpref::Item& subject) const;
+  double absolute(const textpref::Item& subject, const KeyedContext& context) const;
   void forget() const;  // drops every cached assessment
 
   std::shared_ptr<const textpref::TextBackend> backend_;
@@ -97,7 +117,8 @@ class TextFactor {
   std::unique_ptr<textpref::TextPreferenceModel> model_;
 
   // Caches, valid until the model learns (see the contracts above).
-  mutable std::unordered_map<std::string, double> cache_;  // subject name -> absolute probability
+  // context key -> subject name -> absolute probability
+  mutable std::unordered_map<std::string, std::unordered_map<std::string, double>> cache_;
   mutable std::size_t fallbacks_ = 0;
   mutable std::string lastError_;
 };

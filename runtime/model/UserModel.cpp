@@ -91,7 +91,11 @@ std::string UserModel::toJson() const {
         } else if (const auto* tb = std::get_if<TableModel>(&f.model())) {
           j = {{"kind", "table"}, {"entries", tb->entries()}};
         } else if (const auto* tx = std::get_if<TextFactor>(&f.model())) {
-          j = {{"kind", "text"}, {"backend", tx->backendId()}, {"state", tx->saveState()}};
+          // theta is stored for people reading the profile; loading restores it from the state.
+          j = {{"kind", "text"},
+               {"backend", tx->backendId()},
+               {"theta", tx->model().thetaText()},
+               {"state", tx->saveState()}};
         }
         fs[f.label()] = j;
       }

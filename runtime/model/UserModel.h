@@ -1,14 +1,16 @@
 // UserModel.h — everything the robot has learned about one user: for every generator, its factors per
 // model key ("seasoning|salt"). Keys never seen read the prior. Saved and loaded as the user profile.
 //
-// Profile file (JSON, documented in docs/profile.md):
+// Profile file (JSON, documented in docs/runtime.md):
 //   {"format": "cbtl-profile", "version": 1, "domain": "example",
 //    "generators": {"likesRange":     {"key|member": {"temp": {"kind": "interval", "lo": 25, "hi": 35,
 //                                                                  "data": [[30, true], [34, false]]}, ...}},
 //                   "likesItem":      {"": {"text": {"kind": "text", "backend": "offline-descriptor-bayes-v1",
+//                                                    "theta": "...what was learned, as text...",
 //                                                    "state": {...the text model's saveState()...}}}}}}
 // Only the data is stored; the fitted state is recomputed on load, so a profile can never disagree with
-// itself (a text model's state is its feedback history, plus theta for a language model). Loading validates
+// itself (a text model's state is its feedback history, plus theta for a language model; "theta" beside it is
+// for people reading the profile and is not read back). Loading validates
 // everything against the program and reports the first problem with its JSON path: every generator, factor label
 // and factor kind must be the program's, a model key must have the shape of the generator's `per` parts, and a
 // text factor's state must come from the backend this run uses. Loading is linear in the number of data points.

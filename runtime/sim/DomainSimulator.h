@@ -17,6 +17,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace cbtl::world {
@@ -69,7 +70,10 @@ struct StepResult {
   bool preferencesChanged = false;      // the user announced that their preferences changed
   bool caregiverReset = false;          // a person put the robot back to a safe start (it was stuck)
   std::vector<FeedbackEvent> feedback;  // what the user said on this step
-  std::string message;                  // human-readable detail (why an action was ignored, ...)
+  // With hasSatisfaction, optionally: each of the user's preferences this outcome was judged on, by name, and
+  // whether it was met (e.g. {"dip", true}, {"view", false}); evaluation reports each one's rate apart.
+  std::vector<std::pair<std::string, bool>> preferences;
+  std::string message;  // human-readable detail (why an action was ignored, ...)
 };
 
 // Observations by the name declared with `observe`; families by "name[member]" (e.g. "stock[salt]").
@@ -99,6 +103,10 @@ class DomainSimulator {
   // The task (its name in the .cbtl file) the world asks for now, e.g. a "put away, then ..." task while the robot
   // still holds something; empty: the task the run was configured with.
   virtual std::string requestedTask() const { return {}; }
+
+  // The names StepResult::preferences uses, in the order evaluation reports them (one eval.csv column each);
+  // empty: the domain judges outcomes by satisfaction only.
+  virtual std::vector<std::string> judgedPreferences() const { return {}; }
 
   // A second world for evaluation that shares this world's simulated user (so an evaluation sees the
   // user's current, possibly shifted, preferences) but has its own world state and RNG.

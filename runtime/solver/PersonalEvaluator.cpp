@@ -1,5 +1,7 @@
 #include "runtime/solver/PersonalEvaluator.h"
 
+#include "runtime/core/TextContext.h"
+
 #include <cmath>
 
 namespace cbtl::solver {
@@ -68,7 +70,11 @@ double PersonalEvaluator::textProbability(const rt::PersonalInstance& inst, std:
     item = &subject.owned;
   }
   if (item == nullptr) return program_.graph().generators.at(inst.generator).fallback;
-  return f.probability(*item, available);
+  if (factor < inst.contexts.size() && !inst.contexts[factor].empty() &&
+      rt::evaluateContext(program_, inst.contexts[factor], ctx, subject.contextValues)) {
+    subject.context = model::KeyedContext(rt::renderContext(program_, inst.contexts[factor], subject.contextValues));
+  }
+  return f.probability(*item, available, subject.context);
 }
 
 std::string PersonalEvaluator::key(std::uint32_t instance, const rt::EvalContext& ctx) const {

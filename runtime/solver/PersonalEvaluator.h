@@ -13,7 +13,9 @@
 // `scale: relative` divides by the best of the values the CSP can choose: when the subject's variable draws from
 // an observed set (`var book : Book in pickable`), the members the observation lists; otherwise its whole item
 // set or enum. A subject value with no item (an index out of
-// range) reads the generator's `fallback`. The text factor caches its own assessments (TextFactor.h).
+// range) reads the generator's `fallback`. A factor with a context is asked in the context the instance's
+// observation (or variables) give; the context is rendered again only when one of its values changes. The text
+// factor caches its own assessments per context (TextFactor.h).
 #pragma once
 
 #include "runtime/core/Personalization.h"
@@ -58,6 +60,9 @@ class PersonalEvaluator {
     std::optional<std::uint32_t> flags;
     bool availableBuilt = false;
     std::vector<textpref::Item> available;
+    // The factor's context (`context: [...]`): its values and the rendered context, rebuilt when a value changes.
+    std::vector<double> contextValues;
+    model::KeyedContext context;
   };
   struct Cache {
     std::vector<double> keyValues;

@@ -193,7 +193,9 @@ Status OfflineDescriptorModel::learn(std::span<const FeedbackRecord> records) {
 std::string OfflineDescriptorModel::thetaText() const {
   std::set<std::string> liked, disliked;
   for (const auto& r : history_)
-    if (auto label = labelOf(r)) (*label ? liked : disliked).insert(r.item.name);
+    if (auto label = labelOf(r))
+      (*label ? liked : disliked)
+          .insert(r.context.empty() ? r.item.name : r.item.name + " (" + describeContext(r.context) + ")");
   auto list = [](const std::set<std::string>& names) {
     std::string out;
     for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;

@@ -1,6 +1,7 @@
 // `cbtl experiment FILE --approaches A,B --seeds 0..9 ...`: the same trial for several approaches and seeds,
 // summarized as the paper reports it: mean and standard error over seeds of the evaluation satisfaction at
-// every checkpoint (summary.csv), and a table on stdout. Exit codes: 0 ok, 1 bad input, 2 usage.
+// every checkpoint (summary.csv), each preference's met rate where the domain judges preferences
+// (preferences.csv), and tables on stdout. Exit codes: 0 ok, 1 bad input, 2 usage.
 // Every trial writes its own run folder (OUT/<approach>/seed<S>, approach/RunDirectory.h); summary.csv is
 // written last and atomically, so it is present only for a finished experiment. An OUT that holds a summary or
 // any trial's files is refused unless --force (replace them) or --resume (finished trials are read back from
@@ -21,6 +22,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -99,6 +101,56 @@ std::string trialFolder(const std::string& out, cbtl::approach::ApproachKind kin
   return fmt::format("{}/{}/seed{}", out, cbtl::approach::toString(kind), seed);
 }
 
+// The met rate of each preference a domain judges (sim::StepResult::preferences): approach -> preference ->
+// checkpoint -> one rate per seed that judged it there.
+using PreferenceRates = std::map<std::string, std::map<std::string, std::map<std::int64_t, std::vector<double>>>>;
+
+void addPreferenceRates(PreferenceRates& rates, const std::string& approach,
+                        const cbtl::approach::ExperimentResult& r) {
+  for (const auto& e : r.evals)
+    for (const auto& [name, tally] : e.preferences)
+      if (tally.judged > 0) rates[approach][name][e.step].push_back(tally.rate());
+}
+
+std::string preferencesCsv(const PreferenceRates& rates) {
+  std::string csv = "approach,preference,training_step,seeds,met_rate_mean,met_rate_se\n";
+  for (const auto& [approach, byName] : rates)
+    for (const auto& [name, bySteps] : byName)
+      for (const auto& [step, v] : bySteps) {
+        const Stat m = stat(v);
+        csv += fmt::format("{},{},{},{},{:.6g},{:.6g}\n", approach, name, step, v.size(), m.mean, m.se);
+      }
+  return csv;
+}
+
+// Per approach, each preference's met rate at the last checkpoint (mean ± standard deviation over seeds).
+void printPreferenceTable(const PreferenceRates& rates, const std::vector<cbtl::approach::ApproachKind>& kinds) {
+  if (rates.empty()) return;
+  std::set<std::string> names;
+  for (const auto& [approach, byName] : rates)
+    for (const auto& [name, bySteps] : byName) names.insert(name);
+  fmt::print("preferences met at the last checkpoint, per preference (mean ± standard deviation over seeds)\n");
+  fmt::print("{:<20}", "approach");
+  for (const auto& n : names) fmt::print(" {:>14}", n);
+  fmt::print("\n");
+  static const std::map<std::string, std::map<std::int64_t, std::vector<double>>> kNone;
+  for (auto kind : kinds) {
+    const auto it = rates.find(cbtl::approach::toString(kind));
+    const auto& byName = it == rates.end() ? kNone : it->second;
+    fmt::print("{:<20}", cbtl::approach::toString(kind));
+    for (const auto& n : names) {
+      const auto found = byName.find(n);
+      if (found == byName.end() || found->second.empty()) {
+        fmt::print(" {:>14}", "-");
+        continue;
+      }
+      const Stat m = stat(found->second.rbegin()->second);
+      fmt::print(" {:>14}", fmt::format("{:.2f} ± {:.2f}", m.mean, m.sd));
+    }
+    fmt::print("\n");
+  }
+}
+
 // Locks OUT for the whole experiment and applies the mode to what the experiment would write: Fresh refuses
 // an OUT with summary.csv or any trial's files, Force removes summary.csv (each trial clears its own folder).
 std::unique_ptr<cbtl::approach::DirectoryLock> prepareOut(const std::string& out,
@@ -110,7 +162,8 @@ std::unique_ptr<cbtl::approach::DirectoryLock> prepareOut(const std::string& out
   std::filesystem::create_directories(out);
   auto lock = std::make_unique<approach::DirectoryLock>(out);
   std::vector<std::string> existing;
-  if (std::filesystem::exists(std::filesystem::path(out) / "summary.csv")) existing.push_back("summary.csv");
+  for (const char* name : {"summary.csv", "preferences.csv"})
+    if (std::filesystem::exists(std::filesystem::path(out) / name)) existing.push_back(name);
   for (auto kind : kinds) {
     for (auto seed : seeds) {
       for (const auto& f : approach::runFilesIn(trialFolder(out, kind, seed))) {
@@ -120,7 +173,10 @@ std::unique_ptr<cbtl::approach::DirectoryLock> prepareOut(const std::string& out
   }
   if (!existing.empty() && mode == approach::RunMode::Fresh)
     throw approach::RunDirectoryError(approach::refusalMessage(out, existing));
-  if (mode == approach::RunMode::Force) std::filesystem::remove(std::filesystem::path(out) / "summary.csv");
+  if (mode == approach::RunMode::Force) {
+    std::filesystem::remove(std::filesystem::path(out) / "summary.csv");
+    std::filesystem::remove(std::filesystem::path(out) / "preferences.csv");
+  }
   return lock;
 }
 
@@ -185,10 +241,12 @@ int runExperiments(const ExperimentArgs& a) {
         if (o.result.llmFaults.any()) fmt::print(stderr, "{}", o.result.llmFaults.summary());
       });
   approach::Competence train, eval;
+  PreferenceRates preferenceRates;
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     if (outcomes[i].error) std::rethrow_exception(outcomes[i].error);
     const approach::ExperimentResult& r = outcomes[i].result;
     Summary& s = summaries[approach::toString(labels[i].first)];
+    addPreferenceRates(preferenceRates, approach::toString(labels[i].first), r);
     llmFaults.add(r.llmFaults);
     s.seconds.push_back(outcomes[i].seconds);
     for (const auto& e : r.evals) {
@@ -221,6 +279,9 @@ int runExperiments(const ExperimentArgs& a) {
       }
     }
     approach::writeFileAtomic((std::filesystem::path(a.out) / "summary.csv").string(), csv);
+    if (!preferenceRates.empty())
+      approach::writeFileAtomic((std::filesystem::path(a.out) / "preferences.csv").string(),
+                                preferencesCsv(preferenceRates));
   }
   // The table: selected checkpoints (or --columns), the mean over all checkpoints, the last checkpoint's
   // task success and preferences met, and the time per trial.
@@ -262,6 +323,7 @@ int runExperiments(const ExperimentArgs& a) {
       "columns: eval satisfaction per checkpoint and over all checkpoints (mean ± standard error over seeds); task\n"
       "success, preferences met (of all tasks) and preferences met of the served meals at the last checkpoint\n"
       "(mean ± standard deviation over seeds); wall-clock seconds per trial\n");
+  printPreferenceTable(preferenceRates, kinds);
   fmt::print(
       "competence over every seed: requests solved within budget, solved plans executed without a failed "
       "action, dry-run mismatches\n");

@@ -56,6 +56,12 @@ int runTrial(const RunArgs& a) {
     fmt::print("eval satisfaction: first {:+.2f}, last {:+.2f}, mean over {} checkpoints {:+.3f}\n",
                r.evals.empty() ? 0.0 : r.evals.front().mean, r.evals.empty() ? 0.0 : r.evals.back().mean,
                r.evals.size(), r.meanEval());
+    if (!r.evals.empty() && !r.evals.back().preferences.empty()) {
+      fmt::print("preferences met at the last checkpoint:");
+      for (const auto& [name, tally] : r.evals.back().preferences)
+        fmt::print(" {} {}/{} ({:.2f})", name, tally.met, tally.judged, tally.rate());
+      fmt::print("\n");
+    }
     fmt::print("{:.2f} s wall clock; {} training solver iterations\n", seconds, r.solverIterations);
     fmt::print("{} solutions re-checked before execution, {} refused\n", r.rechecks, r.recheckViolations);
     cli::printCompetence(r.train, r.eval);

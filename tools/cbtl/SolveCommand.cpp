@@ -8,6 +8,7 @@
 #include "runtime/approach/Planner.h"
 #include "runtime/approach/ValueBridge.h"
 #include "runtime/model/UserModel.h"
+#include "runtime/solver/PersonalExplanation.h"
 
 #include <fmt/core.h>
 
@@ -75,6 +76,24 @@ void explain(const cbtl::approach::Plan& plan) {
     fmt::print("note: the plan was not dry-run: the world model does not know every action of the task\n");
 }
 
+// The personalized constraints at the chosen assignment: P(holds) against accept, entropy, and what each text
+// model was asked (subject, context) and has learned (theta).
+void explainPersonal(const cbtl::approach::Plan& plan) {
+  const auto instances = cbtl::solver::explainPersonal(plan.csp, plan.solve.assignment);
+  if (instances.empty()) return;
+  fmt::print("personalized constraints at the solution:\n");
+  fmt::print("  {:<8} {:>7} {:>7} {:>8}  {}\n", "", "P", "accept", "entropy", "instance");
+  for (const auto& e : instances) {
+    const char* status = !e.applies ? "n/a" : e.holds ? "holds" : "fails";
+    fmt::print("  {:<8} {:>7.3f} {:>7.3f} {:>8.3f}  {}{}{}\n", status, e.probability, e.accept, e.entropyBits, e.name,
+               e.key.empty() ? "" : " [" + e.key + "]", e.inCsp ? "" : " (not in this CSP)");
+    for (const auto& t : e.text) {
+      fmt::print("           {} = {}{}\n", t.factor, t.subject, t.context.empty() ? "" : " in " + t.context);
+      fmt::print("           theta: {}\n", t.theta);
+    }
+  }
+}
+
 int runSolve(const SolveArgs& a) {
   using namespace cbtl;
   approach::CspChoice choice;
@@ -125,6 +144,7 @@ int runSolve(const SolveArgs& a) {
     for (const auto& c : plan.calls) fmt::print("  {}\n", renderCall(c));
   }
   if (a.explain || !plan.ok) explain(plan);
+  if (a.explain && plan.ok) explainPersonal(plan);
   if (*textBackend) cli::printLlmFaults(stdout, (*textBackend)->faultReport());
   if (plan.rechecked) {
     fmt::print("re-check: {} constraints and {} variables evaluated from scratch: {}\n",
@@ -159,7 +179,8 @@ void addSolve(CLI::App& app, int& exitCode) {
   cmd->add_option("--profile", args->profile, "the user profile to personalize with");
   cmd->add_flag("--replan", args->replan, "if unsatisfiable, replan without personalized constraints");
   cmd->add_flag("--explain", args->explain,
-                "which constraints rejected candidates, how often, and where they are declared");
+                "which constraints rejected candidates, how often, and where they are declared; the personalized "
+                "constraints at the solution (P, entropy, text models' context and theta)");
   cmd->add_option("--stdlib", args->stdlibDir,
                   "standard library folder (default: embedded; not used by an emitted graph)");
   cbtl::cli::addSolverOptions(cmd, args->solver);

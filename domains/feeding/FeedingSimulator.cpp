@@ -248,6 +248,12 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
       const std::string signalGiven = progress_.signal.empty() ? "autoContinue" : progress_.signal;
       step.feedback.push_back(
           {"dipAnswer", {sim::Value::name(food_), sim::Value::name(progress_.dip), sim::Value::name(idealDip)}});
+      std::vector<std::string> choices = dips_;
+      choices.push_back("noDip");
+      for (const auto& choice : choices) {
+        if (choice == progress_.dip || choice == idealDip) continue;
+        step.feedback.push_back({"dipNotWanted", {sim::Value::name(food_), sim::Value::name(choice)}});
+      }
       step.feedback.push_back({"signalAnswer", {sim::Value::name(signalGiven), sim::Value::name(idealSignal)}});
       step.feedback.push_back({"verbosityAnswer", {sim::Value::name(verbosity), sim::Value::name(idealVerbosity)}});
       step.preferences = {{"view", !progress_.viewBlocked},

@@ -76,6 +76,28 @@ void explain(const cbtl::approach::Plan& plan) {
     fmt::print("note: the plan was not dry-run: the world model does not know every action of the task\n");
 }
 
+// What the CSP was solved against: every observation, a set as the members it holds.
+void explainObservation(const cbtl::rt::Program& program, const std::vector<double>& observation) {
+  if (program.observationSlots().empty()) return;
+  fmt::print("observed:\n");
+  for (const auto& [name, slot] : program.observationSlots()) {
+    if (slot.offset + slot.type.width > observation.size()) continue;
+    const double* v = observation.data() + slot.offset;
+    std::string text;
+    if (slot.type.kind == cbtl::rt::ValueKind::Set) {
+      const cbtl::rt::ValueType element = program.setElementType(slot.type);
+      for (std::size_t i = 0; i < program.setElementCount(slot.type); ++i) {
+        const double member = static_cast<double>(i);
+        if (v[i] != 0) text += (text.empty() ? "" : ", ") + program.render(element, &member);
+      }
+      text = "{" + text + "}";
+    } else {
+      text = program.render(slot.type, v);
+    }
+    fmt::print("  {} = {}\n", name, text);
+  }
+}
+
 // The personalized constraints at the chosen assignment: P(holds) against accept, entropy, and what each text
 // model was asked (subject, context) and has learned (theta).
 void explainPersonal(const cbtl::approach::Plan& plan) {
@@ -144,6 +166,7 @@ int runSolve(const SolveArgs& a) {
     for (const auto& c : plan.calls) fmt::print("  {}\n", renderCall(c));
   }
   if (a.explain || !plan.ok) explain(plan);
+  if (a.explain) explainObservation(program, observation);
   if (a.explain && plan.ok) explainPersonal(plan);
   if (*textBackend) cli::printLlmFaults(stdout, (*textBackend)->faultReport());
   if (plan.rechecked) {

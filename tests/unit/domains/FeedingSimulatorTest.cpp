@@ -1,0 +1,142 @@
+// The Feeding simulator's meals and answers: a new meal (food, sauces, setting) with every request cycle and the
+// same meal within one, the observations a CSP reads, the hidden user's ideals per food and setting, and a bite's
+// answers: the dip, signal and verbosity answers, the other choices turned down, and each preference judged.
+#include "domains/feeding/FeedingSimulator.h"
+
+#include "tests/unit/domains/ProgramFactsSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+namespace {
+
+using cbtl::domains::feeding::FeedingSimulator;
+using cbtl::domains::feeding::FeedingUser;
+using cbtl::domains::feeding::Request;
+using cbtl::sim::ActionCall;
+using cbtl::sim::StepResult;
+using cbtl::sim::Value;
+
+const cbtl::domains::ProgramFacts& feeding() { return cbtl::test::programFacts("feeding"); }
+
+struct Meal {
+  std::string food, setting;
+  std::vector<std::string> dips;
+  bool operator==(const Meal&) const = default;
+};
+Meal mealOf(const FeedingSimulator& sim) { return Meal{sim.food(), sim.setting(), sim.dipsOnTable()}; }
+
+// Ends the current request the way the caregiver ends a failed one (an unknown sauce fails it), so the test can
+// step through the request cycle without planning.
+void endRequest(FeedingSimulator& sim) {
+  const StepResult r = sim.act(ActionCall{"dipInto", {Value::name("mustard")}});
+  ASSERT_TRUE(r.taskDone);
+}
+
+TEST(FeedingSimulator, EveryRequestCycleIsANewMealAndAMealLastsItsCycle) {
+  std::set<std::string> foods, settings;
+  int changes = 0;
+  for (std::uint64_t seed = 0; seed < 10; ++seed) {
+    FeedingSimulator sim(feeding(), {}, seed);
+    Meal meal = mealOf(sim);
+    for (int request = 0; request < 12; ++request) {
+      foods.insert(sim.food());
+      settings.insert(sim.setting());
+      const bool cycleEnds = sim.request() == Request::Drink;
+      endRequest(sim);
+      if (cycleEnds) {
+        changes += mealOf(sim) == meal ? 0 : 1;
+        meal = mealOf(sim);
+      } else {
+        EXPECT_EQ(mealOf(sim), meal) << "seed " << seed << " request " << request << ": the meal changed mid-cycle";
+      }
+    }
+  }
+  EXPECT_EQ(foods,
+            (std::set<std::string>{"french fries", "raw vegetables", "potato wedges", "carrot sticks", "tater tots"}));
+  EXPECT_EQ(settings, (std::set<std::string>{"alone", "withFriend", "withTv", "withFriendAndTv"}));
+  EXPECT_GT(changes, 20);  // of 30 cycle ends, a few may draw the same meal again
+}
+
+TEST(FeedingSimulator, ObservesTheMealAndItsSetting) {
+  FeedingSimulator sim(feeding(), {}, 4);
+  const auto o = sim.observe();
+  EXPECT_EQ(o.at("foodOnPlate").text, sim.food());
+  EXPECT_EQ(o.at("mealSetting").text, sim.setting());
+  EXPECT_EQ(o.at("dipsOnTable").members, sim.dipsOnTable());
+  std::vector<std::string> choices = sim.dipsOnTable();
+  choices.push_back("noDip");
+  EXPECT_EQ(o.at("dipChoices").members, choices);
+}
+
+TEST(FeedingUser, IdealsDependOnTheFoodTheSauceOnTheTableAndTheSetting) {
+  const FeedingUser u = FeedingUser::paperDefault();
+  EXPECT_EQ(u.idealDip("french fries", "alone", {"bbqSauce", "ketchup"}), "ketchup");
+  EXPECT_EQ(u.idealDip("french fries", "alone", {"bbqSauce", "ranch"}), "ranch");  // the second choice
+  EXPECT_EQ(u.idealDip("french fries", "alone", {"bbqSauce", "hummus"}), "noDip");
+  EXPECT_EQ(u.idealDip("raw vegetables", "withTv", {"hummus", "ranch"}), "ranch");
+  FeedingUser tidy = u;
+  tidy.dipRankingInSetting = {{"french fries|withFriend", {}}};  // nothing messy with a friend
+  EXPECT_EQ(tidy.idealDip("french fries", "withFriend", {"ketchup", "ranch"}), "noDip");
+  EXPECT_EQ(tidy.idealDip("french fries", "alone", {"ketchup", "ranch"}), "ketchup");
+  EXPECT_EQ(u.idealVerbosity("alone"), "brief");
+  EXPECT_EQ(u.idealVerbosity("withFriend"), "silent");
+  EXPECT_EQ(u.idealVerbosity("withFriendAndTv"), "silent");
+  EXPECT_EQ(u.idealSignal("withTv"), "button");
+}
+
+// A bite, from the simulator's side: the plan's actions as a solved feedBite would send them, with the arm moves
+// left out (they need a motion plan; the answers do not depend on them).
+TEST(FeedingSimulator, ABiteIsAnsweredAndEachPreferenceJudged) {
+  int bites = 0;
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    FeedingSimulator sim(feeding(), {}, seed);
+    if (sim.request() != Request::Food) continue;
+    const std::string food = sim.food();
+    const std::string ideal = sim.user().idealDip(food, sim.setting(), sim.dipsOnTable());
+    const std::string offered = sim.dipsOnTable().front();
+    const std::map<std::string, std::string> sauceNames = {
+        {"ketchup", "ketchup"}, {"bbqSauce", "BBQ sauce"}, {"ranch", "ranch dressing"}, {"hummus", "hummus"}};
+    ASSERT_FALSE(sim.act(ActionCall{"dipInto", {Value::name(sauceNames.at(offered))}}).taskDone);
+    sim.act(ActionCall{"say", {Value::name("Ready when you are.")}});
+    sim.act(ActionCall{"waitForReady", {Value::name("button")}});
+    sim.act(ActionCall{"waitForUser", {Value::name("biteTaken")}});
+    const StepResult r = sim.act(ActionCall{"waitForUser", {Value::name("done")}});
+    ASSERT_TRUE(r.taskDone) << r.message;
+    std::map<std::string, std::vector<Value>> said;
+    std::vector<std::string> turnedDown;
+    for (const auto& f : r.feedback) {
+      if (f.name == "dipNotWanted") {
+        EXPECT_EQ(f.args[0].text, food);
+        turnedDown.push_back(f.args[1].text);
+      } else {
+        said[f.name] = f.args;
+      }
+    }
+    ASSERT_EQ(said.count("dipAnswer"), 1u);
+    EXPECT_EQ(said["dipAnswer"][1].text, offered);
+    EXPECT_EQ(said["dipAnswer"][2].text, ideal);
+    // Every choice of the meal is accounted for once: offered, ideal, or turned down.
+    std::vector<std::string> accounted = turnedDown;
+    accounted.push_back(offered);
+    if (ideal != offered) accounted.push_back(ideal);
+    std::sort(accounted.begin(), accounted.end());
+    std::vector<std::string> choices = sim.dipsOnTable();
+    choices.push_back("noDip");
+    std::sort(choices.begin(), choices.end());
+    EXPECT_EQ(accounted, choices) << "seed " << seed;
+    std::map<std::string, bool> judged(r.preferences.begin(), r.preferences.end());
+    EXPECT_EQ(judged.size(), 5u);
+    EXPECT_EQ(judged["dip"], offered == ideal);
+    EXPECT_EQ(judged["signal"], true);
+    EXPECT_EQ(judged["verbosity"], sim.user().idealVerbosity(sim.setting()) == "brief");
+    EXPECT_EQ(judged["bite"], judged["dip"] && judged["signal"] && judged["verbosity"] && judged["view"]);
+    EXPECT_EQ(r.satisfaction, judged["bite"] ? 1.0 : -1.0);
+    ++bites;
+  }
+  EXPECT_GT(bites, 5);
+}
+
+}  // namespace

@@ -53,7 +53,10 @@ const char* toString(Request r) {
 
 FeedingSimulator::FeedingSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options,
                                    std::uint64_t seed)
-    : FeedingSimulator(program, options, seed, FeedingUser::paperDefault()) {}
+    : FeedingSimulator(program, options, seed,
+                       options.participant >= 0
+                           ? FeedingUser::participant(static_cast<std::uint64_t>(options.participant))
+                           : FeedingUser::paperDefault()) {}
 
 FeedingSimulator::FeedingSimulator(const ProgramFacts& program, const sim::SimulatorOptions&, std::uint64_t seed,
                                    FeedingUser user)
@@ -114,9 +117,12 @@ void FeedingSimulator::startRequest(Request r) {
     drink.position.y() = kDrinkParkedY;
     ws.setObjectPose("drink", drink);
   } else if (r == Request::Prepare) {
-    // The drink arrives at a random spot on the table clear of the plate (the caregiver puts it there).
+    // The drink arrives at a random spot on the table clear of the plate (the caregiver puts it there, standing
+    // upright at the table's height: a drink the user held comes back in whatever pose the hand-over left it,
+    // and tilted into the table top it could not be moved again).
     Pose3 drink = *ws.objectPose("drink");
     drink.position.z() = scenePoses_.at("drink").position.z();
+    drink.orientation = scenePoses_.at("drink").orientation;
     const Pose3 plate = *ws.objectPose("plate");
     for (int i = 0; i < 100; ++i) {
       const world::Pose2 xy = randomXY(kDrinkX0, kDrinkX1, kDrinkY0, kDrinkY1);

@@ -32,8 +32,8 @@
 //
 // Determinism: reset(seed) reseeds the simulator's world::Rng; the episode draws, in order, the plate
 // position, the position in the request cycle, the meal (food, the two dips on the table, setting), and after
-// that, request by request, a prepare request's drink position and each new cycle's meal. SimulatorOptions
-// (preference shifts, unsatisfiable stock) do not apply.
+// that, request by request, a prepare request's drink position and each new cycle's meal. Of SimulatorOptions
+// only `participant` applies (preference shifts and unsatisfiable stock do not).
 #pragma once
 
 #include "domains/ProgramFacts.h"
@@ -55,7 +55,8 @@ const char* toString(Request r);
 
 class FeedingSimulator final : public sim::DomainSimulator {
  public:
-  // The paper's user (FeedingUser::paperDefault) in the program's scene (feeding.xml). Throws
+  // The paper's user (FeedingUser::paperDefault), or participant `options.participant` when it is >= 0
+  // (FeedingUser::participant), in the program's scene (feeding.xml). Throws
   // std::invalid_argument when `program` names no scene, std::runtime_error when it cannot be loaded.
   FeedingSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options, std::uint64_t seed);
   FeedingSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options, std::uint64_t seed,

@@ -1,5 +1,7 @@
 #include "domains/feeding/FeedingUser.h"
 
+#include "runtime/core/Rng.h"
+
 #include <algorithm>
 
 namespace cbtl::domains::feeding {
@@ -15,6 +17,33 @@ FeedingUser FeedingUser::paperDefault() {
   u.readySignal = "button";
   u.verbosity = "brief";
   u.verbosityInSetting = {{"withFriend", "silent"}, {"withFriendAndTv", "silent"}};
+  return u;
+}
+
+FeedingUser FeedingUser::participant(std::uint64_t n) {
+  static const std::vector<std::string> kFoods = {"french fries", "raw vegetables", "potato wedges", "carrot sticks",
+                                                  "tater tots"};
+  static const std::vector<std::string> kSauces = {"ketchup", "bbqSauce", "ranch", "hummus"};
+  static const std::vector<std::string> kSignals = {"mouthOpen", "button", "autoContinue"};
+  static const std::vector<std::string> kVerbosities = {"silent", "brief", "chatty"};
+  rt::Rng rng(rt::splitMix64(n ^ 0x66656564696e67ULL));  // "feeding": participants apart from other streams
+  FeedingUser u;
+  u.occlusionThreshold = rng.uniform(0.02, 0.08);
+  for (const auto& food : kFoods) {
+    std::vector<std::string> sauces = kSauces;
+    rng.shuffle(sauces.begin(), sauces.end());
+    const double r = rng.uniform();
+    const std::size_t liked = r < 0.2 ? 0 : r < 0.7 ? 1 : 2;
+    u.dipRanking[food] = std::vector<std::string>(sauces.begin(), sauces.begin() + static_cast<long>(liked));
+    for (const char* setting : {"withFriend", "withFriendAndTv"})
+      if (rng.coin(0.3)) u.dipRankingInSetting[food + "|" + setting] = {};
+  }
+  u.readySignal = kSignals[rng.index(kSignals.size())];
+  for (const char* setting : {"withTv", "withFriendAndTv"})
+    if (rng.coin(0.3)) u.readySignalInSetting[setting] = kSignals[rng.index(kSignals.size())];
+  u.verbosity = kVerbosities[rng.index(kVerbosities.size())];
+  for (const char* setting : {"withFriend", "withFriendAndTv"})
+    if (rng.coin(0.4)) u.verbosityInSetting[setting] = kVerbosities[rng.index(kVerbosities.size())];
   return u;
 }
 

@@ -7,6 +7,7 @@
 // members (alone, withFriend, withTv, withFriendAndTv).
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -21,6 +22,12 @@ class FeedingUser {
   // carrots, hummus with raw vegetables; presses the button; wants brief talk, and silence when a friend is there
   // to talk to.
   static FeedingUser paperDefault();
+  // Simulated participant `n` of a study (the same n, the same person), with diverse preferences drawn from n
+  // alone: an occlusion threshold in [0.02, 0.08]; per food (the paper's five) a ranking of none, one or two of
+  // the four sauces; with a friend at the table, for each food with probability 0.3, no dip at all; a ready signal
+  // and a verbosity, each replaced in some settings (the TV on: signal, probability 0.3; a friend there:
+  // verbosity, probability 0.4) by another drawn one.
+  static FeedingUser participant(std::uint64_t n);
 
   double occlusionThreshold = 0.05;                            // view blocked at score >= this, in [0, 1]
   std::map<std::string, std::vector<std::string>> dipRanking;  // food -> Dip entries, best first

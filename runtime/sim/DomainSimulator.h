@@ -123,6 +123,9 @@ struct SimulatorOptions {
   bool announceShifts = false;
   // Paper's Table 1: after every restock, with this probability the stock cannot satisfy the user.
   double unsatisfiableStockProbability = 0;
+  // The simulated user: -1 the domain's default user; n >= 0 the domain's n-th drawn participant, with their own
+  // preferences (the same n, the same person; Feeding).
+  std::int64_t participant = -1;
 };
 
 }  // namespace cbtl::sim

@@ -31,7 +31,7 @@ namespace {
 
 struct ExperimentArgs : cbtl::cli::TrialArgs {
   std::string approaches = "cbtl,no-personalization", seeds = "0..9", out, columns;
-  bool quiet = false, force = false, resume = false;
+  bool quiet = false, force = false, resume = false, participantFromSeed = false;
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 };
 
@@ -226,6 +226,7 @@ int runExperiments(const ExperimentArgs& a) {
       approach::ExperimentConfig c = base;
       c.approach.kind = kind;
       c.seed = seed;
+      if (a.participantFromSeed) c.simulator.participant = static_cast<std::int64_t>(seed);
       c.progress = false;
       if (!a.out.empty()) c.outDir = trialFolder(a.out, kind, seed);
       trials.push_back(std::move(c));
@@ -361,6 +362,9 @@ void addExperiment(CLI::App& app, int& exitCode) {
   cmd->add_option("--approaches", args->approaches, "comma-separated approaches")->capture_default_str();
   cmd->add_option("--seeds", args->seeds, "LO..HI or a comma-separated list")->capture_default_str();
   cmd->add_option("--columns", args->columns, "checkpoints to show in the table, comma-separated");
+  cmd->add_flag("--participant-from-seed", args->participantFromSeed,
+                "each seed's trial has its own simulated participant, the seed's (Feeding: --seeds 0..59 is 60 people)")
+      ->excludes("--participant");
   cmd->add_option("--out", args->out, "write every trial's files and summary.csv here");
   cmd->add_flag("--quiet,-q", args->quiet, "no per-trial lines");
   cmd->add_option("--jobs,-j", args->jobs, "trials run in parallel (results equal a serial run's)")

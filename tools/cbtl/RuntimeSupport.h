@@ -174,6 +174,7 @@ inline void printLlmFaults(std::FILE* out, const textpref::FaultReport& faults) 
 struct TrialArgs {
   std::string file, task, nonstationary = "none", stdlibDir;
   std::int64_t steps = 10000, evalEvery = 100, maxEvalSteps = 100, shiftEvery = 3000, periodicEvery = 1000;
+  std::int64_t participant = -1;
   int evalTasks = 10;
   double epsilon = 0.5, unsatisfiable = 0;
   bool replan = false;
@@ -211,6 +212,11 @@ inline void addTrialOptions(CLI::App* cmd, TrialArgs& a) {
                   "probability that a restock cannot satisfy the user (Cooking)")
       ->capture_default_str()
       ->check(realIn(0, 1));
+  cmd->add_option("--participant", a.participant,
+                  "simulated user: the domain's N-th drawn participant, with their own preferences (Feeding; -1: the "
+                  "default user)")
+      ->capture_default_str()
+      ->check(integerIn(-1));
   cmd->add_option("--stdlib", a.stdlibDir, "standard library folder (default: embedded; not used by an emitted graph)");
   addSolverOptions(cmd, a.solver);
   addTextBackendOptions(cmd, a.text);
@@ -240,6 +246,7 @@ inline bool configureTrial(const std::string& command, const TrialArgs& a, appro
   c.task = a.task;
   c.periodicResetEvery = a.periodicEvery;
   c.simulator.unsatisfiableStockProbability = a.unsatisfiable;
+  c.simulator.participant = a.participant;
   // The solver's budgets are the domain's unless given: set once the program is loaded (solverOptionsFor).
   c.approach.epsilon = a.epsilon;
   c.approach.replan = a.replan;

@@ -140,3 +140,79 @@ TEST(FeedingSimulator, ABiteIsAnsweredAndEachPreferenceJudged) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(FeedingUser, ParticipantsAreReproducibleAndDiverse) {
+  std::set<std::string> signals, verbosities, friesRankings;
+  int noDipWithAFriend = 0;
+  for (std::uint64_t n = 0; n < 60; ++n) {
+    const FeedingUser a = FeedingUser::participant(n), b = FeedingUser::participant(n);
+    EXPECT_EQ(a.occlusionThreshold, b.occlusionThreshold);
+    EXPECT_EQ(a.dipRanking, b.dipRanking);
+    EXPECT_EQ(a.dipRankingInSetting, b.dipRankingInSetting);
+    EXPECT_EQ(a.readySignal, b.readySignal);
+    EXPECT_EQ(a.verbosityInSetting, b.verbosityInSetting);
+    EXPECT_GE(a.occlusionThreshold, 0.02);
+    EXPECT_LE(a.occlusionThreshold, 0.08);
+    EXPECT_EQ(a.dipRanking.size(), 5u);
+    signals.insert(a.idealSignal("withTv"));
+    verbosities.insert(a.idealVerbosity("withFriend"));
+    std::string fries;
+    for (const auto& d : a.dipRanking.at("french fries")) fries += d + ",";
+    friesRankings.insert(fries);
+    noDipWithAFriend += a.idealDip("french fries", "withFriend", {"bbqSauce", "hummus", "ketchup", "ranch"}) == "noDip";
+  }
+  EXPECT_EQ(signals.size(), 3u);
+  EXPECT_EQ(verbosities.size(), 3u);
+  EXPECT_GT(friesRankings.size(), 8u);
+  EXPECT_GT(noDipWithAFriend, 5);
+  EXPECT_LT(noDipWithAFriend, 40);
+  EXPECT_NE(FeedingUser::participant(0).dipRanking, FeedingUser::participant(1).dipRanking);
+}
+
+TEST(FeedingSimulator, AParticipantReplacesTheDefaultUser) {
+  cbtl::sim::SimulatorOptions options;
+  options.participant = 7;
+  FeedingSimulator sim(feeding(), options, 0);
+  EXPECT_EQ(sim.user().dipRanking, FeedingUser::participant(7).dipRanking);
+  EXPECT_EQ(sim.makeEvaluationTwin() != nullptr, true);
+  FeedingSimulator standard(feeding(), {}, 0);
+  EXPECT_EQ(standard.user().dipRanking, FeedingUser::paperDefault().dipRanking);
+}
+
+}  // namespace
+
+namespace {
+
+// On 2026-12-03 a 5,000-step run of Feeding (No Personalization, seed 4) was stuck from step 2,692 on: the drink
+// came back from a hand-over tilted, the caregiver put it on the table that way, and every moveDrink and
+// movePlate of the prepare request was blocked by the tilted cup touching the table top. The caregiver stands
+// the drink upright.
+TEST(FeedingSimulator, TheCaregiverPutsTheDrinkOnTheTableUpright) {
+  FeedingSimulator sim(feeding(), {}, 4);
+  const auto upright = sim.worldState()->objects.at("drink").orientation;
+  for (int request = 0; request < 4 && sim.request() != Request::Drink; ++request) endRequest(sim);
+  ASSERT_EQ(sim.request(), Request::Drink);
+  // The user hands the drink back tilted; the request ends as a served one (a failed one restores the scene).
+  auto& ws = sim.world().workspace();
+  auto drink = *ws.objectPose("drink");
+  drink.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(1.2, Eigen::Vector3d::UnitX())) * drink.orientation;
+  ws.setObjectPose("drink", drink);
+  sim.act(ActionCall{"waitForUser", {Value::name("done")}});
+  ASSERT_TRUE(sim.act(ActionCall{"moveArmToNamed", {Value::name("retract")}}).taskDone);
+  for (int bite = 0; bite < 2; ++bite) {  // two bites, served without a failed action
+    ASSERT_EQ(sim.request(), Request::Food);
+    sim.act(ActionCall{"waitForUser", {Value::name("biteTaken")}});
+    ASSERT_TRUE(sim.act(ActionCall{"waitForUser", {Value::name("done")}}).taskDone);
+  }
+  ASSERT_EQ(sim.request(), Request::Prepare);
+  EXPECT_TRUE(sim.worldState()->objects.at("drink").orientation.isApprox(upright));
+  const auto plate = sim.worldState()->objects.at("plate").position;
+  const double y = plate.y() > 0.45 ? 0.2 : 0.7;  // a spot of the drink's domain well away from the plate
+  const StepResult moved = sim.act(ActionCall{"moveDrink", {Value::vec({0.34, y})}});
+  EXPECT_TRUE(moved.taskDone) << moved.message;
+  EXPECT_EQ(moved.satisfaction, 1.0) << moved.message;
+}
+
+}  // namespace

@@ -4,6 +4,7 @@
 #include "domains/home/HomeEpisode.h"
 #include "domains/home/HomeScene.h"
 #include "robot/actions/CallArguments.h"
+#include "robot/world/RobotDistance.h"
 
 #include <fmt/format.h>
 
@@ -70,6 +71,8 @@ FeedingSimulator::FeedingSimulator(std::shared_ptr<const world::Scene> scene, st
       world_(std::make_unique<world::World>(scene_)),
       actions_(FeedingActions::forScene(*scene_)) {
   scenePoses_ = world_->workspace().state().objects;
+  for (const char* body : {"user", "user_head"})
+    if (const int id = scene_->bodyId(body); id >= 0) userBodies_.push_back(id);
   reset(seed);
 }
 
@@ -182,6 +185,21 @@ sim::Observation FeedingSimulator::observe() const {
   return o;
 }
 
+void FeedingSimulator::trackClearance(const std::vector<world::ArmConfig>& path) {
+  if (path.empty() || userBodies_.empty()) return;
+  world::Workspace& ws = world_->workspace();
+  const world::ArmConfig reached = ws.state().arm;
+  for (const auto& q : path) {
+    ws.setArm(q);
+    const world::RobotDistance d = world::robotDistanceTo(ws, userBodies_, kClearanceCap);
+    if (d.distance < progress_.userClearance) {
+      progress_.userClearance = d.distance;
+      progress_.nearest = d.robotGeom + " - " + d.bodyGeom;
+    }
+  }
+  ws.setArm(reached);
+}
+
 sim::StepResult FeedingSimulator::fail(sim::StepResult r) {
   r.status = sim::ActionStatus::Ignored;
   r.consumedStep = true;
@@ -222,6 +240,7 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
   sim::StepResult step = result->toStepResult(call.name);
   if (step.status == sim::ActionStatus::UnknownAction) return step;
   if (step.status == sim::ActionStatus::Ignored) return fail(std::move(step));
+  trackClearance(result->armPath);
 
   if (call.name == "waitForReady") {
     progress_.signal = call.args[0].text;
@@ -269,6 +288,9 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
       const bool satisfied =
           std::all_of(step.preferences.begin(), step.preferences.end(), [](const auto& p) { return p.second; });
       step.preferences.insert(step.preferences.begin(), {"bite", satisfied});
+      step.measures = {{"userClearance", progress_.userClearance}};
+      if (!progress_.nearest.empty())
+        step.message = fmt::format("closest to the user: {:.3f} m ({})", progress_.userClearance, progress_.nearest);
       return complete(std::move(step), satisfied);
     }
     return step;
@@ -279,6 +301,7 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
     drink.position.y() = kDrinkParkedY;
     ws.setObjectPose("drink", drink);
     step.preferences = {{"view", !progress_.viewBlocked}};
+    step.measures = {{"userClearance", progress_.userClearance}};
     return complete(std::move(step), !progress_.viewBlocked);
   }
   return step;

@@ -8,12 +8,17 @@
 // company too). requestedTask() names the .cbtl task of the current request:
 // feedBite, prepareDrink, giveDrink. A request ends (taskDone, satisfaction +1 or -1) when
 //   feedBite:     waitForUser("done") after waitForUser("biteTaken"); the user answers dipAnswer(food, offered
-//                 dip, ideal dip), signalAnswer(offered, ideal) and verbosityAnswer(perceived, ideal) (the ideals
-//                 for this food and setting) and is satisfied (+1) iff all three match and their view was never
-//                 blocked during the bite; the step reports each of the four (view, dip, signal, verbosity);
+//                 dip, ideal dip), dipNotWanted(food, choice) for every other choice of the meal (dipChoices)
+//                 that was neither offered nor the ideal, signalAnswer(offered, ideal) and
+//                 verbosityAnswer(perceived, ideal) (the ideals for this food and setting), and is satisfied
+//                 (+1) iff all three match and their view was never blocked during the bite; the step reports
+//                 each of the four preferences (view, dip, signal, verbosity) and bite (all four met), and the
+//                 measure userClearance: the smallest distance between the robot (with the utensil it holds)
+//                 and the user's body and head at every waypoint of every path the request executed (capped at
+//                 0.5 m; robot/world/RobotDistance.h);
 //   prepareDrink: moveDrink succeeds (+1);
 //   giveDrink:    the arm is back at a named configuration, empty-handed, after waitForUser("done") (+1 iff
-//                 the view was never blocked during the request; the step reports view);
+//                 the view was never blocked during the request; the step reports view and userClearance);
 // and as a failure (-1) when any action fails (no IK, no path, a grasp out of reach, ...): the caregiver then
 // puts the utensil back, opens the gripper and folds the arm to `retract`.
 // View feedback: after every successful moveArm(q) (the configurations the CSP chose), the user says
@@ -90,7 +95,12 @@ class FeedingSimulator final : public sim::DomainSimulator {
     int utterancesAtStart = 0;
     std::string dip = "noDip";
     std::string signal;
+    double userClearance = kClearanceCap;  // the closest the robot came to the user in this request, metres
+    std::string nearest;                   // "robot geom - user geom" of that closest approach
   };
+  static constexpr double kClearanceCap = 0.5;  // metres; farther is reported as this
+  // Lowers progress_.userClearance to the robot's distance to the user at each waypoint of an executed path.
+  void trackClearance(const std::vector<world::ArmConfig>& path);
   void serveMeal();  // draws the next meal: food, the two sauces on the table, the setting
   void startRequest(Request r);
   void nextRequest();
@@ -110,6 +120,7 @@ class FeedingSimulator final : public sim::DomainSimulator {
   std::string food_;
   std::vector<std::string> dips_;
   std::string setting_;
+  std::vector<int> userBodies_;  // the user's body and head (robotDistanceTo)
   Progress progress_;
 };
 

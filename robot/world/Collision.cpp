@@ -86,7 +86,7 @@ double pairPenetration(const mjModel* m, const mjData* d, const Scene::GeomPair&
   if (!fn) return 0.0;
   const int n = fn(m, d, buf, g1, g2, margin);
   double deepest = 0.0;
-  for (int i = 0; i < n; ++i) deepest = std::max(deepest, -buf[i].dist);
+  for (int i = 0; i < n; ++i) deepest = std::max(deepest, margin - buf[i].dist);  // a margin keeps the robot out
   return deepest;
 }
 
@@ -189,10 +189,11 @@ CollisionReport checkRobotCollisions(Workspace& ws, const CollisionOptions& opti
   const Scene& s = ws.scene();
   for (int i = 0; i < d->ncon; ++i) {
     const mjContact& c = d->contact[i];
-    if (c.dist >= -options.tolerance) continue;
+    const double depth = std::max(m->geom_margin[c.geom1], m->geom_margin[c.geom2]) - c.dist;
+    if (depth <= options.tolerance) continue;
     const CollisionStatus st = classify(s, ws.heldObject(), m->geom_bodyid[c.geom1], m->geom_bodyid[c.geom2]);
     if (st == CollisionStatus::Free) continue;
-    return {st, s.geomName(c.geom1), s.geomName(c.geom2), -c.dist};
+    return {st, s.geomName(c.geom1), s.geomName(c.geom2), depth};
   }
   return {};
 }

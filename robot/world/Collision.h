@@ -1,7 +1,10 @@
 // Collision.h — collision checks of the robot (arm, gripper, mobile base, held object) against the world
 // and itself, using MuJoCo's collision detection at the Workspace's current state.
 //
-// A contact counts when its penetration is deeper than `tolerance` (metres). Contacts between the held
+// A contact counts when its penetration is deeper than `tolerance` (metres). A geom's MJCF `margin` is a keep-out
+// distance: the robot (or what it holds) closer to it than the margin counts as penetrating by the difference (the
+// feeding scene keeps the robot 2 cm from the user's head this way); geoms without a margin count only when they
+// touch. Contacts between the held
 // object and the gripper (end_effector_link and fingers) are ignored, as are contacts that involve no
 // robot body and no held object (an object resting on a table is not the robot's concern).
 #pragma once

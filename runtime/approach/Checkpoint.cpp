@@ -143,8 +143,11 @@ json toJson(const ExperimentResult& r) {
     for (double s : e.satisfaction) sat.push_back(num(s));
     json preferences = json::object();
     for (const auto& [name, t] : e.preferences) preferences[name] = {t.met, t.judged};
+    json measures = json::object();
+    for (const auto& [name, t] : e.measures) measures[name] = {num(t.min), num(t.sum), t.count};
     evals.push_back({{"step", e.step},
                      {"preferences", preferences},
+                     {"measures", measures},
                      {"satisfaction", sat},
                      {"mean", num(e.mean)},
                      {"task_success_rate", num(e.taskSuccessRate)},
@@ -184,6 +187,10 @@ ExperimentResult experimentResultFromJson(const json& j) {
     if (e.contains("preferences")) {  // absent in checkpoints written before preferences were tallied
       for (const auto& [name, t] : e.at("preferences").items())
         p.preferences[name] = PreferenceTally{t.at(0).get<int>(), t.at(1).get<int>()};
+    }
+    if (e.contains("measures")) {
+      for (const auto& [name, t] : e.at("measures").items())
+        p.measures[name] = MeasureTally{numFrom(t.at(0)), numFrom(t.at(1)), t.at(2).get<int>()};
     }
     r.evals.push_back(std::move(p));
   }

@@ -84,6 +84,7 @@ sim::StepResult executeStep(sim::DomainSimulator& world, const std::vector<sim::
     requireApplied(r, call);
     for (auto& f : r.feedback) merged.feedback.push_back(std::move(f));
     for (auto& p : r.preferences) merged.preferences.push_back(std::move(p));
+    for (auto& v : r.measures) merged.measures.push_back(std::move(v));
     if (r.hasSatisfaction) {
       merged.hasSatisfaction = true;
       merged.satisfaction += r.satisfaction;
@@ -261,6 +262,7 @@ void evaluate(Trial& tr, std::int64_t step) {
           tally.met += met ? 1 : 0;
           ++tally.judged;
         }
+        for (const auto& [name, value] : r.measures) point.measures[name].add(value);
         done = r.taskDone;
         failed = failed || r.taskFailed;
       }

@@ -26,6 +26,7 @@
 
 #include "runtime/textpref/FaultStats.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -93,6 +94,18 @@ struct PreferenceTally {
   double rate() const { return judged > 0 ? static_cast<double>(met) / judged : 0.0; }
 };
 
+// The values one measure of a task (sim::StepResult::measures) took in a checkpoint's episodes.
+struct MeasureTally {
+  double min = 0, sum = 0;
+  int count = 0;
+  void add(double v) {
+    min = count == 0 ? v : std::min(min, v);
+    sum += v;
+    ++count;
+  }
+  double mean() const { return count > 0 ? sum / count : 0.0; }
+};
+
 struct EvalPoint {
   std::int64_t step = 0;
   std::vector<double> satisfaction;  // per episode
@@ -102,6 +115,7 @@ struct EvalPoint {
   int replans = 0;                                     // episodes that had to drop the personalized constraints
   Competence competence;                               // over this checkpoint's episodes
   std::map<std::string, PreferenceTally> preferences;  // by name, over this checkpoint's episodes
+  std::map<std::string, MeasureTally> measures;        // by name, over this checkpoint's episodes
 };
 
 struct ExperimentResult {

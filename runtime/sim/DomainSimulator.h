@@ -73,6 +73,9 @@ struct StepResult {
   // With hasSatisfaction, optionally: each of the user's preferences this outcome was judged on, by name, and
   // whether it was met (e.g. {"dip", true}, {"view", false}); evaluation reports each one's rate apart.
   std::vector<std::pair<std::string, bool>> preferences;
+  // With taskDone, optionally: numbers the domain measured over the task, by name (e.g. {"userClearance", 0.034}:
+  // the closest the robot came to the user, metres); evaluation reports each one's minimum and mean.
+  std::vector<std::pair<std::string, double>> measures;
   std::string message;  // human-readable detail (why an action was ignored, ...)
 };
 

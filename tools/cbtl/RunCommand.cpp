@@ -62,6 +62,10 @@ int runTrial(const RunArgs& a) {
         fmt::print(" {} {}/{} ({:.2f})", name, tally.met, tally.judged, tally.rate());
       fmt::print("\n");
     }
+    if (!r.evals.empty())
+      for (const auto& [name, t] : r.evals.back().measures)
+        fmt::print("{} at the last checkpoint: min {:.4g}, mean {:.4g} over {} tasks\n", name, t.min, t.mean(),
+                   t.count);
     fmt::print("{:.2f} s wall clock; {} training solver iterations\n", seconds, r.solverIterations);
     fmt::print("{} solutions re-checked before execution, {} refused\n", r.rechecks, r.recheckViolations);
     cli::printCompetence(r.train, r.eval);

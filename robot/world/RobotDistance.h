@@ -1,0 +1,25 @@
+// RobotDistance.h — how close the robot comes to some bodies of the scene: the smallest distance between the robot
+// (its links, its gripper and the object it holds, visual-only geoms of that object included: a held utensil is
+// drawn, not collided, yet it is what nears a person) and the geoms of the given bodies, at the Workspace's
+// current state. For safety reports (Feeding: the clearance to the user per bite), not for planning: planners and
+// IK keep out of a geom through its MJCF margin (Collision.h).
+//
+// Computed with MuJoCo's narrow-phase functions called with the cap as margin, so pairs farther apart than the
+// cap are not measured. Units: metres.
+#pragma once
+
+#include "robot/world/Workspace.h"
+
+#include <string>
+#include <vector>
+
+namespace cbtl::world {
+
+struct RobotDistance {
+  double distance = 0;  // smallest distance (negative: penetration depth), or the cap when nothing is nearer
+  std::string robotGeom, bodyGeom;  // the nearest pair's geom names (empty when nothing is within the cap)
+};
+
+RobotDistance robotDistanceTo(Workspace& ws, const std::vector<int>& bodies, double cap = 0.5);
+
+}  // namespace cbtl::world

@@ -14,7 +14,8 @@ std::shared_ptr<const textpref::TextBackend> defaultTextBackend() {
 }
 
 KeyedContext::KeyedContext(textpref::Context c) : context(std::move(c)) {
-  // Unit and record separators cannot occur in a .cbtl name, and the value is the last part of each field.
+  // Unit and record separators cannot occur in a .cbtl name; a value holding one could make two contexts share a
+  // key, which no observed text of our domains does.
   for (const auto& [field, values] : context.fields) {
     key += field;
     for (const auto& v : values) key += '\x1f' + v;

@@ -40,6 +40,17 @@ sim::StepResult unknownAction(std::string message) {
 
 }  // namespace
 
+const std::vector<Meal>& paperMeals() {
+  static const std::vector<Meal> meals = {
+      {"french fries", {"bbqSauce", "ketchup"}, "alone", "rectangular"},
+      {"raw vegetables", {"hummus", "ranch"}, "withFriend", "circular"},
+      {"potato wedges", {"bbqSauce", "ketchup"}, "withTv", "circular"},
+      {"carrot sticks", {"hummus", "ranch"}, "alone", "circular"},
+      {"tater tots", {"bbqSauce", "ketchup"}, "withFriendAndTv", "rectangular"},
+  };
+  return meals;
+}
+
 const char* toString(Request r) {
   switch (r) {
     case Request::Food:
@@ -107,6 +118,36 @@ void FeedingSimulator::serveMeal() {
   dips_ = {dips[0], dips[1]};
   std::sort(dips_.begin(), dips_.end());
   setting_ = kSettings[rng_.index(kSettings.size())];
+  table_ = "rectangular";
+}
+
+void FeedingSimulator::serveMealNow(const Meal& meal) {
+  food_ = meal.food;
+  dips_ = meal.dips;
+  std::sort(dips_.begin(), dips_.end());
+  setting_ = meal.setting;
+  table_ = meal.table;
+  cycle_ = 0;
+  startRequest(Request::Food);
+}
+
+bool FeedingSimulator::placeOnTable(const std::string& body, double x, double y) {
+  if (body != "plate" && body != "drink") return false;
+  world::Workspace& ws = world_->workspace();
+  Pose3 pose = *ws.objectPose(body);
+  pose.position = Eigen::Vector3d(x, y, scenePoses_.at(body).position.z());
+  pose.orientation = scenePoses_.at(body).orientation;
+  ws.setObjectPose(body, pose);
+  return true;
+}
+
+double FeedingSimulator::occlusionAt(const world::ArmConfig& q) { return world::builtins::occlusion(*world_, q); }
+
+sim::FeedbackEvent FeedingSimulator::viewAnswer(const world::ArmConfig& q, double* score) {
+  const double s = occlusionAt(q);
+  if (score != nullptr) *score = s;
+  return sim::FeedbackEvent{user_->viewBlocked(s) ? "viewBlocked" : "viewClear",
+                            {sim::Value::vec(std::vector<double>(q.begin(), q.end()))}};
 }
 
 void FeedingSimulator::startRequest(Request r) {

@@ -58,6 +58,21 @@ namespace cbtl::domains::feeding {
 enum class Request { Food, Prepare, Drink };
 const char* toString(Request r);
 
+// One meal: the food on the plate, the two sauces on the table (Dip entries, sorted), the setting (MealSetting
+// member) and the table's shape ("rectangular" or "circular"; recorded and reported, the scene has one table).
+struct Meal {
+  std::string food;
+  std::vector<std::string> dips;
+  std::string setting;
+  std::string table;
+  bool operator==(const Meal&) const = default;
+};
+// The paper's five meals of its web study, in order: 1 alone, rectangular table, french fries, ketchup and BBQ
+// sauce; 2 with a friend, circular, raw vegetables, ranch and hummus; 3 with the TV on, circular, potato
+// wedges, ketchup and BBQ; 4 alone, circular, carrot sticks, ranch and hummus; 5 with a friend and the TV,
+// rectangular, tater tots, ketchup and BBQ.
+const std::vector<Meal>& paperMeals();
+
 class FeedingSimulator final : public sim::DomainSimulator {
  public:
   // The paper's user (FeedingUser::paperDefault), or participant `options.participant` when it is >= 0
@@ -82,6 +97,20 @@ class FeedingSimulator final : public sim::DomainSimulator {
   const std::string& food() const { return food_; }
   const std::vector<std::string>& dipsOnTable() const { return dips_; }
   const std::string& setting() const { return setting_; }
+  Meal meal() const { return Meal{food_, dips_, setting_, table_}; }
+
+  // Scripted episodes (the study's meals, the demonstration): serves `meal` now and makes the current request
+  // the first bite of its cycle (food, food, prepare, drink), the drink off the table.
+  void serveMealNow(const Meal& meal);
+  // Puts the plate or the drink (`body`) at (x, y) on the table, upright at its table height; false for another
+  // body. Takes effect for the current request (a prepare request's drink spot, the plate a meal starts with).
+  bool placeOnTable(const std::string& body, double x, double y);
+  // The user's answer to "would your view be blocked with the arm at q?" (the web study's question about an
+  // egocentric picture of a configuration): viewBlocked(q) or viewClear(q), judged like a move of the arm to q;
+  // `score` receives q's occlusion score. The world is left as it was.
+  sim::FeedbackEvent viewAnswer(const world::ArmConfig& q, double* score = nullptr);
+  // The occlusion score of the user's view with the arm at q (the world is left as it was).
+  double occlusionAt(const world::ArmConfig& q);
   const FeedingUser& user() const { return *user_; }
   world::World& world() { return *world_; }
 
@@ -120,6 +149,7 @@ class FeedingSimulator final : public sim::DomainSimulator {
   std::string food_;
   std::vector<std::string> dips_;
   std::string setting_;
+  std::string table_ = "rectangular";
   std::vector<int> userBodies_;  // the user's body and head (robotDistanceTo)
   Progress progress_;
 };

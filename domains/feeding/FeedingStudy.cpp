@@ -1,0 +1,159 @@
+#include "domains/feeding/FeedingStudy.h"
+
+#include <stdexcept>
+#include "domains/feeding/FeedingPlanReading.h"
+#include "runtime/approach/Learner.h"
+#include "runtime/approach/Planner.h"
+#include "runtime/approach/ValueBridge.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace cbtl::domains::feeding {
+
+namespace {
+
+// Seeds per participant: the world's start and each arm's solver (streams of approach::deriveSeed).
+std::uint64_t participantSeed(std::uint64_t seed, int participant) {
+  return approach::deriveSeed(seed, 7000 + static_cast<std::uint64_t>(participant));
+}
+
+void learnOrThrow(const approach::PreparedProgram& lp, StudyArm& arm, const std::vector<sim::FeedbackEvent>& events,
+                  const approach::StepWorld& world) {
+  if (events.empty()) return;
+  const approach::LearnReport report = lp.learner().learn(events, arm.model, world);
+  if (!report.problems.empty())
+    throw std::runtime_error("feedback does not fit its declaration: " + report.problems.front());
+}
+
+void countRecheck(StudyResult& tally, const approach::Plan& plan) {
+  if (!plan.rechecked) return;
+  ++tally.rechecks;
+  if (!plan.recheck.holds()) ++tally.recheckViolations;
+}
+
+}  // namespace
+
+int MealChoice::met() const {
+  int n = 0;
+  for (const char* name : {"dip", "signal", "verbosity", "view"}) {
+    auto it = preferences.find(name);
+    n += it != preferences.end() && it->second ? 1 : 0;
+  }
+  return n;
+}
+
+StudyArm::StudyArm(std::string name, bool learning, std::unique_ptr<FeedingSimulator> sim,
+                   const ir::ConstraintGraph& graph, const StudyOptions& options, std::uint64_t solverSeed)
+    : approach(std::move(name)),
+      learns(learning),
+      world(std::move(sim)),
+      model(graph, options.textBackend),
+      solver(options.solver, solverSeed),
+      exploringSolver(options.solver, approach::deriveSeed(solverSeed, 2)) {}
+
+std::vector<StudyArm> makeStudyArms(const approach::PreparedProgram& lp, const ProgramFacts& facts,
+                                    const StudyOptions& options, int participant) {
+  const std::uint64_t seed = participantSeed(options.seed, participant);
+  sim::SimulatorOptions simOptions;
+  simOptions.participant = participant;
+  std::vector<StudyArm> arms;
+  for (const auto& name : studyApproaches()) {
+    arms.emplace_back(name, name == "cbtl", std::make_unique<FeedingSimulator>(facts, simOptions, seed), lp.graph(),
+                      options, approach::deriveSeed(seed, 1));
+  }
+  return arms;
+}
+
+MealChoice runStudyMeal(const approach::PreparedProgram& lp, StudyArm& arm, std::size_t meal, StudyResult& tally) {
+  FeedingSimulator& world = *arm.world;
+  world.serveMealNow(paperMeals().at(meal));
+  const int task = lp.taskIndex("feedBite");
+  if (task < 0) throw std::runtime_error(lp.path() + ": the study needs the task feedBite");
+  const auto taskIndex = static_cast<std::size_t>(task);
+  lp.syncWorld(world);
+  const auto observation = approach::observationVector(lp.program(), world.observe());
+
+  std::optional<world::ArmConfig> exploringConf;
+  if (arm.learns) {
+    rt::Rng unused(0);
+    const approach::Plan exploring =
+        approach::makePlan(lp, taskIndex, observation, approach::trainingChoice({approach::ApproachKind::Cbtl}, unused),
+                           false, arm.exploringSolver, arm.model);
+    countRecheck(tally, exploring);
+    if (exploring.ok) exploringConf = readConf(lp, taskIndex, exploring.solve.assignment, kAbovePlateConf);
+  }
+
+  MealChoice choice;
+  const approach::Plan shown =
+      approach::makePlan(lp, taskIndex, observation, approach::evaluationChoice(), false, arm.solver, arm.model);
+  countRecheck(tally, shown);
+  std::vector<sim::FeedbackEvent> answers;
+  if (shown.ok) {
+    const PlanChoices read = readPlanChoices(lp, taskIndex, shown.solve.assignment);
+    choice.dip = read.dip;
+    choice.signal = read.signal;
+    choice.verbosity = read.verbosity;
+    if (read.abovePlateConf) choice.occlusion = world.occlusionAt(*read.abovePlateConf);
+    const PlanRun run = runPlan(world, shown.calls);
+    choice.solved = run.done && !run.failed;
+    answers = run.feedback;
+    for (const auto& [name, met] : run.preferences) choice.preferences[name] = met;
+  }
+  if (arm.learns) {
+    learnOrThrow(lp, arm, answers, approach::StepWorld{shown.solve.assignment, observation});
+    if (exploringConf) learnOrThrow(lp, arm, {world.viewAnswer(*exploringConf)}, approach::StepWorld{{}, observation});
+  }
+  return choice;
+}
+
+StudyResult runStudy(const approach::PreparedProgram& lp, const ProgramFacts& facts, const StudyOptions& options) {
+  StudyResult result;
+  for (const Meal& meal : paperMeals()) result.meals.push_back(MealSummary{meal, {}, 0, 0, 0});
+  for (int p = options.firstParticipant; p < options.firstParticipant + options.participants; ++p) {
+    std::vector<StudyArm> arms = makeStudyArms(lp, facts, options, p);
+    ParticipantMeals record{p, {}};
+    for (std::size_t k = 0; k < paperMeals().size(); ++k) {
+      std::map<std::string, MealChoice> choices;
+      for (StudyArm& arm : arms) choices[arm.approach] = runStudyMeal(lp, arm, k, result);
+      MealSummary& summary = result.meals[k];
+      for (const auto& [name, choice] : choices) {
+        for (const auto& pref : studyPreferences()) {
+          approach::PreferenceTally& t = summary.met[name][pref];
+          auto it = choice.preferences.find(pref);
+          t.met += it != choice.preferences.end() && it->second ? 1 : 0;
+          ++t.judged;
+        }
+      }
+      const int cbtl = choices["cbtl"].met(), np = choices["no-personalization"].met();
+      (cbtl > np ? summary.cbtlBetter : cbtl == np ? summary.tied : summary.cbtlWorse) += 1;
+      record.meals.push_back(std::move(choices));
+    }
+    result.participants.push_back(std::move(record));
+  }
+  return result;
+}
+
+std::string studyCsv(const StudyResult& result) {
+  std::string out = "participant,meal,approach,solved,dip,signal,verbosity,occlusion";
+  for (const auto& pref : studyPreferences()) out += fmt::format(",{}_met", pref);
+  out += "\n";
+  for (const auto& p : result.participants) {
+    for (std::size_t k = 0; k < p.meals.size(); ++k) {
+      for (const auto& name : studyApproaches()) {
+        const MealChoice& c = p.meals[k].at(name);
+        out += fmt::format("{},{},{},{},{},{},{},{:.6g}", p.participant, k + 1, name, c.solved ? 1 : 0, c.dip, c.signal,
+                           c.verbosity, c.occlusion);
+        for (const auto& pref : studyPreferences()) {
+          auto it = c.preferences.find(pref);
+          out += it == c.preferences.end() ? std::string(",") : fmt::format(",{}", it->second ? 1 : 0);
+        }
+        out += "\n";
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace cbtl::domains::feeding

@@ -1,0 +1,124 @@
+// The simulated web study and the demonstration (domains/feeding/FeedingStudy.h, FeedingDemo.h): the paper's five
+// meals, both approaches judged on every meal, CBTL learning between meals, results per participant independent of
+// the others, and the demonstration's decisions judged against the participant's hidden occlusion threshold.
+#include "domains/feeding/FeedingDemo.h"
+#include "domains/feeding/FeedingStudy.h"
+
+#include "app/DomainSolverOptions.h"
+#include "tests/unit/domains/ProgramFactsSupport.h"
+
+#include <gtest/gtest.h>
+
+namespace {
+
+using namespace cbtl::domains::feeding;
+
+const cbtl::app::LoadedProgram& feedingProgram() {
+  static const auto lp = cbtl::app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/feeding/feeding.cbtl");
+  return *lp;
+}
+
+StudyOptions studyOptions(int first, int participants) {
+  StudyOptions o;
+  o.firstParticipant = first;
+  o.participants = participants;
+  o.solver = cbtl::app::domainSolverOptions("feeding");
+  return o;
+}
+
+TEST(FeedingStudy, ThePaperMealsAreTheStudysFiveInOrder) {
+  const auto& m = paperMeals();
+  ASSERT_EQ(m.size(), 5u);
+  EXPECT_EQ(m[0], (Meal{"french fries", {"bbqSauce", "ketchup"}, "alone", "rectangular"}));
+  EXPECT_EQ(m[1], (Meal{"raw vegetables", {"hummus", "ranch"}, "withFriend", "circular"}));
+  EXPECT_EQ(m[2], (Meal{"potato wedges", {"bbqSauce", "ketchup"}, "withTv", "circular"}));
+  EXPECT_EQ(m[3], (Meal{"carrot sticks", {"hummus", "ranch"}, "alone", "circular"}));
+  EXPECT_EQ(m[4], (Meal{"tater tots", {"bbqSauce", "ketchup"}, "withFriendAndTv", "rectangular"}));
+}
+
+TEST(FeedingStudy, CbtlLearnsFromTheAnswersAndNoPersonalizationDoesNot) {
+  const auto& lp = feedingProgram();
+  ASSERT_TRUE(lp.ok()) << lp.errors();
+  const StudyResult r = runStudy(lp, cbtl::test::programFacts("feeding"), studyOptions(0, 4));
+  ASSERT_EQ(r.participants.size(), 4u);
+  ASSERT_EQ(r.meals.size(), 5u);
+  EXPECT_EQ(r.recheckViolations, 0);
+  int cbtlLater = 0, npLater = 0;
+  for (const auto& p : r.participants) {
+    ASSERT_EQ(p.meals.size(), 5u);
+    // Meal 1: nothing learned yet, the same start and the same solver seed: the same choices.
+    const MealChoice& c1 = p.meals[0].at("cbtl");
+    const MealChoice& n1 = p.meals[0].at("no-personalization");
+    EXPECT_TRUE(c1.solved && n1.solved) << p.participant;
+    EXPECT_EQ(c1.dip, n1.dip);
+    EXPECT_EQ(c1.signal, n1.signal);
+    EXPECT_EQ(c1.verbosity, n1.verbosity);
+    for (std::size_t k = 1; k < 5; ++k) {
+      for (const char* pref : {"signal", "verbosity"}) {
+        cbtlLater += p.meals[k].at("cbtl").preferences.at(pref) ? 1 : 0;
+        npLater += p.meals[k].at("no-personalization").preferences.at(pref) ? 1 : 0;
+      }
+    }
+  }
+  // 4 participants x meals 2-5 x (signal, verbosity) = 32 judgements each.
+  EXPECT_GE(cbtlLater, 24);
+  EXPECT_LT(npLater, cbtlLater - 8);
+  int judged = 0;
+  for (const auto& m : r.meals) judged += m.cbtlBetter + m.tied + m.cbtlWorse;
+  EXPECT_EQ(judged, 20);
+  EXPECT_NE(studyCsv(r).find("3,5,no-personalization,1,"), std::string::npos) << studyCsv(r);
+}
+
+TEST(FeedingStudy, AParticipantsResultsDoNotDependOnTheOthers) {
+  const auto& lp = feedingProgram();
+  ASSERT_TRUE(lp.ok()) << lp.errors();
+  const auto& facts = cbtl::test::programFacts("feeding");
+  const StudyResult two = runStudy(lp, facts, studyOptions(0, 2));
+  const StudyResult alone = runStudy(lp, facts, studyOptions(1, 1));
+  ASSERT_EQ(alone.participants.size(), 1u);
+  for (std::size_t k = 0; k < 5; ++k) {
+    for (const auto& name : studyApproaches()) {
+      const MealChoice& a = two.participants[1].meals[k].at(name);
+      const MealChoice& b = alone.participants[0].meals[k].at(name);
+      EXPECT_EQ(a.dip, b.dip) << k << name;
+      EXPECT_EQ(a.signal, b.signal) << k << name;
+      EXPECT_EQ(a.verbosity, b.verbosity) << k << name;
+      EXPECT_EQ(a.occlusion, b.occlusion) << k << name;
+      EXPECT_EQ(a.preferences, b.preferences) << k << name;
+    }
+  }
+}
+
+TEST(FeedingDemo, ComplaintsFollowTheHiddenThresholdAndCbtlKeepsTheViewClear) {
+  const auto& lp = feedingProgram();
+  ASSERT_TRUE(lp.ok()) << lp.errors();
+  DemoOptions o;
+  o.trials = 2;
+  o.study = studyOptions(0, 1);
+  int observed = 0;
+  const DemoResult r = runDemo(lp, cbtl::test::programFacts("feeding"), o,
+                               [&](int, const std::string&, const DemoStep&, FeedingSimulator&) { ++observed; });
+  EXPECT_EQ(r.meal, paperMeals()[4]);
+  ASSERT_EQ(r.trials.size(), 2u);
+  EXPECT_EQ(observed, 2 * 2 * 4);
+  for (const auto& trial : r.trials) {
+    for (const auto& name : studyApproaches()) {
+      const auto& steps = trial.steps.at(name);
+      ASSERT_EQ(steps.size(), 4u);
+      EXPECT_EQ(steps[0].task, "feedBite");
+      EXPECT_EQ(steps[2].task, "prepareDrink");
+      EXPECT_EQ(steps[3].task, "giveDrink");
+      // The meal starts with the plate where the caregiver put it, in front of the user.
+      EXPECT_NEAR(steps[0].plateFrom.at(1), o.plateY, 1e-9);
+      for (const auto& s : steps) {
+        EXPECT_TRUE(s.solved) << name << " " << s.request;
+        if (!s.conf) continue;
+        // The user complains at each move to the configuration exactly when its score reaches their threshold.
+        EXPECT_EQ(s.complaints > 0, s.occlusion >= r.threshold) << name << " " << s.request << " " << s.occlusion;
+        if (name == "cbtl") EXPECT_EQ(s.complaints, 0) << s.request << " " << s.occlusion;
+      }
+    }
+  }
+}
+
+}  // namespace

@@ -131,10 +131,10 @@ actions::RobotActionResult FeedingActions::releaseUtensil(world::World& w) const
 actions::RobotActionResult FeedingActions::acquireFood(world::World& w) const {
   world::Workspace& ws = w.workspace();
   const auto plate = ws.objectPose("plate");
-  const Eigen::Vector3d tool = ws.toolPose().position;
-  if (!holding(ws, "utensil") || !plate ||
-      std::hypot(tool.x() - plate->position.x(), tool.y() - plate->position.y()) > kFoodReach)
-    return failed(ActionStatus::OutOfReach, "acquireFood(): the utensil is not above the food");
+  const auto tip = ws.sitePose("utensil_tip");
+  if (!holding(ws, "utensil") || !plate || !tip ||
+      std::hypot(tip->position.x() - plate->position.x(), tip->position.y() - plate->position.y()) > kFoodReach)
+    return failed(ActionStatus::OutOfReach, "acquireFood(): the fork is not above the food");
   return {};
 }
 

@@ -8,7 +8,8 @@
 //                                 it starts with the drink on the table, a contact the planner would reject).
 //   release() holding the utensil the utensil goes back on its mount: the tool must be within kMountTolerance
 //                                 of the mount's grasp pose; the utensil is set to its mount pose (the scene's).
-//   acquireFood()                 the held utensil must be over the plate (tool within kFoodReach of its centre).
+//   acquireFood()                 the held utensil must be over the plate (its fork tip, site utensil_tip,
+//                                 within kFoodReach of the plate's centre).
 //   dipInto(sauce), waitForReady(signal)  change nothing in the world (the simulator checks the sauce is on the
 //                                 table and records the signal).
 // Every other call is the standard executor's. Pure and both modes as RobotActions.h says; failures leave the
@@ -24,9 +25,11 @@
 namespace cbtl::domains::feeding {
 
 inline constexpr double kDrinkGraspStandoff = 0.10;  // metres short of the handle (world -y) where the tool stops
-inline constexpr double kDrinkLift = 0.01;           // metres the tool rises after closing on the handle
-inline constexpr double kMountTolerance = 0.03;      // metres from the mount pose where a release re-mounts
-inline constexpr double kFoodReach = 0.10;           // metres from the plate centre where food can be picked up
+inline constexpr double kUtensilGraspDepth =
+    0.05955;                                     // metres from the tool frame to the utensil's grasp frame (finger_tip)
+inline constexpr double kDrinkLift = 0.01;       // metres the tool rises after closing on the handle
+inline constexpr double kMountTolerance = 0.03;  // metres from the mount pose where a release re-mounts
+inline constexpr double kFoodReach = 0.10;       // metres from the plate centre where food can be picked up
 
 class FeedingActions final : public actions::DomainActions {
  public:

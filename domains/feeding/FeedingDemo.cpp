@@ -1,5 +1,7 @@
 #include "domains/feeding/FeedingDemo.h"
 
+#include "domains/feeding/FeedingActions.h"
+
 #include "runtime/approach/Learner.h"
 #include "runtime/approach/Planner.h"
 #include "runtime/approach/ValueBridge.h"
@@ -72,7 +74,21 @@ world::WorldState demoStepState(FeedingSimulator& world, const DemoStep& step) {
   };
   place("plate", step.plateTo);
   place("drink", step.drinkTo);
-  if (step.conf) s.arm = *step.conf;
+  if (!step.conf) return s;
+  s.arm = *step.conf;
+  // What the robot holds at that configuration: the utensil above the plate, the drink (lifted kDrinkLift where it
+  // stood) after grasping it.
+  if (step.request.rfind("bite", 0) == 0) {
+    s.held = world::Grasp{"utensil", world::Pose3::fromPosition({0, 0, kUtensilGraspDepth})};
+  } else if (step.request.rfind("drink", 0) == 0 && s.objects.count("drink")) {
+    world::Workspace& ws = world.world().workspace();
+    const world::WorldState keep = ws.state();
+    ws.setArm(s.arm);
+    world::Pose3 drink = s.objects.at("drink");
+    drink.position.z() += kDrinkLift;
+    s.held = world::Grasp{"drink", ws.toolPose().inverse() * drink};
+    ws.setState(keep);
+  }
   return s;
 }
 

@@ -71,7 +71,8 @@ DemoResult runDemo(const approach::PreparedProgram& lp, const ProgramFacts& fact
                    const DemoObserver& observer = {});
 
 // The world state of `step`'s choices: the plate and drink where the robot puts them and the arm at its
-// configuration (the arm as it is when the step has none), for pictures. Leaves `world` unchanged.
+// configuration (the arm as it is when the step has none) holding what it holds there (the utensil for a bite, the
+// drink for a drink), for pictures and the occlusion score. Leaves `world` unchanged.
 world::WorldState demoStepState(FeedingSimulator& world, const DemoStep& step);
 
 }  // namespace cbtl::domains::feeding

@@ -235,8 +235,9 @@ void FeedingSimulator::trackClearance(const std::vector<world::ArmConfig>& path)
     const world::RobotDistance d = world::robotDistanceTo(ws, userBodies_, kClearanceCap);
     if (d.distance < progress_.userClearance) {
       progress_.userClearance = d.distance;
-      progress_.nearest = d.robotGeom + " - " + d.bodyGeom;
+      progress_.nearest = fmt::format("{} - {}, keep-out {:.3f} m", d.robotGeom, d.bodyGeom, d.keepOut);
     }
+    progress_.userKeepOutSlack = std::min(progress_.userKeepOutSlack, d.slack);
   }
   ws.setArm(reached);
 }
@@ -329,7 +330,7 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
       const bool satisfied =
           std::all_of(step.preferences.begin(), step.preferences.end(), [](const auto& p) { return p.second; });
       step.preferences.insert(step.preferences.begin(), {"bite", satisfied});
-      step.measures = {{"userClearance", progress_.userClearance}};
+      step.measures = {{"userClearance", progress_.userClearance}, {"userKeepOutSlack", progress_.userKeepOutSlack}};
       if (!progress_.nearest.empty())
         step.message = fmt::format("closest to the user: {:.3f} m ({})", progress_.userClearance, progress_.nearest);
       return complete(std::move(step), satisfied);
@@ -342,7 +343,7 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
     drink.position.y() = kDrinkParkedY;
     ws.setObjectPose("drink", drink);
     step.preferences = {{"view", !progress_.viewBlocked}};
-    step.measures = {{"userClearance", progress_.userClearance}};
+    step.measures = {{"userClearance", progress_.userClearance}, {"userKeepOutSlack", progress_.userKeepOutSlack}};
     return complete(std::move(step), !progress_.viewBlocked);
   }
   return step;

@@ -15,10 +15,12 @@
 //                 each of the four preferences (view, dip, signal, verbosity) and bite (all four met), and the
 //                 measure userClearance: the smallest distance between the robot (with the utensil it holds)
 //                 and the user's body and head at every waypoint of every path the request executed (capped at
-//                 0.5 m; robot/world/RobotDistance.h);
+//                 0.5 m; robot/world/RobotDistance.h) and userKeepOutSlack, the smallest margin left to the
+//                 keep-out distance feeding.xml declares for that pair (2 cm, 5 mm for the fork near the head);
 //   prepareDrink: moveDrink succeeds (+1);
 //   giveDrink:    the arm is back at a named configuration, empty-handed, after waitForUser("done") (+1 iff
-//                 the view was never blocked during the request; the step reports view and userClearance);
+//                 the view was never blocked during the request; the step reports view, userClearance and
+//                 userKeepOutSlack);
 // and as a failure (-1) when any action fails (no IK, no path, a grasp out of reach, ...): the caregiver then
 // puts the utensil back, opens the gripper and folds the arm to `retract`.
 // View feedback: after every successful moveArm(q) (the configurations the CSP chose), the user says
@@ -126,9 +128,13 @@ class FeedingSimulator final : public sim::DomainSimulator {
     std::string signal;
     double userClearance = kClearanceCap;  // the closest the robot came to the user in this request, metres
     std::string nearest;                   // "robot geom - user geom" of that closest approach
+    // The smallest (distance - keep-out distance) of any robot/user geom pair in this request (RobotDistance.h):
+    // negative only if the robot entered a keep-out zone the collision checks declare.
+    double userKeepOutSlack = kClearanceCap;
   };
   static constexpr double kClearanceCap = 0.5;  // metres; farther is reported as this
-  // Lowers progress_.userClearance to the robot's distance to the user at each waypoint of an executed path.
+  // Lowers progress_.userClearance (and userKeepOutSlack) to the robot's distance to the user (and its slack to the
+  // keep-out distances) at each waypoint of an executed path.
   void trackClearance(const std::vector<world::ArmConfig>& path);
   void serveMeal();  // draws the next meal: food, the two sauces on the table, the setting
   void startRequest(Request r);

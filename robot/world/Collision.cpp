@@ -65,7 +65,7 @@ bool beyond(const mjModel* m, const mjData* d, int g, const mjtNum* x, mjtNum re
 double pairPenetration(const mjModel* m, const mjData* d, const Scene::GeomPair& p, mjContact* buf) {
   const int g1 = p.g1, g2 = p.g2;
   const mjtNum r1 = m->geom_rbound[g1], r2 = m->geom_rbound[g2];
-  const mjtNum margin = std::max(m->geom_margin[g1], m->geom_margin[g2]);
+  const mjtNum margin = p.margin;
   // Planes have rbound 0 (unbounded): skip the sphere test for them, as MuJoCo does.
   if (r1 > 0 && r2 > 0) {
     const mjtNum* x1 = d->geom_xpos + 3 * g1;
@@ -97,11 +97,11 @@ struct MovingBound {
   mjtNum radius = 0;
 };
 
-void growBound(const mjModel* m, const mjData* d, const std::vector<int>& geoms, MovingBound& b) {
+void growBound(const mjModel* m, const mjData* d, const Scene& s, const std::vector<int>& geoms, MovingBound& b) {
   for (int g : geoms) {
     const mjtNum* x = d->geom_xpos + 3 * g;
     const mjtNum dx = x[0] - b.centre[0], dy = x[1] - b.centre[1], dz = x[2] - b.centre[2];
-    b.radius = std::max(b.radius, std::sqrt(dx * dx + dy * dy + dz * dz) + m->geom_rbound[g] + m->geom_margin[g]);
+    b.radius = std::max(b.radius, std::sqrt(dx * dx + dy * dy + dz * dz) + m->geom_rbound[g] + s.reachMargin(g));
   }
 }
 
@@ -120,20 +120,20 @@ MovingBound movingBound(const mjModel* m, const mjData* d, const Scene& s, int h
     for (int g : s.objectSubtree(held).geoms()) extend(g);
   MovingBound b;
   for (int k = 0; k < 3; ++k) b.centre[k] = 0.5 * (lo[k] + hi[k]);
-  growBound(m, d, s.robotGeoms(), b);
-  if (held >= 0) growBound(m, d, s.objectSubtree(held).geoms(), b);
+  growBound(m, d, s, s.robotGeoms(), b);
+  if (held >= 0) growBound(m, d, s, s.objectSubtree(held).geoms(), b);
   return b;
 }
 
 // near[g]: geom g's bounding sphere (grown by its margin) reaches the moving bound.
-void markNear(const mjModel* m, const mjData* d, const MovingBound& b, std::vector<char>& near) {
+void markNear(const mjModel* m, const mjData* d, const Scene& s, const MovingBound& b, std::vector<char>& near) {
   near.assign(static_cast<size_t>(m->ngeom), 1);
   for (int g = 0; g < m->ngeom; ++g) {
     const mjtNum r = m->geom_rbound[g];
     if (r <= 0) continue;
     const mjtNum* x = d->geom_xpos + 3 * g;
     const mjtNum dx = x[0] - b.centre[0], dy = x[1] - b.centre[1], dz = x[2] - b.centre[2];
-    const mjtNum reach = b.radius + r + m->geom_margin[g];
+    const mjtNum reach = b.radius + r + s.reachMargin(g);
     near[static_cast<size_t>(g)] = dx * dx + dy * dy + dz * dz <= reach * reach;
   }
 }
@@ -150,7 +150,7 @@ CollisionReport checkPairs(Workspace& ws, const CollisionOptions& options) {
   };
   // Broad phase: a pair is visited only when both of its geoms reach the moving bound (the robot side
   // always does). Pairs are still visited in the scene's order, so the first contact reported is unchanged.
-  markNear(m, d, movingBound(m, d, s, held), near);
+  markNear(m, d, s, movingBound(m, d, s, held), near);
   auto bothNear = [&](const Scene::GeomPair& p) {
     return near[static_cast<size_t>(p.g1)] && near[static_cast<size_t>(p.g2)];
   };
@@ -182,14 +182,14 @@ CollisionReport checkPairs(Workspace& ws, const CollisionOptions& options) {
 }  // namespace
 
 CollisionReport checkRobotCollisions(Workspace& ws, const CollisionOptions& options) {
-  if (options.method == CollisionMethod::RobotPairs && !ws.scene().hasExplicitPairs()) return checkPairs(ws, options);
+  if (options.method == CollisionMethod::RobotPairs) return checkPairs(ws, options);
   const mjModel* m = ws.model();
   mjData* d = ws.data();
   mj_collision(m, d);
   const Scene& s = ws.scene();
   for (int i = 0; i < d->ncon; ++i) {
     const mjContact& c = d->contact[i];
-    const double depth = std::max(m->geom_margin[c.geom1], m->geom_margin[c.geom2]) - c.dist;
+    const double depth = c.includemargin - c.dist;  // includemargin = margin - gap: the pair's keep-out distance
     if (depth <= options.tolerance) continue;
     const CollisionStatus st = classify(s, ws.heldObject(), m->geom_bodyid[c.geom1], m->geom_bodyid[c.geom2]);
     if (st == CollisionStatus::Free) continue;

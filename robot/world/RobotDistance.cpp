@@ -12,7 +12,7 @@ RobotDistance robotDistanceTo(Workspace& ws, const std::vector<int>& bodies, dou
   const mjData* d = ws.data();
   const Scene& s = ws.scene();
   const int held = ws.heldObject();
-  RobotDistance nearest{cap, {}, {}};
+  RobotDistance nearest{cap, {}, {}, 0.0, cap, {}, {}};
   std::array<mjContact, mjMAXCONPAIR> buf{};
   for (int g1 = 0; g1 < m->ngeom; ++g1) {
     const int b1 = m->geom_bodyid[g1];
@@ -27,11 +27,19 @@ RobotDistance robotDistanceTo(Workspace& ws, const std::vector<int>& bodies, dou
       const mjfCollision fn = mjCOLLISIONFUNC[m->geom_type[a]][m->geom_type[b]];
       if (!fn) continue;
       const int n = fn(m, d, buf.data(), a, b, cap);
+      const double keepOut = s.keepOut(g1, g2);
       for (int i = 0; i < n; ++i) {
-        if (buf[static_cast<std::size_t>(i)].dist < nearest.distance) {
-          nearest.distance = buf[static_cast<std::size_t>(i)].dist;
+        const double dist = buf[static_cast<std::size_t>(i)].dist;
+        if (dist < nearest.distance) {
+          nearest.distance = dist;
           nearest.robotGeom = s.geomName(g1);
           nearest.bodyGeom = s.geomName(g2);
+          nearest.keepOut = keepOut;
+        }
+        if (dist - keepOut < nearest.slack) {
+          nearest.slack = dist - keepOut;
+          nearest.slackRobotGeom = s.geomName(g1);
+          nearest.slackBodyGeom = s.geomName(g2);
         }
       }
     }

@@ -147,29 +147,42 @@ bool Scene::mujocoWouldCollide(int g1, int g2) const {
 void Scene::buildPairs() {
   const mjModel* m = model_;
   objectPairs_.assign(objects_.size(), {});
-  auto ordered = [m](int a, int b) { return m->geom_type[a] <= m->geom_type[b] ? GeomPair{a, b} : GeomPair{b, a}; };
+  reachMargin_.assign(static_cast<size_t>(m->ngeom), 0.0);
+  for (int g = 0; g < m->ngeom; ++g) reachMargin_[static_cast<size_t>(g)] = m->geom_margin[g];
   auto robotGeom = [&](int g) {
     const BodyKind k = kinds_[static_cast<size_t>(m->geom_bodyid[g])];
     return k == BodyKind::Robot || k == BodyKind::Gripper;
   };
   for (int g = 0; g < m->ngeom; ++g)
     if (robotGeom(g)) robotGeoms_.push_back(g);
-  for (int a = 0; a < m->ngeom; ++a) {
-    for (int b = a + 1; b < m->ngeom; ++b) {
-      if (!mujocoWouldCollide(a, b)) continue;
-      const bool ra = robotGeom(a), rb = robotGeom(b);
-      if (ra && rb) {
-        selfPairs_.push_back(ordered(a, b));
-      } else if (ra || rb) {
-        robotPairs_.push_back(ordered(a, b));
-      } else {
-        const int oa = objectOfBody_[static_cast<size_t>(m->geom_bodyid[a])];
-        const int ob = objectOfBody_[static_cast<size_t>(m->geom_bodyid[b])];
-        if (oa >= 0 && oa != ob) objectPairs_[static_cast<size_t>(oa)].push_back(ordered(a, b));
-        if (ob >= 0 && ob != oa) objectPairs_[static_cast<size_t>(ob)].push_back(ordered(a, b));
-      }
+  auto add = [&](int a, int b, double margin) {
+    const GeomPair p = m->geom_type[a] <= m->geom_type[b] ? GeomPair{a, b, margin} : GeomPair{b, a, margin};
+    reachMargin_[static_cast<size_t>(a)] = std::max(reachMargin_[static_cast<size_t>(a)], margin);
+    reachMargin_[static_cast<size_t>(b)] = std::max(reachMargin_[static_cast<size_t>(b)], margin);
+    const bool ra = robotGeom(a), rb = robotGeom(b);
+    if (ra && rb) {
+      selfPairs_.push_back(p);
+    } else if (ra || rb) {
+      robotPairs_.push_back(p);
+    } else {
+      const int oa = objectOfBody_[static_cast<size_t>(m->geom_bodyid[a])];
+      const int ob = objectOfBody_[static_cast<size_t>(m->geom_bodyid[b])];
+      if (oa >= 0 && oa != ob) objectPairs_[static_cast<size_t>(oa)].push_back(p);
+      if (ob >= 0 && ob != oa) objectPairs_[static_cast<size_t>(ob)].push_back(p);
     }
-  }
+  };
+  for (int i = 0; i < m->npair; ++i)
+    explicitMargin_[std::minmax(m->pair_geom1[i], m->pair_geom2[i])] = m->pair_margin[i];
+  for (int a = 0; a < m->ngeom; ++a)
+    for (int b = a + 1; b < m->ngeom; ++b)
+      if (mujocoWouldCollide(a, b) && !explicitMargin_.count({a, b}))
+        add(a, b, std::max(m->geom_margin[a], m->geom_margin[b]));
+  for (int i = 0; i < m->npair; ++i) add(m->pair_geom1[i], m->pair_geom2[i], m->pair_margin[i]);
+}
+
+double Scene::keepOut(int g1, int g2) const {
+  if (const auto it = explicitMargin_.find(std::minmax(g1, g2)); it != explicitMargin_.end()) return it->second;
+  return mujocoWouldCollide(g1, g2) ? std::max(model_->geom_margin[g1], model_->geom_margin[g2]) : 0.0;
 }
 
 bool Scene::withinLimits(const ArmConfig& q) const {

@@ -14,9 +14,11 @@
 #include <mujoco/mujoco.h>
 
 #include <array>
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace cbtl::world {
@@ -91,10 +93,14 @@ class Scene {
   const std::vector<ObjectInfo>& objects() const { return objects_; }
   int objectIndex(std::string_view name) const;  // -1 if absent
 
-  // Candidate geom pairs for the robot's collision checks, after MuJoCo's own filters (contype/conaffinity,
-  // same weld body, parent-child, <exclude>), ordered so that geom_type[g1] <= geom_type[g2].
+  // Candidate geom pairs for the robot's collision checks, ordered so that geom_type[g1] <= geom_type[g2]: the
+  // pairs MuJoCo's own filters let through (contype/conaffinity, same weld body, parent-child, <exclude>), with the
+  // larger of the two geoms' margins, and the explicit <contact><pair> elements, with the pair's margin. As in
+  // MuJoCo 2.2.2, an explicit pair replaces the filtered pair of the same two geoms (and only that one), so a
+  // <pair> can give one geom pair a keep-out distance of its own (the feeding scene's fork near the face).
   struct GeomPair {
     int g1, g2;
+    double margin;  // metres: closer than this counts as penetrating by the difference
   };
   // Geoms of robot bodies (BodyKind Robot or Gripper), in id order.
   const std::vector<int>& robotGeoms() const { return robotGeoms_; }
@@ -102,8 +108,11 @@ class Scene {
   const std::vector<GeomPair>& robotPairs() const { return robotPairs_; }  // robot × scenery/object
   // Geoms of object `index` × scenery and other objects' geoms (used when that object is held).
   const std::vector<GeomPair>& objectPairs(int index) const { return objectPairs_[static_cast<size_t>(index)]; }
-  // True when the model defines explicit <pair> contacts, which the pair lists above do not model.
-  bool hasExplicitPairs() const { return model_->npair > 0; }
+  // The keep-out distance the collision checks apply between geoms g1 and g2 (metres): the explicit pair's margin,
+  // else the larger geom margin when MuJoCo's filters let the pair collide, else 0 (the pair is never checked).
+  double keepOut(int g1, int g2) const;
+  // The largest margin any candidate pair of geom g uses (its own, or an explicit pair's), for the broad phase.
+  double reachMargin(int g) const { return reachMargin_[static_cast<size_t>(g)]; }
 
   // The bodies whose poses depend on the arm joints (rooted at joint_1's body), on the base joints (rooted at
   // the mobile base; empty without one), and on movable object `index`'s free joint: the Workspace recomputes
@@ -138,6 +147,8 @@ class Scene {
   std::vector<ObjectInfo> objects_;
   std::vector<int> robotGeoms_;
   std::vector<GeomPair> selfPairs_, robotPairs_;
+  std::vector<double> reachMargin_;
+  std::map<std::pair<int, int>, double> explicitMargin_;  // the <pair> margins, keyed by (lower, higher) geom id
   std::vector<std::vector<GeomPair>> objectPairs_;
   KinematicSubtree armSubtree_, baseSubtree_;
   std::vector<KinematicSubtree> objectSubtrees_;

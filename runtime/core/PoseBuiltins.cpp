@@ -139,6 +139,16 @@ bool sToolDownAbove(const CallContext&, Args a, Widths, Rng& rng, Out o) {
   writePose({Eigen::Vector3d(a[0], a[1], a[2] + a[3]), toolDown(yaw)}, o.data());
   return true;
 }
+// As sToolDownAbove, for the point a[5..7] of the tool's frame (a utensil's tip) rather than the frame's origin.
+bool sToolDownWithPointAbove(const CallContext&, Args a, Widths, Rng& rng, Out o) {
+  const double spread = a[4];
+  if (!(spread >= 0)) return false;
+  const double yaw = spread > 0 ? rng.uniform(-spread, spread) : 0.0;
+  const Eigen::Quaterniond q = toolDown(yaw);
+  const Eigen::Vector3d target(a[0], a[1], a[2] + a[3]);
+  writePose({target - q * Eigen::Vector3d(a[5], a[6], a[7]), q}, o.data());
+  return true;
+}
 
 }  // namespace
 
@@ -160,6 +170,7 @@ void addPoseBuiltins(Builtins& b) {
   b.addSampler("pointInShell", sPointInShell);
   b.addSampler("se2Near", sSe2Near);
   b.addSampler("toolDownAboveSampler", sToolDownAbove);
+  b.addSampler("toolDownWithPointAbove", sToolDownWithPointAbove);
 }
 
 }  // namespace cbtl::rt

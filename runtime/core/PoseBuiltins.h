@@ -1,5 +1,6 @@
 // PoseBuiltins.h — std.geometry's planar and rigid poses as built-ins (compose, inverse, relativePose,
-// poseRpy, toolDownAbove, retarget, ... and the samplers pointInShell, se2Near, toolDownAboveSampler).
+// poseRpy, toolDownAbove, retarget, ... and the samplers pointInShell, se2Near, toolDownAboveSampler,
+// toolDownWithPointAbove).
 //
 // Conventions: SE2 yaw about world z in radians, wrapped to [-pi, pi); SE3 orientations as unit quaternions
 // (qx, qy, qz, qw) with qw >= 0 on output; roll-pitch-yaw about the fixed axes x, then y, then z. "Tool

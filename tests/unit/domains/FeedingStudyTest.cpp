@@ -115,7 +115,9 @@ TEST(FeedingDemo, ComplaintsFollowTheHiddenThresholdAndCbtlKeepsTheViewClear) {
         if (!s.conf) continue;
         // The user complains at each move to the configuration exactly when its score reaches their threshold.
         EXPECT_EQ(s.complaints > 0, s.occlusion >= r.threshold) << name << " " << s.request << " " << s.occlusion;
-        if (name == "cbtl") EXPECT_EQ(s.complaints, 0) << s.request << " " << s.occlusion;
+        if (name == "cbtl") {
+          EXPECT_EQ(s.complaints, 0) << s.request << " " << s.occlusion;
+        }
       }
     }
   }

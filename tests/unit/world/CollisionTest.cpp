@@ -3,6 +3,10 @@
 #include "robot/world/InverseKinematics.h"
 #include "tests/unit/world/WorldTestSupport.h"
 
+#include <algorithm>
+#include <cmath>
+#include <string>
+
 namespace cbtl::world {
 namespace {
 
@@ -48,6 +52,35 @@ TEST(WorldCollision, HeldObjectIsChecked) {
   EXPECT_TRUE(checkRobotCollisions(ws).free());
 }
 
+// feeding.xml gives the fork a 5 mm keep-out distance from the head with a <pair>, where the head's own margin keeps
+// everything else 2 cm away. The utensil is held (robot at home, far from the user) with its fork tip `gap` metres
+// from the head sphere, the fork pointing away from the head.
+CollisionReport forkNearHead(double gap, CollisionMethod method) {
+  Workspace ws(test::feedingScene());
+  ws.setArm(configs::kHome);
+  const Eigen::Vector3d head = ws.bodyPose(ws.scene().bodyId("user_head")).position;
+  const Eigen::Quaterniond yawPi(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()));
+  const Eigen::Vector3d tipLocal(0.2251, -0.002, -0.0645);  // feeding.xml's utensil_tip
+  const double headRadius = 0.11, forkRadius = 0.006;
+  const Eigen::Vector3d tip = head + Eigen::Vector3d(headRadius + forkRadius + gap, 0, 0);
+  EXPECT_EQ(ws.setObjectPose("utensil", Pose3{tip - yawPi * tipLocal, yawPi}), StateStatus::Ok);
+  EXPECT_EQ(ws.setHeld(std::string("utensil")), StateStatus::Ok);
+  CollisionOptions o;
+  o.method = method;
+  return checkRobotCollisions(ws, o);
+}
+
+TEST(WorldCollision, PairMarginGivesTheForkItsOwnKeepOutDistance) {
+  for (const auto method : {CollisionMethod::RobotPairs, CollisionMethod::FullScene}) {
+    EXPECT_TRUE(forkNearHead(0.008, method).free()) << forkNearHead(0.008, method).second;
+    const auto close = forkNearHead(0.003, method);
+    EXPECT_EQ(close.status, CollisionStatus::HeldObject);
+    EXPECT_EQ(std::minmax(close.first, close.second),
+              std::minmax(std::string("utensil_fork"), std::string("user_head_geom")));
+    EXPECT_NEAR(close.depth, 0.002, 2e-4);
+  }
+}
+
 TEST(WorldCollision, MobileBaseIntoShelfCollides) {
   Workspace ws(test::homeScene());
   WorldState st;
@@ -84,6 +117,11 @@ TEST(WorldCollision, FastCheckAgreesWithFullScenePass) {
   feeding.setArm(configs::kHome);
   ASSERT_EQ(feeding.setObjectPose("drink", feeding.toolPose() * Pose3::fromPosition({0, 0, 0.05})), StateStatus::Ok);
   ASSERT_EQ(feeding.setHeld(std::string("drink")), StateStatus::Ok);
+  expectMethodsAgree(feeding, rng, 1500);
+  // Holding the utensil: its fork and arm use the explicit <pair> margins near the head.
+  ASSERT_EQ(feeding.setHeld(std::nullopt), StateStatus::Ok);
+  ASSERT_EQ(feeding.setObjectPose("utensil", feeding.toolPose() * Pose3::fromPosition({0, 0, 0.06})), StateStatus::Ok);
+  ASSERT_EQ(feeding.setHeld(std::string("utensil")), StateStatus::Ok);
   expectMethodsAgree(feeding, rng, 1500);
   Workspace home(test::homeScene());
   WorldState st;

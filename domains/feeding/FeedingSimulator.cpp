@@ -31,6 +31,8 @@ const std::vector<std::string> kFoods = {"french fries", "raw vegetables", "pota
 const std::vector<std::string> kDips = {"ketchup", "bbqSauce", "ranch", "hummus"};
 const std::vector<std::string> kSettings = {"alone", "withFriend", "withTv", "withFriendAndTv"};
 
+sim::Value foodValue(const std::string& food) { return sim::Value::name(foodEntry(food)); }
+
 sim::StepResult unknownAction(std::string message) {
   sim::StepResult r;
   r.status = sim::ActionStatus::UnknownAction;
@@ -221,7 +223,7 @@ sim::Observation FeedingSimulator::observe() const {
   std::vector<std::string> choices = dips_;
   choices.push_back("noDip");
   o["dipChoices"] = sim::Value::names(choices);
-  o["foodOnPlate"] = sim::Value::name(food_);
+  o["foodOnPlate"] = foodValue(food_);
   o["mealSetting"] = sim::Value::name(setting_);
   return o;
 }
@@ -314,12 +316,12 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
       const std::string verbosity = FeedingUser::perceivedVerbosity(spoke);
       const std::string signalGiven = progress_.signal.empty() ? "autoContinue" : progress_.signal;
       step.feedback.push_back(
-          {"dipAnswer", {sim::Value::name(food_), sim::Value::name(progress_.dip), sim::Value::name(idealDip)}});
+          {"dipAnswer", {foodValue(food_), sim::Value::name(progress_.dip), sim::Value::name(idealDip)}});
       std::vector<std::string> choices = dips_;
       choices.push_back("noDip");
       for (const auto& choice : choices) {
         if (choice == progress_.dip || choice == idealDip) continue;
-        step.feedback.push_back({"dipNotWanted", {sim::Value::name(food_), sim::Value::name(choice)}});
+        step.feedback.push_back({"dipNotWanted", {foodValue(food_), sim::Value::name(choice)}});
       }
       step.feedback.push_back({"signalAnswer", {sim::Value::name(signalGiven), sim::Value::name(idealSignal)}});
       step.feedback.push_back({"verbosityAnswer", {sim::Value::name(verbosity), sim::Value::name(idealVerbosity)}});

@@ -35,7 +35,7 @@
 // domain's own actions dipInto(sauce: text), acquireFood() (the tool must be within 0.1 m of the plate centre
 // horizontally, holding the utensil) and waitForReady(signal: ReadySignal), one step each.
 // Observations: plateXY, drinkXY (vec<2>), dipsOnTable (set of Dip entries), dipChoices (the same and noDip: what
-// the robot may offer), foodOnPlate (text), mealSetting (MealSetting member).
+// the robot may offer), foodOnPlate (Food entry), mealSetting (MealSetting member).
 //
 // Determinism: reset(seed) reseeds the simulator's world::Rng; the episode draws, in order, the plate
 // position, the position in the request cycle, the meal (food, the two dips on the table, setting), and after

@@ -21,22 +21,30 @@ FeedingUser FeedingUser::paperDefault() {
 }
 
 FeedingUser FeedingUser::participant(std::uint64_t n) {
-  static const std::vector<std::string> kFoods = {"french fries", "raw vegetables", "potato wedges", "carrot sticks",
-                                                  "tater tots"};
+  // The paper's five foods by kind (fried or baked potato; raw vegetables), the order the taste is drawn in.
+  static const std::vector<std::vector<std::string>> kFoodsByKind = {{"french fries", "potato wedges", "tater tots"},
+                                                                     {"raw vegetables", "carrot sticks"}};
   static const std::vector<std::string> kSauces = {"ketchup", "bbqSauce", "ranch", "hummus"};
   static const std::vector<std::string> kSignals = {"mouthOpen", "button", "autoContinue"};
   static const std::vector<std::string> kVerbosities = {"silent", "brief", "chatty"};
   rt::Rng rng(rt::splitMix64(n ^ 0x66656564696e67ULL));  // "feeding": participants apart from other streams
   FeedingUser u;
   u.occlusionThreshold = rng.uniform(0.02, 0.08);
-  for (const auto& food : kFoods) {
+  const auto drawRanking = [&rng] {
     std::vector<std::string> sauces = kSauces;
     rng.shuffle(sauces.begin(), sauces.end());
     const double r = rng.uniform();
     const std::size_t liked = r < 0.2 ? 0 : r < 0.7 ? 1 : 2;
-    u.dipRanking[food] = std::vector<std::string>(sauces.begin(), sauces.begin() + static_cast<long>(liked));
-    for (const char* setting : {"withFriend", "withFriendAndTv"})
-      if (rng.coin(0.3)) u.dipRankingInSetting[food + "|" + setting] = {};
+    return std::vector<std::string>(sauces.begin(), sauces.begin() + static_cast<long>(liked));
+  };
+  for (const auto& kind : kFoodsByKind) {
+    const std::vector<std::string> kindRanking = drawRanking();
+    for (const auto& food : kind) {
+      std::vector<std::string> own = drawRanking();  // drawn for every food, so the stream does not branch
+      u.dipRanking[food] = rng.coin(kOwnDipTaste) ? std::move(own) : kindRanking;
+      for (const char* setting : {"withFriend", "withFriendAndTv"})
+        if (rng.coin(0.3)) u.dipRankingInSetting[food + "|" + setting] = {};
+    }
   }
   u.readySignal = kSignals[rng.index(kSignals.size())];
   for (const char* setting : {"withTv", "withFriendAndTv"})
@@ -86,6 +94,16 @@ std::string dipEntryOfSauce(const std::string& sauce) {
       {"ketchup", "ketchup"}, {"BBQ sauce", "bbqSauce"}, {"ranch dressing", "ranch"}, {"hummus", "hummus"}};
   auto it = entries.find(sauce);
   return it == entries.end() ? std::string() : it->second;
+}
+
+std::string foodEntry(const std::string& food) {
+  static const std::map<std::string, std::string> entries = {{"french fries", "frenchFries"},
+                                                             {"raw vegetables", "rawVegetables"},
+                                                             {"potato wedges", "potatoWedges"},
+                                                             {"carrot sticks", "carrotSticks"},
+                                                             {"tater tots", "taterTots"}};
+  auto it = entries.find(food);
+  return it == entries.end() ? food : it->second;
 }
 
 }  // namespace cbtl::domains::feeding

@@ -23,11 +23,15 @@ class FeedingUser {
   // to talk to.
   static FeedingUser paperDefault();
   // Simulated participant `n` of a study (the same n, the same person), with diverse preferences drawn from n
-  // alone: an occlusion threshold in [0.02, 0.08]; per food (the paper's five) a ranking of none, one or two of
-  // the four sauces; with a friend at the table, for each food with probability 0.3, no dip at all; a ready signal
-  // and a verbosity, each replaced in some settings (the TV on: signal, probability 0.3; a friend there:
-  // verbosity, probability 0.4) by another drawn one.
+  // alone: an occlusion threshold in [0.02, 0.08]; per kind of food (potato: french fries, potato wedges, tater
+  // tots; vegetables: raw vegetables, carrot sticks) a ranking of none, one or two of the four sauces (uniform
+  // order; none 0.2, one 0.5, two 0.3), which each food of the kind keeps except with probability kOwnDipTaste,
+  // where it has its own ranking drawn the same way; with a friend at the table, for each food with probability
+  // 0.3, no dip at all; a ready signal and a verbosity, each replaced in some settings (the TV on: signal,
+  // probability 0.3; a friend there: verbosity, probability 0.4) by another drawn one.
   static FeedingUser participant(std::uint64_t n);
+  // How often a participant's dip with one food is not the one they take with its kind (see participant()).
+  static constexpr double kOwnDipTaste = 0.25;
 
   double occlusionThreshold = 0.05;                            // view blocked at score >= this, in [0, 1]
   std::map<std::string, std::vector<std::string>> dipRanking;  // food -> Dip entries, best first
@@ -52,5 +56,9 @@ class FeedingUser {
 // Dip entry of the sauce name a plan passes to dipInto ("ketchup", "BBQ sauce", "ranch dressing", "hummus");
 // empty for an unknown name.
 std::string dipEntryOfSauce(const std::string& sauce);
+
+// Food entry of one of the paper's foods ("french fries" -> "frenchFries"), the value of the foodOnPlate
+// observation and of the feedback's food argument; an unknown food is returned as it is.
+std::string foodEntry(const std::string& food);
 
 }  // namespace cbtl::domains::feeding

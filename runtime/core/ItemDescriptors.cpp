@@ -38,35 +38,40 @@ std::vector<std::string> ItemDescriptors::fieldStrings(const ir::Expr& value, co
   return {};
 }
 
+void ItemDescriptors::addType(const ir::ConstraintGraph& graph, const ir::TypeDesc& t,
+                              const RenderConstant& renderOther) {
+  if (t.kind == ir::TypeKind::Enum && !enums_.count(t.spelling)) {
+    std::vector<textpref::Item> items;
+    for (const auto& e : graph.enums) {
+      if (e.name != t.spelling) continue;
+      for (const auto& member : e.members) items.push_back(textpref::Item{member, {}});
+      break;
+    }
+    enums_.emplace(t.spelling, std::move(items));
+  } else if (t.kind == ir::TypeKind::Item && !itemTypes_.count(t.spelling)) {
+    std::vector<textpref::Item> items;
+    for (const auto& set : graph.itemSets) {
+      if (set.itemType != t.spelling) continue;
+      for (const auto& entry : set.entries) {
+        textpref::Item item{entry.name, {}};
+        for (const auto& [field, value] : entry.fields) {
+          auto strings = fieldStrings(value, renderOther);
+          if (!strings.empty()) item.descriptors[field] = std::move(strings);
+        }
+        items.push_back(std::move(item));
+      }
+      break;  // the first set of the type, as Program::render
+    }
+    itemTypes_.emplace(t.spelling, std::move(items));
+  }
+}
+
 ItemDescriptors::ItemDescriptors(const ir::ConstraintGraph& graph, const RenderConstant& renderOther) {
   for (const auto& g : graph.generators) {
     for (const auto& f : g.factors) {
-      if (f.kind != ir::FactorKind::Text || !f.feature) continue;
-      const ir::TypeDesc& t = f.feature->type;
-      if (t.kind == ir::TypeKind::Enum && !enums_.count(t.spelling)) {
-        std::vector<textpref::Item> items;
-        for (const auto& e : graph.enums) {
-          if (e.name != t.spelling) continue;
-          for (const auto& member : e.members) items.push_back(textpref::Item{member, {}});
-          break;
-        }
-        enums_.emplace(t.spelling, std::move(items));
-      } else if (t.kind == ir::TypeKind::Item && !itemTypes_.count(t.spelling)) {
-        std::vector<textpref::Item> items;
-        for (const auto& set : graph.itemSets) {
-          if (set.itemType != t.spelling) continue;
-          for (const auto& entry : set.entries) {
-            textpref::Item item{entry.name, {}};
-            for (const auto& [field, value] : entry.fields) {
-              auto strings = fieldStrings(value, renderOther);
-              if (!strings.empty()) item.descriptors[field] = std::move(strings);
-            }
-            items.push_back(std::move(item));
-          }
-          break;  // the first set of the type, as Program::render
-        }
-        itemTypes_.emplace(t.spelling, std::move(items));
-      }
+      if (f.kind != ir::FactorKind::Text) continue;
+      if (f.feature) addType(graph, f.feature->type, renderOther);
+      for (const auto& entry : f.context) addType(graph, entry.value.type, renderOther);
     }
   }
 }

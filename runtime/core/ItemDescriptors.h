@@ -7,9 +7,10 @@
 //                   fields whose value is an empty list are left out;
 //   enum member  -> Item{member name, {}};
 //   text         -> Item{the text, {}} (texts have no fixed domain, so they are converted where they are read).
-// The items of every item type and enum that some generator's text factor has as its subject type are built
-// once, when the Program is prepared, so the solve loop only indexes a vector. An item type's domain is the
-// entries of its first item set (the set Program::render names values by), in declaration order.
+// The items of every item type and enum that some generator's text factor has as its subject type, or as the
+// type of one of its context entries (TextContext.h), are built once, when the Program is prepared, so the solve
+// loop only indexes a vector. An item type's domain is the entries of its first item set (the set Program::render
+// names values by), in declaration order.
 #pragma once
 
 #include "runtime/core/Values.h"
@@ -31,7 +32,7 @@ class ItemDescriptors {
   using RenderConstant = std::function<std::vector<std::string>(const ir::Expr&)>;
 
   ItemDescriptors() = default;
-  // Builds the items of every text-factor subject type of `graph`. Throws what `renderOther` throws.
+  // Builds the items of every text-factor subject and context type of `graph`. Throws what `renderOther` throws.
   ItemDescriptors(const ir::ConstraintGraph& graph, const RenderConstant& renderOther);
 
   // Every item of a subject type with a fixed domain (item type or enum), in value order; null for any other
@@ -45,6 +46,8 @@ class ItemDescriptors {
   static std::vector<std::string> fieldStrings(const ir::Expr& value, const RenderConstant& renderOther);
 
  private:
+  void addType(const ir::ConstraintGraph& graph, const ir::TypeDesc& type, const RenderConstant& renderOther);
+
   std::map<std::string, std::vector<textpref::Item>> itemTypes_;  // by item type name
   std::map<std::string, std::vector<textpref::Item>> enums_;      // by enum name
 };

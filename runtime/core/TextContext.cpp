@@ -32,8 +32,13 @@ bool evaluateContext(const Program& program, const CompiledContext& context, con
 textpref::Context renderContext(const Program& program, const CompiledContext& context,
                                 const std::vector<double>& values) {
   textpref::Context out;
-  for (std::size_t i = 0; i < context.nodes.size() && i < values.size(); ++i)
+  for (std::size_t i = 0; i < context.nodes.size() && i < values.size(); ++i) {
     out.fields[context.names[i]] = {program.render(context.types[i], &values[i])};
+    // An item carries what its declaration says about it, so that what is learned in one context (ketchup with
+    // french fries) can reach another that shares a descriptor (tater tots, also fried potato).
+    if (const textpref::Item* item = program.itemDescriptors().item(context.types[i], values[i]))
+      for (const auto& [field, strings] : item->descriptors) out.fields[context.names[i] + "." + field] = strings;
+  }
   return out;
 }
 

@@ -30,7 +30,9 @@ CompiledContext compileContext(ProgramCompiler& compiler, const Program& program
 bool evaluateContext(const Program& program, const CompiledContext& context, const EvalContext& ctx,
                      std::vector<double>& values);
 
-// The context as the models see it: {name: [rendered value]} per entry.
+// The context as the models see it: {name: [rendered value]} per entry, and for an item entry one more field per
+// declared descriptor, {name.field: [its strings]} (ItemDescriptors.h), e.g. {"foodOnPlate": ["tots"],
+// "foodOnPlate.kind": ["fried", "potato"]}.
 textpref::Context renderContext(const Program& program, const CompiledContext& context,
                                 const std::vector<double>& values);
 

@@ -14,6 +14,7 @@ namespace {
 
 using cbtl::domains::feeding::FeedingSimulator;
 using cbtl::domains::feeding::FeedingUser;
+using cbtl::domains::feeding::foodEntry;
 using cbtl::domains::feeding::Request;
 using cbtl::sim::ActionCall;
 using cbtl::sim::StepResult;
@@ -63,7 +64,7 @@ TEST(FeedingSimulator, EveryRequestCycleIsANewMealAndAMealLastsItsCycle) {
 TEST(FeedingSimulator, ObservesTheMealAndItsSetting) {
   FeedingSimulator sim(feeding(), {}, 4);
   const auto o = sim.observe();
-  EXPECT_EQ(o.at("foodOnPlate").text, sim.food());
+  EXPECT_EQ(o.at("foodOnPlate").text, foodEntry(sim.food()));
   EXPECT_EQ(o.at("mealSetting").text, sim.setting());
   EXPECT_EQ(o.at("dipsOnTable").members, sim.dipsOnTable());
   std::vector<std::string> choices = sim.dipsOnTable();
@@ -109,7 +110,7 @@ TEST(FeedingSimulator, ABiteIsAnsweredAndEachPreferenceJudged) {
     std::vector<std::string> turnedDown;
     for (const auto& f : r.feedback) {
       if (f.name == "dipNotWanted") {
-        EXPECT_EQ(f.args[0].text, food);
+        EXPECT_EQ(f.args[0].text, foodEntry(food));
         turnedDown.push_back(f.args[1].text);
       } else {
         said[f.name] = f.args;
@@ -169,6 +170,22 @@ TEST(FeedingUser, ParticipantsAreReproducibleAndDiverse) {
   EXPECT_GT(noDipWithAFriend, 5);
   EXPECT_LT(noDipWithAFriend, 40);
   EXPECT_NE(FeedingUser::participant(0).dipRanking, FeedingUser::participant(1).dipRanking);
+}
+
+// A participant's dip with one food mostly says which they want with another of its kind, and nothing about a
+// food of the other kind (FeedingUser::participant).
+TEST(FeedingUser, ParticipantsTakeTheSameDipWithFoodsOfOneKind) {
+  int friesAndTots = 0, friesAndCarrots = 0;
+  for (std::uint64_t n = 0; n < 200; ++n) {
+    const FeedingUser u = FeedingUser::participant(n);
+    const std::vector<std::string> potatoSauces = {"bbqSauce", "ketchup"};
+    friesAndTots +=
+        u.idealDip("french fries", "alone", potatoSauces) == u.idealDip("tater tots", "alone", potatoSauces);
+    friesAndCarrots += u.dipRanking.at("french fries") == u.dipRanking.at("carrot sticks");
+  }
+  // Same ranking with probability (1 - 0.25)^2 plus chance agreement; the kinds are drawn apart.
+  EXPECT_GT(friesAndTots, 120);
+  EXPECT_LT(friesAndCarrots, 60);
 }
 
 TEST(FeedingSimulator, AParticipantReplacesTheDefaultUser) {

@@ -60,9 +60,19 @@ TEST(FeedingStudy, CbtlLearnsFromTheAnswersAndNoPersonalizationDoesNot) {
       }
     }
   }
-  // 4 participants x meals 2-5 x (signal, verbosity) = 32 judgements each.
-  EXPECT_GE(cbtlLater, 24);
+  // 4 participants x meals 2-5 x (signal, verbosity) = 32 judgements each. Meal 5's setting (a friend and the
+  // TV) is new, and some participants change signal or verbosity in it.
+  EXPECT_GE(cbtlLater, 22) << "No Personalization: " << npLater;
   EXPECT_LT(npLater, cbtlLater - 8);
+  // The dip with the potato foods of meals 3 and 5, after the fries of meal 1 (FeedingUser::participant: a
+  // participant mostly takes the same dip with foods of one kind): 4 participants x 2 meals.
+  int cbtlDip = 0, npDip = 0;
+  for (const auto& p : r.participants)
+    for (std::size_t k : {2u, 4u}) {
+      cbtlDip += p.meals[k].at("cbtl").preferences.at("dip") ? 1 : 0;
+      npDip += p.meals[k].at("no-personalization").preferences.at("dip") ? 1 : 0;
+    }
+  EXPECT_GT(cbtlDip, npDip) << "CBTL " << cbtlDip << ", No Personalization " << npDip;
   int judged = 0;
   for (const auto& m : r.meals) judged += m.cbtlBetter + m.tied + m.cbtlWorse;
   EXPECT_EQ(judged, 20);

@@ -209,4 +209,94 @@ TEST(TextContext, ALanguageModelIsAskedInTheContextAndItsCacheIsKeyedByIt) {
   EXPECT_TRUE(sawWedges);
 }
 
+// A context entry that is an item brings its declared fields: what is learned with one food reaches another of
+// the same kind, and only through what the declaration says they share.
+const char* kFoodsSource = R"(domain foods;
+item Dip { name: text; }
+items dips : Dip { ketchup { name: "ketchup" }, bbqSauce { name: "BBQ sauce" }, ranch { name: "ranch dressing" } }
+item Food { name: text; kind: set<text>; }
+items foods : Food {
+  fries { name: "french fries", kind: ["potato", "fried"] },
+  tots { name: "tater tots", kind: ["potato", "fried"] },
+  carrots { name: "carrot sticks", kind: ["vegetable", "raw"] },
+}
+observe food : Food;
+feedback dipAnswer(food: Food, offered: Dip, ideal: Dip);
+var dip : Dip;
+sample dip ~ uniform;
+personal dipWithFood(d: Dip) {
+  when d ~ "dip";
+  model text(d, prompt: "Would the user enjoy this dip with the food on their plate?", scale: relative,
+             context: food);
+  accept 0.95;
+  learn dipAnswer(_, d, ideal) => d == ideal;
+  learn dipAnswer(_, _, d) => true;
+}
+)";
+
+struct Foods {
+  std::unique_ptr<app::LoadedProgram> lp = test::compileOrFail("foods.cbtl", kFoodsSource);
+
+  std::vector<double> observation(const std::string& food) const {
+    return approach::observationVector(lp->program(), {{"food", sim::Value::name(food)}});
+  }
+  double p(const model::UserModel& user, const std::string& dip, const std::string& food) const {
+    const rt::Program& program = lp->program();
+    std::vector<double> x = program.initialAssignment(), obs = observation(food), frame(program.frameSize() + 1);
+    const auto& slot = program.slot(lp->graph().variables.at(0).id);
+    EXPECT_TRUE(program.parseName(slot.type, dip, x[slot.offset])) << dip;
+    rt::EvalContext ctx{x.data(), obs.data(), frame.data(), program.callContext()};
+    solver::PersonalEvaluator evaluator(program, lp->instances(0), user);
+    return evaluator.evaluate(0, ctx).probability;
+  }
+  void answer(model::UserModel& user, const std::string& food, const std::string& offered,
+              const std::string& ideal) const {
+    const auto report = lp->learner().learn(
+        {sim::FeedbackEvent{"dipAnswer", {sim::Value::name(food), sim::Value::name(offered), sim::Value::name(ideal)}}},
+        user, approach::StepWorld{{}, observation(food)});
+    ASSERT_TRUE(report.problems.empty()) << report.problems.front();
+    ASSERT_TRUE(report.modelErrors.empty()) << report.modelErrors.front();
+  }
+};
+
+TEST(TextContext, AnItemInTheContextCarriesWhatIsLearnedToItsKind) {
+  Foods m;
+  model::UserModel user(m.lp->graph());
+  for (int i = 0; i < 3; ++i) {
+    m.answer(user, "fries", "ranch", "ketchup");
+    m.answer(user, "fries", "bbqSauce", "ketchup");
+  }
+  const auto& factor = std::get<model::TextFactor>(user.generator(0).factors("")[0].model());
+  ASSERT_FALSE(factor.model().history().empty());
+  const auto& context = factor.model().history().front().context.fields;
+  EXPECT_EQ(context.at("food"), std::vector<std::string>{"fries"});
+  EXPECT_EQ(context.at("food.kind"), (std::vector<std::string>{"potato", "fried"}));
+  EXPECT_EQ(context.at("food.name"), std::vector<std::string>{"french fries"});
+  // Tater tots were never served, but they are fried potato too: ketchup is the dip to offer with them.
+  EXPECT_GE(m.p(user, "ketchup", "tots"), 0.95);
+  EXPECT_LT(m.p(user, "bbqSauce", "tots"), 0.95);
+  EXPECT_LT(m.p(user, "ranch", "tots"), 0.95);
+  // Carrots share no descriptor with fries: only the context-free part of the answers (ketchup is liked at all)
+  // reaches them, so the case against BBQ sauce is weaker there than with the fried potato.
+  EXPECT_GT(m.p(user, "bbqSauce", "carrots"), m.p(user, "bbqSauce", "tots") + 0.1);
+  EXPECT_GT(m.p(user, "ranch", "carrots"), m.p(user, "ranch", "tots") + 0.1);
+}
+
+TEST(TextContext, ALanguageModelSeesTheContextItemsFields) {
+  textpref::testing::ChatTestServer server;
+  server.setDefault(textpref::testing::replyRating({{"9", 1.0}}));
+  auto config = textpref::textBackendConfigFromJson(
+      {{"backend", "openai-compatible"}, {"base_url", server.baseUrl()}, {"model", "test-model"}, {"max_attempts", 1}});
+  ASSERT_TRUE(config.ok()) << config.error().describe();
+  Foods m;
+  model::UserModel user(m.lp->graph(), std::make_shared<const textpref::TextBackend>(config.value()));
+  m.p(user, "ketchup", "tots");
+  ASSERT_GT(server.requestCount(), 0);
+  bool sawKind = false;
+  for (const auto& r : server.requests())
+    sawKind = sawKind ||
+              r.body.dump().find("food: tots; food.kind: potato, fried; food.name: tater tots") != std::string::npos;
+  EXPECT_TRUE(sawKind);
+}
+
 }  // namespace

@@ -43,6 +43,12 @@ bool holding(const world::Workspace& ws, const char* object) {
 
 }  // namespace
 
+Pose3 drinkHandlePose(const Pose3& drink) {
+  return Pose3{drink.transformPoint(kDrinkGraspOffset) - Eigen::Vector3d(0, kDrinkGraspStandoff, 0), towardsPlusY()};
+}
+
+Pose3 drinkInTool(const Pose3& drink) { return drinkHandlePose(drink).inverse() * drink; }
+
 std::shared_ptr<const FeedingActions> FeedingActions::forScene(const world::Scene& scene) {
   const int index = scene.objectIndex("utensil");
   if (index < 0) return std::make_shared<const FeedingActions>(Pose3{});
@@ -80,8 +86,7 @@ actions::RobotActionResult FeedingActions::graspDrink(world::World& w, actions::
   if (ws.heldObject() >= 0) return failed(ActionStatus::AlreadyHolding, "grasp(drink): the gripper is not empty");
   const auto drink = ws.objectPose("drink");
   if (!drink) return failed(ActionStatus::InvalidArgument, "no movable object 'drink'");
-  const Pose3 handle{drink->transformPoint(kDrinkGraspOffset) - Eigen::Vector3d(0, kDrinkGraspStandoff, 0),
-                     towardsPlusY()};
+  const Pose3 handle = drinkHandlePose(*drink);
   // IK from random starts (seeded at the folded arm, every converged solution reaches around the table); the
   // starts are drawn from a stream that is a function of the state and the handle.
   std::vector<double> key(ws.state().arm.begin(), ws.state().arm.end());

@@ -5,7 +5,8 @@
 //   grasp("drink")                the drink is taken by its handle: a collision-free IK solution for the tool just
 //                                 short of the handle (tool z along world +y), the arm moved there, the drink
 //                                 attached where it stands and lifted kDrinkLift (only the lift's end is checked:
-//                                 it starts with the drink on the table, a contact the planner would reject).
+//                                 it starts with the drink on the table, a contact the planner would reject);
+//                                 feeding.cbtl then carries it to its post-grasp pose and sets it down again.
 //   release() holding the utensil the utensil goes back on its mount: the tool must be within kMountTolerance
 //                                 of the mount's grasp pose; the utensil is set to its mount pose (the scene's).
 //   acquireFood()                 the held utensil must be over the plate (its fork tip, site utensil_tip,
@@ -30,6 +31,11 @@ inline constexpr double kUtensilGraspDepth =
 inline constexpr double kDrinkLift = 0.01;       // metres the tool rises after closing on the handle
 inline constexpr double kMountTolerance = 0.03;  // metres from the mount pose where a release re-mounts
 inline constexpr double kFoodReach = 0.10;       // metres from the plate centre where food can be picked up
+
+// The tool pose grasp("drink") stops at for the drink standing at `drink` (before its lift), and the drink's pose in
+// the tool frame while held: what a drink held at any configuration looks like.
+world::Pose3 drinkHandlePose(const world::Pose3& drink);
+world::Pose3 drinkInTool(const world::Pose3& drink);
 
 class FeedingActions final : public actions::DomainActions {
  public:

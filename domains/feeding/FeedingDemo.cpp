@@ -50,15 +50,10 @@ DemoStep runDemoRequest(const approach::PreparedProgram& lp, StudyArm& arm, cons
     world.world().workspace().setState(keep);
   }
   if (observer) observer(trial, arm.approach, step, world);
-  const PlanRun run = runPlan(world, plan.calls);
+  const PlanRun run =
+      runPlan(world, plan.calls, learnAsJudged(lp, arm, approach::StepWorld{plan.solve.assignment, observation}));
   step.solved = run.done && !run.failed;
   step.complaints = run.complaints;
-  if (arm.learns && !run.feedback.empty()) {
-    const auto report =
-        lp.learner().learn(run.feedback, arm.model, approach::StepWorld{plan.solve.assignment, observation});
-    if (!report.problems.empty())
-      throw std::runtime_error("feedback does not fit its declaration: " + report.problems.front());
-  }
   return step;
 }
 
@@ -76,18 +71,12 @@ world::WorldState demoStepState(FeedingSimulator& world, const DemoStep& step) {
   place("drink", step.drinkTo);
   if (!step.conf) return s;
   s.arm = *step.conf;
-  // What the robot holds at that configuration: the utensil above the plate, the drink (lifted kDrinkLift where it
-  // stood) after grasping it.
+  // What the robot holds at that configuration: the utensil above the plate, or the drink, held as grasp("drink")
+  // takes it where it stood.
   if (step.request.rfind("bite", 0) == 0) {
     s.held = world::Grasp{"utensil", world::Pose3::fromPosition({0, 0, kUtensilGraspDepth})};
   } else if (step.request.rfind("drink", 0) == 0 && s.objects.count("drink")) {
-    world::Workspace& ws = world.world().workspace();
-    const world::WorldState keep = ws.state();
-    ws.setArm(s.arm);
-    world::Pose3 drink = s.objects.at("drink");
-    drink.position.z() += kDrinkLift;
-    s.held = world::Grasp{"drink", ws.toolPose().inverse() * drink};
-    ws.setState(keep);
+    s.held = world::Grasp{"drink", drinkInTool(s.objects.at("drink"))};
   }
   return s;
 }

@@ -50,12 +50,13 @@ PlanChoices readPlanChoices(const approach::PreparedProgram& lp, std::size_t tas
   return c;
 }
 
-PlanRun runPlan(FeedingSimulator& world, const std::vector<sim::ActionCall>& calls) {
+PlanRun runPlan(FeedingSimulator& world, const std::vector<sim::ActionCall>& calls, const FeedbackHandler& onFeedback) {
   PlanRun run;
   for (const auto& call : calls) {
     sim::StepResult r = world.act(call);
     if (r.status == sim::ActionStatus::UnknownAction)
       throw std::runtime_error("the Feeding simulator rejected action '" + call.name + "': " + r.message);
+    if (onFeedback && !r.feedback.empty()) onFeedback(r.feedback);
     for (auto& f : r.feedback) {
       if (f.name == "viewBlocked") ++run.complaints;
       run.feedback.push_back(std::move(f));

@@ -5,6 +5,7 @@
 #include "domains/feeding/FeedingSimulator.h"
 #include "runtime/approach/PreparedProgram.h"
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -41,7 +42,10 @@ struct PlanRun {
   std::vector<std::pair<std::string, double>> measures;
   int complaints = 0;  // viewBlocked events
 };
+// Called after every call that gave feedback, with that call's events, while the world is as the user judged it.
+using FeedbackHandler = std::function<void(const std::vector<sim::FeedbackEvent>&)>;
 // Throws std::runtime_error when the simulator does not know a call (a program that does not fit Feeding).
-PlanRun runPlan(FeedingSimulator& world, const std::vector<sim::ActionCall>& calls);
+PlanRun runPlan(FeedingSimulator& world, const std::vector<sim::ActionCall>& calls,
+                const FeedbackHandler& onFeedback = {});
 
 }  // namespace cbtl::domains::feeding

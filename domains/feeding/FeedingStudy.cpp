@@ -35,6 +35,14 @@ void countRecheck(StudyResult& tally, const approach::Plan& plan) {
 
 }  // namespace
 
+FeedbackHandler learnAsJudged(const approach::PreparedProgram& lp, StudyArm& arm, const approach::StepWorld& world) {
+  if (!arm.learns) return {};
+  return [&lp, &arm, world](const std::vector<sim::FeedbackEvent>& events) {
+    lp.syncWorld(*arm.world);
+    learnOrThrow(lp, arm, events, world);
+  };
+}
+
 int MealChoice::met() const {
   int n = 0;
   for (const char* name : {"dip", "signal", "verbosity", "view"}) {
@@ -89,21 +97,22 @@ MealChoice runStudyMeal(const approach::PreparedProgram& lp, StudyArm& arm, std:
   const approach::Plan shown =
       approach::makePlan(lp, taskIndex, observation, approach::evaluationChoice(), false, arm.solver, arm.model);
   countRecheck(tally, shown);
-  std::vector<sim::FeedbackEvent> answers;
   if (shown.ok) {
     const PlanChoices read = readPlanChoices(lp, taskIndex, shown.solve.assignment);
     choice.dip = read.dip;
     choice.signal = read.signal;
     choice.verbosity = read.verbosity;
     if (read.abovePlateConf) choice.occlusion = world.occlusionAt(*read.abovePlateConf);
-    const PlanRun run = runPlan(world, shown.calls);
+    const PlanRun run =
+        runPlan(world, shown.calls, learnAsJudged(lp, arm, approach::StepWorld{shown.solve.assignment, observation}));
     choice.solved = run.done && !run.failed;
-    answers = run.feedback;
     for (const auto& [name, met] : run.preferences) choice.preferences[name] = met;
   }
-  if (arm.learns) {
-    learnOrThrow(lp, arm, answers, approach::StepWorld{shown.solve.assignment, observation});
-    if (exploringConf) learnOrThrow(lp, arm, {world.viewAnswer(*exploringConf)}, approach::StepWorld{{}, observation});
+  if (arm.learns && exploringConf) {
+    // Asked with the arm back where the plan left it: the score is the configuration's (the utensil, stowed or
+    // held, is not in the user's view), read in the world as it is now.
+    lp.syncWorld(world);
+    learnOrThrow(lp, arm, {world.viewAnswer(*exploringConf)}, approach::StepWorld{{}, observation});
   }
   return choice;
 }

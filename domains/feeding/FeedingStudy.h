@@ -18,6 +18,7 @@
 #pragma once
 
 #include "domains/ProgramFacts.h"
+#include "domains/feeding/FeedingPlanReading.h"
 #include "domains/feeding/FeedingSimulator.h"
 #include "runtime/approach/Experiment.h"
 #include "runtime/approach/PreparedProgram.h"
@@ -99,6 +100,12 @@ struct StudyArm {
 // Makes participant n's two arms (studyApproaches()), both worlds reset with the participant's seed.
 std::vector<StudyArm> makeStudyArms(const approach::PreparedProgram& lp, const ProgramFacts& facts,
                                     const StudyOptions& options, int participant);
+// What runPlan calls for an arm that learns (none for one that does not): the world is synced to the program's
+// built-ins and the events learned at once, so that a label's feature (the occlusion score of the configuration,
+// with what the arm holds there) is read as the user judged it. Throws std::runtime_error for events that do not
+// fit their declarations.
+FeedbackHandler learnAsJudged(const approach::PreparedProgram& lp, StudyArm& arm, const approach::StepWorld& world);
+
 // Runs meal `meal` (an index into paperMeals()) for one arm: steps 1 and 2 above. Throws rt::RuntimeError or
 // std::runtime_error for a program that does not fit the Feeding simulator.
 MealChoice runStudyMeal(const approach::PreparedProgram& lp, StudyArm& arm, std::size_t meal, StudyResult& tally);

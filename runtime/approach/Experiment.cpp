@@ -333,6 +333,10 @@ void trainStep(Trial& tr, std::int64_t t) {
   if (r.caregiverReset) ++result.train.caregiverResets;
   std::size_t labels = 0;
   if (tr.learning && !r.feedback.empty()) {
+    // A label's feature is a query of the world (an occlusion score, a clearance): it is read in the state the user
+    // judged, the one this step left (the arm at the configuration, holding what it holds then), not the state
+    // the plan started from.
+    lp.syncWorld(tr.trainWorld);
     const LearnReport report = lp.learner().learn(r.feedback, tr.user, tr.planWorld);
     labels = report.labels;
     if (!report.problems.empty())

@@ -118,6 +118,23 @@ bool sUniformInBox(const CallContext&, Args a, Widths w, Rng& rng, Out o) {
   for (std::size_t i = 0; i < n; ++i) o[i] = rng.uniform(a[i], a[n + i]);
   return true;
 }
+// `keep` with probability pKeep (when it lies in the box), else a uniform point of [lo, hi]. Both draws are always
+// made, so the stream does not branch on the choice.
+bool sKeepOrUniformInBox(const CallContext&, Args a, Widths w, Rng& rng, Out o) {
+  const std::size_t n = w[0];
+  const double pKeep = a[3 * n];
+  if (!(pKeep >= 0.0 && pKeep <= 1.0)) return false;
+  bool keepInBox = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(a[n + i] <= a[2 * n + i])) return false;
+    keepInBox = keepInBox && a[n + i] <= a[i] && a[i] <= a[2 * n + i];
+  }
+  const bool keep = rng.uniform(0.0, 1.0) < pKeep;
+  for (std::size_t i = 0; i < n; ++i) o[i] = rng.uniform(a[n + i], a[2 * n + i]);
+  if (keep && keepInBox)
+    for (std::size_t i = 0; i < n; ++i) o[i] = a[i];
+  return true;
+}
 // A point of the rectangle [lo, hi] at least `margin` from its edges (e.g. a pot's centre on the stove).
 bool sPointInRectInset(const CallContext&, Args a, Widths, Rng& rng, Out o) {
   const double m = a[4];
@@ -213,6 +230,7 @@ Builtins Builtins::standard() {
   b.addSampler("uniformReal", sUniformReal);
   b.addSampler("bernoulli", sBernoulli);
   b.addSampler("uniformInBox", sUniformInBox);
+  b.addSampler("keepOrUniformInBox", sKeepOrUniformInBox);
   b.addSampler("pointInRectInset", sPointInRectInset);
   addPoseBuiltins(b);
   return b;

@@ -159,3 +159,44 @@ TEST(StdlibBinding, BuiltinsReadAndWriteTheirDeclaredWidths) {
   }
   EXPECT_GE(checked, 30u);
 }
+
+// keepOrUniformInBox keeps its first argument with probability pKeep when it lies in the box, and otherwise draws
+// a point of the box; the same draws are made whichever way it chooses.
+TEST(StdlibBinding, KeepOrUniformInBoxKeepsTheValueAsOftenAsAsked) {
+  const rt::Builtins b = rt::Builtins::standard();
+  const auto impl = b.sampler("keepOrUniformInBox");
+  ASSERT_NE(impl, nullptr);
+  const rt::CallContext cx{};
+  const std::vector<std::uint16_t> widths{2, 2, 2, 1};
+  const auto draw = [&](std::vector<double> args, rt::Rng& rng, std::vector<double>& out) {
+    out.assign(2, std::nan(""));
+    return impl(cx, std::span(args.data(), args.size()), widths, rng, std::span(out.data(), out.size()));
+  };
+  std::vector<double> out;
+  int kept = 0, inBox = 0;
+  rt::Rng rng(7);
+  for (int i = 0; i < 2000; ++i) {
+    ASSERT_TRUE(draw({0.34, 0.45, 0.30, 0.25, 0.38, 0.64, 0.5}, rng, out));
+    if (out[0] == 0.34 && out[1] == 0.45) ++kept;
+    if (out[0] >= 0.30 && out[0] <= 0.38 && out[1] >= 0.25 && out[1] <= 0.64) ++inBox;
+  }
+  EXPECT_EQ(inBox, 2000);
+  EXPECT_GT(kept, 900);
+  EXPECT_LT(kept, 1100);
+
+  rt::Rng always(3);
+  ASSERT_TRUE(draw({0.34, 0.45, 0.30, 0.25, 0.38, 0.64, 1.0}, always, out));
+  EXPECT_EQ(out, (std::vector<double>{0.34, 0.45}));
+  // A value outside the box is never kept.
+  rt::Rng outside(3);
+  ASSERT_TRUE(draw({0.50, 0.45, 0.30, 0.25, 0.38, 0.64, 1.0}, outside, out));
+  EXPECT_LE(out[0], 0.38);
+  // pKeep 0 draws exactly what it draws with pKeep 1 for a value outside the box: the stream does not branch.
+  rt::Rng never(3);
+  std::vector<double> drawn;
+  ASSERT_TRUE(draw({0.34, 0.45, 0.30, 0.25, 0.38, 0.64, 0.0}, never, drawn));
+  EXPECT_EQ(drawn, out);
+  rt::Rng bad(3);
+  EXPECT_FALSE(draw({0.34, 0.45, 0.30, 0.25, 0.38, 0.64, 1.5}, bad, out));
+  EXPECT_FALSE(draw({0.34, 0.45, 0.38, 0.25, 0.30, 0.64, 0.5}, bad, out));
+}

@@ -324,7 +324,15 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
         step.feedback.push_back({"dipNotWanted", {foodValue(food_), sim::Value::name(choice)}});
       }
       step.feedback.push_back({"signalAnswer", {sim::Value::name(signalGiven), sim::Value::name(idealSignal)}});
+      for (const auto& other : FeedingUser::readySignals()) {
+        if (other == signalGiven || other == idealSignal) continue;
+        step.feedback.push_back({"signalNotWanted", {sim::Value::name(other)}});
+      }
       step.feedback.push_back({"verbosityAnswer", {sim::Value::name(verbosity), sim::Value::name(idealVerbosity)}});
+      for (const auto& other : FeedingUser::verbosities()) {
+        if (other == verbosity || other == idealVerbosity) continue;
+        step.feedback.push_back({"verbosityNotWanted", {sim::Value::name(other)}});
+      }
       step.preferences = {{"view", !progress_.viewBlocked},
                           {"dip", progress_.dip == idealDip},
                           {"signal", signalGiven == idealSignal},

@@ -10,7 +10,8 @@
 //   feedBite:     waitForUser("done") after waitForUser("biteTaken"); the user answers dipAnswer(food, offered
 //                 dip, ideal dip), dipNotWanted(food, choice) for every other choice of the meal (dipChoices)
 //                 that was neither offered nor the ideal, signalAnswer(offered, ideal) and
-//                 verbosityAnswer(perceived, ideal) (the ideals for this food and setting), and is satisfied
+//                 verbosityAnswer(perceived, ideal) (the ideals for this food and setting), with
+//                 signalNotWanted(s) and verbosityNotWanted(v) for every other member, and is satisfied
 //                 (+1) iff all three match and their view was never blocked during the bite; the step reports
 //                 each of the four preferences (view, dip, signal, verbosity) and bite (all four met), and the
 //                 measure userClearance: the smallest distance between the robot (with the utensil it holds)

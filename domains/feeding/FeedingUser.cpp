@@ -20,13 +20,23 @@ FeedingUser FeedingUser::paperDefault() {
   return u;
 }
 
+const std::vector<std::string>& FeedingUser::readySignals() {
+  static const std::vector<std::string> signals = {"mouthOpen", "button", "autoContinue"};
+  return signals;
+}
+
+const std::vector<std::string>& FeedingUser::verbosities() {
+  static const std::vector<std::string> levels = {"silent", "brief", "chatty"};
+  return levels;
+}
+
 FeedingUser FeedingUser::participant(std::uint64_t n) {
   // The paper's five foods by kind (fried or baked potato; raw vegetables), the order the taste is drawn in.
   static const std::vector<std::vector<std::string>> kFoodsByKind = {{"french fries", "potato wedges", "tater tots"},
                                                                      {"raw vegetables", "carrot sticks"}};
   static const std::vector<std::string> kSauces = {"ketchup", "bbqSauce", "ranch", "hummus"};
-  static const std::vector<std::string> kSignals = {"mouthOpen", "button", "autoContinue"};
-  static const std::vector<std::string> kVerbosities = {"silent", "brief", "chatty"};
+  const std::vector<std::string>& kSignals = readySignals();
+  const std::vector<std::string>& kVerbosities = verbosities();
   rt::Rng rng(rt::splitMix64(n ^ 0x66656564696e67ULL));  // "feeding": participants apart from other streams
   FeedingUser u;
   u.occlusionThreshold = rng.uniform(0.02, 0.08);

@@ -51,6 +51,9 @@ class FeedingUser {
   bool viewBlocked(double occlusionScore) const { return occlusionScore >= occlusionThreshold; }
   // The verbosity the user perceived from how many times the robot spoke during one bite.
   static std::string perceivedVerbosity(int utterances);
+  // Every ReadySignal member and every Verbosity member, in feeding.cbtl's order.
+  static const std::vector<std::string>& readySignals();
+  static const std::vector<std::string>& verbosities();
 };
 
 // Dip entry of the sauce name a plan passes to dipInto ("ketchup", "BBQ sauce", "ranch dressing", "hummus");

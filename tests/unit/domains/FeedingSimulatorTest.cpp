@@ -108,10 +108,14 @@ TEST(FeedingSimulator, ABiteIsAnsweredAndEachPreferenceJudged) {
     ASSERT_TRUE(r.taskDone) << r.message;
     std::map<std::string, std::vector<Value>> said;
     std::vector<std::string> turnedDown;
+    std::map<std::string, std::vector<std::string>> notWanted;  // signal / verbosity members turned down
     for (const auto& f : r.feedback) {
       if (f.name == "dipNotWanted") {
         EXPECT_EQ(f.args[0].text, foodEntry(food));
         turnedDown.push_back(f.args[1].text);
+      } else if (f.name == "signalNotWanted" || f.name == "verbosityNotWanted") {
+        ASSERT_EQ(f.args.size(), 1u);
+        notWanted[f.name].push_back(f.args[0].text);
       } else {
         said[f.name] = f.args;
       }
@@ -128,6 +132,18 @@ TEST(FeedingSimulator, ABiteIsAnsweredAndEachPreferenceJudged) {
     choices.push_back("noDip");
     std::sort(choices.begin(), choices.end());
     EXPECT_EQ(accounted, choices) << "seed " << seed;
+    // Likewise every ready signal and every verbosity: offered, ideal, or turned down, each once.
+    const auto accountsForEvery = [&](const std::string& answer, const std::string& turnedDownEvent,
+                                      std::vector<std::string> members) {
+      std::vector<std::string> seen = notWanted[turnedDownEvent];
+      seen.push_back(said[answer][0].text);
+      if (said[answer][1].text != said[answer][0].text) seen.push_back(said[answer][1].text);
+      std::sort(seen.begin(), seen.end());
+      std::sort(members.begin(), members.end());
+      EXPECT_EQ(seen, members) << answer << ", seed " << seed;
+    };
+    accountsForEvery("signalAnswer", "signalNotWanted", FeedingUser::readySignals());
+    accountsForEvery("verbosityAnswer", "verbosityNotWanted", FeedingUser::verbosities());
     std::map<std::string, bool> judged(r.preferences.begin(), r.preferences.end());
     EXPECT_EQ(judged.size(), 5u);
     EXPECT_EQ(judged["dip"], offered == ideal);

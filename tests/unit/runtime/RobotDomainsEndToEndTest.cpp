@@ -265,6 +265,32 @@ TEST(RobotDomainsEndToEnd, FeedingServesABiteWhenTheFavouriteSauceIsNotOnTheTabl
   EXPECT_GT(bitesWithoutTheFavourite, 0);
 }
 
+// An answer says one thing about each choice: the offered one is good iff it was the ideal, the ideal is good. When
+// the robot offered the ideal, that is one label, not two (counted twice, a correct offer weighed double against a
+// correction, so learners that exploit more learned from more weight per bite).
+TEST(RobotDomainsEndToEnd, FeedingAnswersLabelEachChoiceOnce) {
+  auto lp = loadDomain("feeding");
+  auto world = domains::createSimulator("feeding", app::simulatorFacts(*lp), {}, 0);
+  ASSERT_NE(world, nullptr);
+  lp->syncWorld(*world);
+  const approach::StepWorld meal{{}, approach::observationVector(lp->program(), world->observe())};
+  const sim::Value food = world->observe().at("foodOnPlate");
+  const auto labels = [&](sim::FeedbackEvent event) {
+    model::UserModel user(lp->graph());
+    const auto report = lp->learner().learn({std::move(event)}, user, meal);
+    EXPECT_TRUE(report.problems.empty()) << report.problems.front();
+    return report.labels;
+  };
+  const auto name = [](const char* n) { return sim::Value::name(n); };
+  EXPECT_EQ(labels({"dipAnswer", {food, name("ketchup"), name("ketchup")}}), 1);
+  EXPECT_EQ(labels({"dipAnswer", {food, name("ranch"), name("ketchup")}}), 2);
+  EXPECT_EQ(labels({"signalAnswer", {name("button"), name("button")}}), 1);
+  EXPECT_EQ(labels({"signalAnswer", {name("mouthOpen"), name("button")}}), 2);
+  EXPECT_EQ(labels({"verbosityAnswer", {name("brief"), name("brief")}}), 1);
+  EXPECT_EQ(labels({"verbosityAnswer", {name("chatty"), name("brief")}}), 2);
+  EXPECT_EQ(labels({"verbosityNotWanted", {name("silent")}}), 1);
+}
+
 // Trains No Personalization on Books as `cbtl run domains/books/books.cbtl --approach no-personalization --seed
 // SEED --steps STEPS --eval-every 500 --eval-tasks 2` does (the same training world).
 approach::ExperimentResult trainBooksWithoutPersonalization(std::uint64_t seed, std::int64_t steps) {

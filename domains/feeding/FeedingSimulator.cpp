@@ -40,6 +40,23 @@ sim::StepResult unknownAction(std::string message) {
   return r;
 }
 
+// One answer about a choice: `answer`(leading..., offered, ideal), then `turnedDown`(leading..., choice) for every
+// other choice the user neither got nor named (naming the ideal among them turns the rest down).
+void answerAmong(std::vector<sim::FeedbackEvent>& out, const std::vector<sim::Value>& leading, const char* answer,
+                 const char* turnedDown, const std::vector<std::string>& choices, const std::string& offered,
+                 const std::string& ideal) {
+  std::vector<sim::Value> args = leading;
+  args.push_back(sim::Value::name(offered));
+  args.push_back(sim::Value::name(ideal));
+  out.push_back({answer, std::move(args)});
+  for (const auto& choice : choices) {
+    if (choice == offered || choice == ideal) continue;
+    std::vector<sim::Value> other = leading;
+    other.push_back(sim::Value::name(choice));
+    out.push_back({turnedDown, std::move(other)});
+  }
+}
+
 }  // namespace
 
 const std::vector<Meal>& paperMeals() {
@@ -315,24 +332,13 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
       const int spoke = static_cast<int>(world_->utterances().size()) - progress_.utterancesAtStart;
       const std::string verbosity = FeedingUser::perceivedVerbosity(spoke);
       const std::string signalGiven = progress_.signal.empty() ? "autoContinue" : progress_.signal;
-      step.feedback.push_back(
-          {"dipAnswer", {foodValue(food_), sim::Value::name(progress_.dip), sim::Value::name(idealDip)}});
       std::vector<std::string> choices = dips_;
       choices.push_back("noDip");
-      for (const auto& choice : choices) {
-        if (choice == progress_.dip || choice == idealDip) continue;
-        step.feedback.push_back({"dipNotWanted", {foodValue(food_), sim::Value::name(choice)}});
-      }
-      step.feedback.push_back({"signalAnswer", {sim::Value::name(signalGiven), sim::Value::name(idealSignal)}});
-      for (const auto& other : FeedingUser::readySignals()) {
-        if (other == signalGiven || other == idealSignal) continue;
-        step.feedback.push_back({"signalNotWanted", {sim::Value::name(other)}});
-      }
-      step.feedback.push_back({"verbosityAnswer", {sim::Value::name(verbosity), sim::Value::name(idealVerbosity)}});
-      for (const auto& other : FeedingUser::verbosities()) {
-        if (other == verbosity || other == idealVerbosity) continue;
-        step.feedback.push_back({"verbosityNotWanted", {sim::Value::name(other)}});
-      }
+      answerAmong(step.feedback, {foodValue(food_)}, "dipAnswer", "dipNotWanted", choices, progress_.dip, idealDip);
+      answerAmong(step.feedback, {}, "signalAnswer", "signalNotWanted", FeedingUser::readySignals(), signalGiven,
+                  idealSignal);
+      answerAmong(step.feedback, {}, "verbosityAnswer", "verbosityNotWanted", FeedingUser::verbosities(), verbosity,
+                  idealVerbosity);
       step.preferences = {{"view", !progress_.viewBlocked},
                           {"dip", progress_.dip == idealDip},
                           {"signal", signalGiven == idealSignal},

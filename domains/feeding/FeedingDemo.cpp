@@ -6,6 +6,8 @@
 #include "runtime/approach/Planner.h"
 #include "runtime/approach/ValueBridge.h"
 
+#include <fmt/format.h>
+
 #include <stdexcept>
 
 namespace cbtl::domains::feeding {
@@ -97,12 +99,16 @@ DemoResult runDemo(const approach::PreparedProgram& lp, const ProgramFacts& fact
       for (std::size_t k = 0; k < lastMeal; ++k) runStudyMeal(lp, arm, k, unused);
       FeedingSimulator& world = *arm.world;
       world.serveMealNow(result.meal);
-      world.placeOnTable("plate", options.plateX, options.plateY);
+      if (!world.placeOnTable("plate", options.plateX, options.plateY))
+        throw std::runtime_error(fmt::format("the demonstration's plate spot ({}, {}) is not on the meal's table",
+                                             options.plateX, options.plateY));
       std::vector<DemoStep>& steps = trial.steps[arm.approach];
       for (const auto& request : demoRequests()) {
         // The caregiver puts the drink in front of the user; the robot is asked to prepare it (its own random
         // spot, FeedingSimulator, is overridden).
-        if (world.request() == Request::Prepare) world.placeOnTable("drink", options.drinkX, options.drinkY);
+        if (world.request() == Request::Prepare && !world.placeOnTable("drink", options.drinkX, options.drinkY))
+          throw std::runtime_error(fmt::format("the demonstration's drink spot ({}, {}) is not on the meal's table",
+                                               options.drinkX, options.drinkY));
         steps.push_back(runDemoRequest(lp, arm, request, t, observer));
       }
     }

@@ -67,6 +67,8 @@ struct DemoResult {
 using DemoObserver =
     std::function<void(int trial, const std::string& approach, const DemoStep& step, FeedingSimulator& world)>;
 
+// Throws std::runtime_error when the options' plate or drink spot is not on meal 5's table (FeedingSimulator::
+// placeOnTable), and what runStudyMeal throws.
 DemoResult runDemo(const approach::PreparedProgram& lp, const ProgramFacts& facts, const DemoOptions& options,
                    const DemoObserver& observer = {});
 

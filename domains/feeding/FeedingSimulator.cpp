@@ -5,6 +5,7 @@
 #include "domains/home/HomeScene.h"
 #include "robot/actions/CallArguments.h"
 #include "robot/world/RobotDistance.h"
+#include "robot/world/Support.h"
 
 #include <fmt/format.h>
 
@@ -24,6 +25,12 @@ constexpr double kPlateX0 = 0.30, kPlateX1 = 0.38, kPlateY0 = 0.25, kPlateY1 = 0
 constexpr double kDrinkX0 = 0.30, kDrinkX1 = 0.38, kDrinkY0 = 0.15, kDrinkY1 = 0.75;
 // Where the drink waits while it is not in use: off the table, out of every check of the table.
 constexpr double kDrinkParkedX = 0.55, kDrinkParkedY = 1.60;
+// The table fixtures of feeding.xml by shape (Meal::table); the scene's starting pose of "table" is where the table
+// in use stands, that of "table_round" where the other one is parked.
+constexpr const char* kRectangularTable = "table";
+constexpr const char* kRoundTable = "table_round";
+// Draws of a spot on the table before a caregiver gives up looking for one where the body stands and is clear.
+constexpr int kSpotAttempts = 100;
 
 // The paper's five foods and four sauces (noDip is always possible), and its meal settings (MealSetting).
 const std::vector<std::string> kFoods = {"french fries", "raw vegetables", "potato wedges", "carrot sticks",
@@ -101,6 +108,7 @@ FeedingSimulator::FeedingSimulator(std::shared_ptr<const world::Scene> scene, st
       world_(std::make_unique<world::World>(scene_)),
       actions_(FeedingActions::forScene(*scene_)) {
   scenePoses_ = world_->workspace().state().objects;
+  tablePoses_ = world_->workspace().state().fixtures;
   for (const char* body : {"user", "user_head"})
     if (const int id = scene_->bodyId(body); id >= 0) userBodies_.push_back(id);
   reset(seed);
@@ -137,7 +145,27 @@ void FeedingSimulator::serveMeal() {
   dips_ = {dips[0], dips[1]};
   std::sort(dips_.begin(), dips_.end());
   setting_ = kSettings[rng_.index(kSettings.size())];
-  table_ = "rectangular";
+  setTable(rng_.index(2) == 0 ? "rectangular" : "circular");
+}
+
+void FeedingSimulator::setTable(const std::string& shape) {
+  table_ = shape;
+  world::Workspace& ws = world_->workspace();
+  const auto inUse = tablePoses_.find(kRectangularTable), parked = tablePoses_.find(kRoundTable);
+  if (inUse == tablePoses_.end() || parked == tablePoses_.end()) return;  // a scene with one table: recorded only
+  const bool round = shape == "circular";
+  ws.setFixturePose(kRectangularTable, round ? parked->second : inUse->second);
+  ws.setFixturePose(kRoundTable, round ? inUse->second : parked->second);
+  // A plate left where the other table reached is put back on this one (the drink is off the table between meals).
+  Pose3 plate = *ws.objectPose("plate");
+  if (world::supportAt(ws, "plate", plate).supported()) return;
+  for (int i = 0; i < kSpotAttempts; ++i) {
+    const world::Pose2 xy = randomXY(kPlateX0, kPlateX1, kPlateY0, kPlateY1);
+    plate.position.x() = xy.x;
+    plate.position.y() = xy.y;
+    if (world::supportAt(ws, "plate", plate).supported()) break;
+  }
+  ws.setObjectPose("plate", plate);
 }
 
 void FeedingSimulator::serveMealNow(const Meal& meal) {
@@ -145,7 +173,7 @@ void FeedingSimulator::serveMealNow(const Meal& meal) {
   dips_ = meal.dips;
   std::sort(dips_.begin(), dips_.end());
   setting_ = meal.setting;
-  table_ = meal.table;
+  setTable(meal.table);
   cycle_ = 0;
   startRequest(Request::Food);
 }
@@ -156,6 +184,7 @@ bool FeedingSimulator::placeOnTable(const std::string& body, double x, double y)
   Pose3 pose = *ws.objectPose(body);
   pose.position = Eigen::Vector3d(x, y, scenePoses_.at(body).position.z());
   pose.orientation = scenePoses_.at(body).orientation;
+  if (!world::supportAt(ws, body, pose).supported()) return false;
   ws.setObjectPose(body, pose);
   return true;
 }
@@ -187,11 +216,13 @@ void FeedingSimulator::startRequest(Request r) {
     drink.position.z() = scenePoses_.at("drink").position.z();
     drink.orientation = scenePoses_.at("drink").orientation;
     const Pose3 plate = *ws.objectPose("plate");
-    for (int i = 0; i < 100; ++i) {
+    for (int i = 0; i < kSpotAttempts; ++i) {
       const world::Pose2 xy = randomXY(kDrinkX0, kDrinkX1, kDrinkY0, kDrinkY1);
       drink.position.x() = xy.x;
       drink.position.y() = xy.y;
-      if (world_->clearance().objectDistance("drink", drink, "plate", plate) > 0.01) break;
+      if (world_->clearance().objectDistance("drink", drink, "plate", plate) > 0.01 &&
+          world::supportAt(ws, "drink", drink).supported())
+        break;
     }
     ws.setObjectPose("drink", drink);
   }

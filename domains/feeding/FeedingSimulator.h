@@ -3,9 +3,10 @@
 // FeedingUser who eats, drinks and answers questions.
 //
 // Requests cycle with period 4, as in the reference: food, food, prepare (the drink appears on the table at a
-// random spot clear of the plate), drink. Each cycle is one meal: when it starts again, a new meal is served
-// (the food, two of the four sauces and the setting, drawn anew; the paper's five meals changed food, sauces and
-// company too). requestedTask() names the .cbtl task of the current request:
+// random spot clear of the plate, standing on the table), drink. Each cycle is one meal: when it starts again, a
+// new meal is served (the food, two of the four sauces, the setting and the table's shape, drawn anew; the paper's
+// five meals changed food, sauces, company and table too; a plate that would not stand on the new table is put at
+// a random spot where it does). requestedTask() names the .cbtl task of the current request:
 // feedBite, prepareDrink, giveDrink. A request ends (taskDone, satisfaction +1 or -1) when
 //   feedBite:     waitForUser("done") after waitForUser("biteTaken"); the user answers dipAnswer(food, offered
 //                 dip, ideal dip), dipNotWanted(food, choice) for every other choice of the meal (dipChoices)
@@ -39,7 +40,8 @@
 // the robot may offer), foodOnPlate (Food entry), mealSetting (MealSetting member).
 //
 // Determinism: reset(seed) reseeds the simulator's world::Rng; the episode draws, in order, the plate
-// position, the position in the request cycle, the meal (food, the two dips on the table, setting), and after
+// position, the position in the request cycle, the meal (food, the two dips on the table, setting, table, and the
+// plate's new spot if it must move), and after
 // that, request by request, a prepare request's drink position and each new cycle's meal. Of SimulatorOptions
 // only `participant` applies (preference shifts and unsatisfiable stock do not).
 #pragma once
@@ -62,7 +64,8 @@ enum class Request { Food, Prepare, Drink };
 const char* toString(Request r);
 
 // One meal: the food on the plate, the two sauces on the table (Dip entries, sorted), the setting (MealSetting
-// member) and the table's shape ("rectangular" or "circular"; recorded and reported, the scene has one table).
+// member) and the table's shape: "rectangular" or "circular", feeding.xml's fixtures table and table_round (the
+// one in use stands where the scene puts "table", the other is parked under the floor).
 struct Meal {
   std::string food;
   std::vector<std::string> dips;
@@ -102,11 +105,13 @@ class FeedingSimulator final : public sim::DomainSimulator {
   const std::string& setting() const { return setting_; }
   Meal meal() const { return Meal{food_, dips_, setting_, table_}; }
 
-  // Scripted episodes (the study's meals, the demonstration): serves `meal` now and makes the current request
-  // the first bite of its cycle (food, food, prepare, drink), the drink off the table.
+  // Scripted episodes (the study's meals, the demonstration): serves `meal` now (its table in place, the plate
+  // moved to a random spot of it if it would not stand where it is) and makes the current request the first
+  // bite of its cycle (food, food, prepare, drink), the drink off the table.
   void serveMealNow(const Meal& meal);
-  // Puts the plate or the drink (`body`) at (x, y) on the table, upright at its table height; false for another
-  // body. Takes effect for the current request (a prepare request's drink spot, the plate a meal starts with).
+  // Puts the plate or the drink (`body`) at (x, y) on the table, upright at its table height; false (nothing
+  // moves) for another body or a spot where it would not stand on the table (Support.h). Takes effect for the
+  // current request (a prepare request's drink spot, the plate a meal starts with).
   bool placeOnTable(const std::string& body, double x, double y);
   // The user's answer to "would your view be blocked with the arm at q?" (the web study's question about an
   // egocentric picture of a configuration): viewBlocked(q) or viewClear(q), judged like a move of the arm to q;
@@ -137,7 +142,9 @@ class FeedingSimulator final : public sim::DomainSimulator {
   // Lowers progress_.userClearance (and userKeepOutSlack) to the robot's distance to the user (and its slack to the
   // keep-out distances) at each waypoint of an executed path.
   void trackClearance(const std::vector<world::ArmConfig>& path);
-  void serveMeal();  // draws the next meal: food, the two sauces on the table, the setting
+  void serveMeal();  // draws the next meal: food, the two sauces on the table, the setting, the table
+  // Puts the table of `shape` (Meal::table) in place and the other away, then the plate back on it if need be.
+  void setTable(const std::string& shape);
   void startRequest(Request r);
   void nextRequest();
   void restoreHome();
@@ -151,6 +158,7 @@ class FeedingSimulator final : public sim::DomainSimulator {
   actions::RobotActions actions_;
   world::Rng rng_;
   std::map<std::string, world::Pose3> scenePoses_;
+  std::map<std::string, world::Pose3> tablePoses_;  // the scene's fixtures as loaded (table in use, other parked)
   std::size_t cycle_ = 0;
   Request request_ = Request::Food;
   std::string food_;

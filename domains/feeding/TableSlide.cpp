@@ -1,6 +1,7 @@
 #include "domains/feeding/TableSlide.h"
 
 #include "robot/actions/CallArguments.h"
+#include "robot/world/Support.h"
 
 #include <fmt/core.h>
 
@@ -47,6 +48,12 @@ actions::RobotActionResult slideOnTable(world::World& w, const sim::ActionCall& 
   o.clearance = 0.0;
   const world::PlacementReport rep = w.clearance().checkPlacement(ws, object, *pose, o);
   if (!rep.ok()) return failed(ActionStatus::Blocked, fmt::format("{} would touch {}", object, rep.other));
+  const world::SupportReport support = world::supportAt(ws, object, *pose);
+  if (!support.supported())
+    return failed(
+        ActionStatus::Blocked,
+        fmt::format("{} at ({:.3f}, {:.3f}) would not stand on the table ({} of {} rays find nothing under it)", object,
+                    x, y, support.unsupportedRays, world::kSupportRays + 1));
   ws.setObjectPose(object, *pose);
   return {};
 }

@@ -4,7 +4,7 @@
 // World frame, metres. The executor contract is RobotActions.h's: an ill-formed call (not one vec<2>) is
 // wellFormed == false and takes no step; otherwise one step, and a failure leaves the world unchanged:
 // InvalidArgument (a coordinate is not finite, the body is unknown or held by the robot) or Blocked (the
-// body at (x, y) would touch the scenery or another object).
+// body at (x, y) would touch the scenery or another object, or would not stand on the table: Support.h).
 #pragma once
 
 #include "robot/actions/RobotActions.h"

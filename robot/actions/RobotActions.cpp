@@ -4,6 +4,7 @@
 #include "robot/world/MotionPlanner.h"
 #include "robot/world/MotionQuery.h"
 #include "robot/world/NamedConfigurations.h"
+#include "robot/world/Support.h"
 
 #include "robot/actions/CallArguments.h"
 #include "robot/actions/StandardGrasps.h"
@@ -331,10 +332,24 @@ RobotActionResult RobotActions::release(world::World& w) const {
     if (!face->containsXY(extent->center.x(), extent->center.y())) continue;
     if (!landing || face->top() > landing->top()) landing = face;
   }
-  if (!landing) return failed(ActionStatus::Blocked, fmt::format("{} would not land on a surface", body));
+  world::Pose3 settled = pose;
+  if (landing) {
+    settled = settledOn(*extent, pose, *landing);
+  } else {
+    // No box surface: whatever stands under its footprint (a round table top), if it then stands supported.
+    const auto drop = world::dropDistance(ws, body, pose, kDropHeight);
+    if (!drop || *drop < -kRestBelow)
+      return failed(ActionStatus::Blocked, fmt::format("{} would not land on a surface", body));
+    settled.position.z() -= *drop;
+    const world::SupportReport support = world::supportAt(ws, body, settled);
+    if (!support.supported())
+      return failed(ActionStatus::Blocked, fmt::format("{} would not stand on {} ({} of {} rays find nothing under it)",
+                                                       body, support.support.empty() ? "anything" : support.support,
+                                                       support.unsupportedRays, world::kSupportRays + 1));
+  }
   Restore restore(w);
   world::builtins::release(w);
-  ws.setObjectPose(body, settledOn(*extent, pose, *landing));
+  ws.setObjectPose(body, settled);
   restore.commit();
   return RobotActionResult{};
 }

@@ -50,7 +50,10 @@
 //   release()                   NotHolding if empty-handed. The body must land: its bottom within kDropHeight
 //                               above a resting surface (SurfaceGeometry.h restingSurfaces) whose face holds
 //                               its footprint; it is then settled onto that face with the gripper open.
-//                               Blocked (nothing released) when it would fall elsewhere.
+//                               Without such a face, whatever is under its footprint within kDropHeight catches
+//                               it (world/Support.h dropDistance: a round table top) if it then stands
+//                               supported there (supportAt). Blocked (nothing released) when it would fall
+//                               elsewhere.
 //   place(surface, pose: SE3)   NotHolding; InvalidArgument (unknown surface, or `pose` does not rest on it:
 //                               SurfaceGeometry.h restsOn); Blocked (the body at `pose` would penetrate the
 //                               scenery or another object). Moves the tool to pose ∘ inverse(toolToObject)

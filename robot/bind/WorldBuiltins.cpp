@@ -7,6 +7,7 @@
 #include "robot/world/MotionPlanner.h"
 #include "robot/world/Occlusion.h"
 #include "robot/world/PreWipe.h"
+#include "robot/world/Support.h"
 
 #include <cmath>
 #include <limits>
@@ -321,6 +322,17 @@ void fBodiesApartAtXY(const rt::CallContext& cx, Args a, Widths, Out o) {
   pb->position.y() = a[5];
   o[0] = bodyDistance(h, na, *pa, nb, *pb) > 0 ? 1 : 0;
 }
+void fSupportedAtXY(const rt::CallContext& cx, Args a, Widths, Out o) {
+  WorldHost& h = host(cx);
+  o[0] = 0;
+  const std::string body = text(cx, a[0]);
+  auto p = referencePose(h, body);
+  if (!p || !finite(a.subspan(1, 2))) return;
+  p->position.x() = a[1];
+  p->position.y() = a[2];
+  if (!h.pose(h.reference().base, h.reference().arm)) return;
+  o[0] = world::supportAt(h.workspace(), body, *p).supported() ? 1 : 0;
+}
 void fBodyClearance(const rt::CallContext& cx, Args a, Widths, Out o) {
   WorldHost& h = host(cx);
   const std::string body = text(cx, a[0]);
@@ -433,6 +445,7 @@ constexpr FunctionEntry kFunctions[] = {
     {"collisionFreeIkExists", fCollisionFreeIkExists, true},
     {"bodiesApart", fBodiesApart, false},
     {"bodiesApartAtXY", fBodiesApartAtXY, true},
+    {"supportedAtXY", fSupportedAtXY, true},
     {"bodyClearance", fBodyClearance, true},
     {"restsOn", fRestsOn, false},
     {"placementClear", fPlacementClear, true},

@@ -28,11 +28,16 @@ void appendText(std::vector<double>& k, const std::string& t) {
   for (unsigned char c : t) k.push_back(c);
 }
 
-// Every value of a WorldState in a fixed order (objects by name: the map's order).
+// Every value of a WorldState in a fixed order (objects and fixtures by name: the maps' order).
 std::uint64_t stateFingerprint(const world::WorldState& s) {
   std::vector<double> k(s.arm.begin(), s.arm.end());
   k.insert(k.end(), {s.base.x, s.base.y, s.base.yaw, s.gripper});
   for (const auto& [name, p] : s.objects) {
+    appendText(k, name);
+    k.insert(k.end(), {p.position.x(), p.position.y(), p.position.z(), p.orientation.w(), p.orientation.x(),
+                       p.orientation.y(), p.orientation.z()});
+  }
+  for (const auto& [name, p] : s.fixtures) {
     appendText(k, name);
     k.insert(k.end(), {p.position.x(), p.position.y(), p.position.z(), p.orientation.w(), p.orientation.x(),
                        p.orientation.y(), p.orientation.z()});
@@ -226,7 +231,7 @@ std::optional<ArmConfig> WorldHost::namedConf(const std::string& name) const {
 }
 
 std::optional<world::SurfaceFace> WorldHost::surfaceTop(const std::string& geom) const {
-  // Scenery never moves, so the face is the same in every state.
+  // The face as the workspace shows it: fixtures (Scene.h) stand where the last state put them.
   return world::surfaceFace(world_.workspace(), geom);
 }
 

@@ -29,6 +29,7 @@ std::vector<double> stateKey(const Workspace& ws, MotionKind kind, const PlanOpt
     const auto it = s.objects.find(obj.name);
     if (it != s.objects.end()) appendPose(k, it->second);
   }
+  for (const auto& [name, pose] : s.fixtures) appendPose(k, pose);
   k.insert(k.end(), {o.resolution, static_cast<double>(o.shortcutAttempts), o.range, o.tryDirectFirst ? 1.0 : 0.0,
                      o.collision.tolerance, static_cast<double>(o.collision.method)});
   k.insert(k.end(), std::begin(o.baseBounds), std::end(o.baseBounds));

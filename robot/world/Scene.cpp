@@ -121,6 +121,8 @@ std::string Scene::initialise() {
       objectOfBody_[b] = objectOfBody_[static_cast<size_t>(parent)];
     }
   }
+  for (int b = 1; b < m->nbody; ++b)
+    if (m->body_mocapid[b] >= 0) fixtures_.push_back({bodyName(b), b, m->body_mocapid[b]});
   for (const ObjectInfo& o : objects_) objectSubtrees_.emplace_back(m, o.body);
   buildPairs();
   return {};
@@ -216,6 +218,12 @@ std::string Scene::geomName(int geom) const {
 int Scene::objectIndex(std::string_view name) const {
   for (size_t i = 0; i < objects_.size(); ++i)
     if (objects_[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+int Scene::fixtureIndex(std::string_view name) const {
+  for (size_t i = 0; i < fixtures_.size(); ++i)
+    if (fixtures_[i].name == name) return static_cast<int>(i);
   return -1;
 }
 

@@ -4,7 +4,9 @@
 // Scene>) by every thread; each thread owns its own Workspace (mjData) over it. A robot scene must contain the Gen3 arm
 // of domains/assets/gen3.xml (joints joint_1..joint_7, site tool_frame, bodies base_link and end_effector_link).
 // Optional parts: a mobile base (body mobile_base with joints base_x, base_y, base_yaw), finger slide
-// joints finger_left / finger_right, and movable objects (bodies whose first joint is a free joint).
+// joints finger_left / finger_right, movable objects (bodies whose first joint is a free joint), and fixtures:
+// scenery a scenario puts in place (MuJoCo mocap bodies: the feeding scene's two tables), which never move during a
+// plan but whose poses are part of the WorldState; their geoms count as scenery everywhere.
 // Units: metres, radians.
 #pragma once
 
@@ -53,6 +55,12 @@ struct ObjectInfo {
   int qposAdr = -1;  // first of the free joint's 7 qpos entries (x y z qw qx qy qz)
 };
 
+struct FixtureInfo {
+  std::string name;  // the body name
+  int body = -1;     // MuJoCo body id
+  int mocapId = -1;  // index into mjData's mocap_pos / mocap_quat
+};
+
 class Scene {
  public:
   // Loads an MJCF file; includes resolve relative to the file's directory.
@@ -92,6 +100,9 @@ class Scene {
   int objectOfBody(int body) const { return objectOfBody_[static_cast<size_t>(body)]; }
   const std::vector<ObjectInfo>& objects() const { return objects_; }
   int objectIndex(std::string_view name) const;  // -1 if absent
+  // Mocap bodies, in body order.
+  const std::vector<FixtureInfo>& fixtures() const { return fixtures_; }
+  int fixtureIndex(std::string_view name) const;  // -1 if absent
 
   // Candidate geom pairs for the robot's collision checks, ordered so that geom_type[g1] <= geom_type[g2]: the
   // pairs MuJoCo's own filters let through (contype/conaffinity, same weld body, parent-child, <exclude>), with the
@@ -145,6 +156,7 @@ class Scene {
   std::vector<BodyKind> kinds_;
   std::vector<int> objectOfBody_;
   std::vector<ObjectInfo> objects_;
+  std::vector<FixtureInfo> fixtures_;
   std::vector<int> robotGeoms_;
   std::vector<GeomPair> selfPairs_, robotPairs_;
   std::vector<double> reachMargin_;

@@ -95,13 +95,20 @@ StateJsonResult applyStateJson(Workspace& ws, const std::string& text, const std
             throw BadValue{fmt::format("'objects': the scene has no movable object '{}'", name)};
           st.objects[name] = parsePose(pose, "objects." + name);
         }
+      } else if (key == "fixtures") {
+        if (!value.is_object()) throw BadValue{"'fixtures' must map fixture names to poses"};
+        for (const auto& [name, pose] : value.items()) {
+          if (ws.scene().fixtureIndex(name) < 0)
+            throw BadValue{fmt::format("'fixtures': the scene has no fixture (mocap body) '{}'", name)};
+          st.fixtures[name] = parsePose(pose, "fixtures." + name);
+        }
       } else if (key == "held") {
         if (!value.is_string()) throw BadValue{"'held' must be an object name"};
         held = value.get<std::string>();
         if (ws.scene().objectIndex(*held) < 0)
           throw BadValue{fmt::format("'held': the scene has no movable object '{}'", *held)};
       } else {
-        throw BadValue{fmt::format("unknown key '{}' (arm, base, gripper, objects, held)", key)};
+        throw BadValue{fmt::format("unknown key '{}' (arm, base, gripper, objects, fixtures, held)", key)};
       }
     }
   } catch (const BadValue& e) {

@@ -6,6 +6,7 @@
 //     "gripper": 1.0,                                         // opening in [0, 1]
 //     "objects": {"plate": {"position": [x, y, z], "quaternion": [w, x, y, z]},
 //                 "drink": {"position": [x, y, z], "yaw": 0.5}},
+//     "fixtures": {"table_round": {"position": [x, y, z]}},      // mocap bodies (Scene.h)
 //     "held": "utensil"                                       // attach at its pose relative to the tool
 //   }
 // Every field is optional; missing ones keep the Workspace's current values. Unknown top-level keys are

@@ -29,6 +29,11 @@ Workspace::Workspace(std::shared_ptr<const Scene> scene) : scene_(std::move(scen
     const mjtNum* q = data_->qpos + obj.qposAdr;
     state_.objects[obj.name] = Pose3{Eigen::Vector3d(q[0], q[1], q[2]), Eigen::Quaterniond(q[3], q[4], q[5], q[6])};
   }
+  for (const auto& f : scene_->fixtures()) {
+    const mjtNum* p = data_->mocap_pos + 3 * f.mocapId;
+    const mjtNum* q = data_->mocap_quat + 4 * f.mocapId;
+    state_.fixtures[f.name] = Pose3{Eigen::Vector3d(p[0], p[1], p[2]), Eigen::Quaterniond(q[0], q[1], q[2], q[3])};
+  }
   recompute();
 }
 
@@ -41,11 +46,15 @@ StateStatus Workspace::setState(const WorldState& state) {
   if (!s.withinLimits(state.arm)) return StateStatus::OutOfLimits;
   for (const auto& [name, pose] : state.objects)
     if (s.objectIndex(name) < 0) return StateStatus::UnknownObject;
+  for (const auto& [name, pose] : state.fixtures)
+    if (s.fixtureIndex(name) < 0) return StateStatus::UnknownObject;
   if (state.held && s.objectIndex(state.held->object) < 0) return StateStatus::UnknownObject;
 
   const std::map<std::string, Pose3> previous = state_.objects;
+  const std::map<std::string, Pose3> previousFixtures = state_.fixtures;
   state_ = state;
   for (const auto& [name, pose] : previous) state_.objects.try_emplace(name, pose);
+  for (const auto& [name, pose] : previousFixtures) state_.fixtures.try_emplace(name, pose);
   heldIndex_ = state.held ? s.objectIndex(state.held->object) : -1;
   for (int i = 0; i < kArmDof; ++i) data_->qpos[s.armQposAdr(i)] = state.arm[i];
   if (s.hasMobileBase()) {
@@ -58,6 +67,8 @@ StateStatus Workspace::setState(const WorldState& state) {
     if (s.fingerQposAdr(i) >= 0) data_->qpos[s.fingerQposAdr(i)] = closed;
   for (size_t i = 0; i < s.objects().size(); ++i)
     writeObject(static_cast<int>(i), state_.objects.at(s.objects()[i].name));
+  for (size_t i = 0; i < s.fixtures().size(); ++i)
+    writeFixture(static_cast<int>(i), state_.fixtures.at(s.fixtures()[i].name));
   recompute();
   return StateStatus::Ok;
 }
@@ -101,6 +112,29 @@ StateStatus Workspace::setObjectPose(std::string_view object, const Pose3& pose)
   writeObject(idx, pose);
   recompute(scene_->objectSubtree(idx));
   return StateStatus::Ok;
+}
+
+StateStatus Workspace::setFixturePose(std::string_view fixture, const Pose3& pose) {
+  const int idx = scene_->fixtureIndex(fixture);
+  if (idx < 0) return StateStatus::UnknownObject;
+  state_.fixtures[std::string(fixture)] = pose;
+  writeFixture(idx, pose);
+  recompute();
+  return StateStatus::Ok;
+}
+
+void Workspace::writeFixture(int index, const Pose3& pose) {
+  const int id = scene_->fixtures()[static_cast<size_t>(index)].mocapId;
+  const Eigen::Quaterniond o = pose.orientation.normalized();
+  mjtNum* p = data_->mocap_pos + 3 * id;
+  mjtNum* q = data_->mocap_quat + 4 * id;
+  p[0] = pose.position.x();
+  p[1] = pose.position.y();
+  p[2] = pose.position.z();
+  q[0] = o.w();
+  q[1] = o.x();
+  q[2] = o.y();
+  q[3] = o.z();
 }
 
 void Workspace::writeObject(int index, const Pose3& pose) {

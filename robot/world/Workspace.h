@@ -18,7 +18,7 @@ namespace cbtl::world {
 
 enum class StateStatus {
   Ok,
-  UnknownObject,  // an object name in the state is not a movable object of the scene
+  UnknownObject,  // an object (fixture) name in the state is not a movable object (fixture) of the scene
   OutOfLimits,    // an arm joint lies outside its range, or a value is not finite
 };
 
@@ -49,6 +49,9 @@ class Workspace {
   // Moves a movable object (ignored for the held object, which follows the tool).
   StateStatus setObjectPose(std::string_view object, const Pose3& pose);
 
+  // Puts a fixture (Scene.h) at `pose`: the scenario's set-up, never an action's effect.
+  StateStatus setFixturePose(std::string_view fixture, const Pose3& pose);
+
   // Forward kinematics at the current state.
   Pose3 sitePose(int site) const;
   std::optional<Pose3> sitePose(std::string_view site) const;
@@ -63,6 +66,7 @@ class Workspace {
 
  private:
   void writeObject(int index, const Pose3& pose);
+  void writeFixture(int index, const Pose3& pose);
   // Recomputes the kinematics after a change of the joints of `moved` (the default, an empty subtree, means
   // anything may have changed: a full mj_kinematics pass), then the held object's pose from the tool's.
   void recompute(const KinematicSubtree& moved = KinematicSubtree());

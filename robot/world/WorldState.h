@@ -4,6 +4,8 @@
 // base pose is the mobile base in the world plane (ignored by scenes without a mobile base); arm joints in
 // radians; gripper opening in [0, 1] (1 = fully open, 0 = closed).
 // A held object follows the tool: its pose is tool_frame ∘ toolToObject, whatever `objects` says for it.
+// Fixtures (Scene.h: scenery a scenario positions, such as the feeding scene's tables) are body frames in world
+// coordinates too; no action moves them.
 #pragma once
 
 #include "robot/world/Pose.h"
@@ -20,10 +22,11 @@ struct Grasp {
 };
 
 struct WorldState {
-  ArmConfig arm{};                       // q1..q7
-  Pose2 base;                            // mobile base pose
-  double gripper = 1.0;                  // opening, 1 = open
-  std::map<std::string, Pose3> objects;  // movable-object poses; objects not listed keep their current pose
+  ArmConfig arm{};                        // q1..q7
+  Pose2 base;                             // mobile base pose
+  double gripper = 1.0;                   // opening, 1 = open
+  std::map<std::string, Pose3> objects;   // movable-object poses; objects not listed keep their current pose
+  std::map<std::string, Pose3> fixtures;  // fixture poses; fixtures not listed keep their current pose
   std::optional<Grasp> held;
 };
 

@@ -3,6 +3,7 @@
 // answers: the dip, signal and verbosity answers, the other choices turned down, and each preference judged.
 #include "domains/feeding/FeedingSimulator.h"
 
+#include "robot/world/Support.h"
 #include "tests/unit/domains/ProgramFactsSupport.h"
 
 #include <gtest/gtest.h>
@@ -59,6 +60,46 @@ TEST(FeedingSimulator, EveryRequestCycleIsANewMealAndAMealLastsItsCycle) {
             (std::set<std::string>{"french fries", "raw vegetables", "potato wedges", "carrot sticks", "tater tots"}));
   EXPECT_EQ(settings, (std::set<std::string>{"alone", "withFriend", "withTv", "withFriendAndTv"}));
   EXPECT_GT(changes, 20);  // of 30 cycle ends, a few may draw the same meal again
+}
+
+// Which table stands at the table's place (the other is parked 3 m below it).
+std::string tableInUse(const FeedingSimulator& sim) {
+  const auto& f = sim.worldState()->fixtures;
+  return f.at("table_round").position.z() > f.at("table").position.z() ? "circular" : "rectangular";
+}
+
+bool plateStands(FeedingSimulator& sim) {
+  auto& ws = sim.world().workspace();
+  return cbtl::world::supportAt(ws, "plate", *ws.objectPose("plate")).supported();
+}
+
+TEST(FeedingSimulator, MealsComeAtBothTablesAndThePlateAlwaysStandsOnTheTableInUse) {
+  std::set<std::string> tables;
+  for (std::uint64_t seed = 0; seed < 10; ++seed) {
+    FeedingSimulator sim(feeding(), {}, seed);
+    for (int request = 0; request < 12; ++request) {
+      EXPECT_EQ(sim.meal().table, tableInUse(sim)) << "seed " << seed << " request " << request;
+      EXPECT_TRUE(plateStands(sim)) << "seed " << seed << " request " << request;
+      tables.insert(sim.meal().table);
+      endRequest(sim);
+    }
+  }
+  EXPECT_EQ(tables, (std::set<std::string>{"rectangular", "circular"}));
+}
+
+TEST(FeedingSimulator, AScriptedMealPutsItsTableInPlaceAndThePlateBackOnIt) {
+  FeedingSimulator sim(feeding(), {}, 3);
+  sim.serveMealNow(cbtl::domains::feeding::paperMeals()[0]);
+  ASSERT_EQ(tableInUse(sim), "rectangular");
+  ASSERT_TRUE(sim.placeOnTable("plate", 0.30, 0.25));  // a corner of the plate's area: off the round table
+  sim.serveMealNow(cbtl::domains::feeding::paperMeals()[1]);
+  EXPECT_EQ(tableInUse(sim), "circular");
+  EXPECT_TRUE(plateStands(sim));
+  EXPECT_NE(sim.worldState()->objects.at("plate").position.y(), 0.25);
+  const auto plate = sim.worldState()->objects.at("plate").position;
+  EXPECT_FALSE(sim.placeOnTable("plate", 0.30, 0.25));  // refused, nothing moves
+  EXPECT_EQ(sim.worldState()->objects.at("plate").position, plate);
+  EXPECT_TRUE(sim.placeOnTable("plate", 0.35, 0.45));
 }
 
 TEST(FeedingSimulator, ObservesTheMealAndItsSetting) {

@@ -36,6 +36,23 @@ TEST(FeedingTableSlide, SlidesThePlateAndRefusesToStackTheDrinkOnIt) {
   EXPECT_EQ(w.workspace().objectPose("drink")->position, drink.position);  // unchanged
 }
 
+TEST(FeedingTableSlide, RefusesASpotWhereThePlateWouldHangOverTheRoundTable) {
+  world::World w(cbtl::test::programSceneOf("feeding"));
+  world::Workspace& ws = w.workspace();
+  const world::Pose3 inUse = ws.state().fixtures.at("table"), parked = ws.state().fixtures.at("table_round");
+  ws.setFixturePose("table", parked);
+  ws.setFixturePose("table_round", inUse);
+  const world::Pose3 plate = *ws.objectPose("plate");
+  // (0.30, 0.25) is inside the plate's area and on the rectangular table; the round one (radius 0.32 m) ends
+  // under the plate's rim.
+  const auto over = slideOnTable(w, ActionCall{"movePlate", {Value::vec({0.30, 0.25})}});
+  EXPECT_EQ(over.status, ActionStatus::Blocked);
+  EXPECT_NE(over.detail.find("would not stand on the table"), std::string::npos) << over.detail;
+  EXPECT_EQ(ws.objectPose("plate")->position, plate.position);
+  const auto centre = slideOnTable(w, ActionCall{"movePlate", {Value::vec({0.32, 0.36})}});  // clear of the drink
+  EXPECT_TRUE(centre.done()) << centre.detail;
+}
+
 TEST(FeedingTableSlide, BadCallsChangeNothing) {
   world::World w(cbtl::test::programSceneOf("feeding"));
   const world::Pose3 plate = *w.workspace().objectPose("plate");

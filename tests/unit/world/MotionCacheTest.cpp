@@ -138,6 +138,17 @@ TEST(WorldMotionCache, EveryInputOfAPlanIsInTheKey) {
   EXPECT_NE(armQuery(ws, goal, o).fingerprint, base);
 }
 
+TEST(WorldMotionCache, TheTableInUseIsInTheKey) {
+  // The feeding scene's tables are fixtures: a path planned around one table never answers for the other.
+  Workspace ws(test::feedingScene());
+  PlanOptions o;
+  const std::uint64_t rectangular = armQuery(ws, configs::kHome, o).fingerprint;
+  const Pose3 inUse = ws.state().fixtures.at("table"), parked = ws.state().fixtures.at("table_round");
+  ASSERT_EQ(ws.setFixturePose("table", parked), StateStatus::Ok);
+  ASSERT_EQ(ws.setFixturePose("table_round", inUse), StateStatus::Ok);
+  EXPECT_NE(armQuery(ws, configs::kHome, o).fingerprint, rectangular);
+}
+
 TEST(WorldMotionCache, EntriesBeyondTheCapacityEvictTheOldest) {
   MotionCache cache(2);
   auto query = [](double v) {

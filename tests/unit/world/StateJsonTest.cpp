@@ -36,5 +36,15 @@ TEST(WorldStateJson, ErrorsNameTheProblem) {
   EXPECT_EQ(applyStateFile(ws, "/nonexistent/state.json").status, StateJsonStatus::FileNotFound);
 }
 
+TEST(WorldStateJson, SetsFixturesAndNamesAnUnknownOne) {
+  Workspace ws(test::feedingScene());
+  auto r = applyStateJson(ws, R"({"fixtures": {"table_round": {"position": [0.3505, 0.4495, 0]}}})");
+  ASSERT_EQ(r.status, StateJsonStatus::Ok) << r.message;
+  EXPECT_NEAR(ws.state().fixtures.at("table_round").position.z(), 0.0, 1e-12);
+  r = applyStateJson(ws, R"({"fixtures": {"plate": {"position": [0, 0, 0]}}})");
+  EXPECT_EQ(r.status, StateJsonStatus::BadValue);
+  EXPECT_NE(r.message.find("plate"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace cbtl::world

@@ -87,7 +87,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a robot scene (and optionally a state) to a PNG image");
   cmd->add_option("scene", args->scene, "MuJoCo scene file (e.g. domains/feeding/feeding.xml)")->required();
-  cmd->add_option("--state", args->state, "JSON state: arm joints, base pose, object poses, held object");
+  cmd->add_option("--state", args->state,
+                  "JSON state: arm joints, base pose, object poses, fixture poses, held object");
   cmd->add_option("--out,-o", args->out, "output PNG file")->required();
   cmd->add_option("--camera", args->camera, "a named camera of the scene (default: free camera)");
   cmd->add_option("--width", args->width, "image width in pixels")->check(CLI::Range(1, 8192));

@@ -78,8 +78,8 @@ int runSimulate(const StudyArgs& a) {
   fmt::print("study: {} simulated participants (from {}), five meals, CBTL{} against No Personalization\n",
              a.participants, a.firstParticipant,
              options.askExploringView ? " (asking about its most uncertain view)" : "");
-  fmt::print("{:<5} {:<16} {:<14} | {:^27} | {:^27} | {}\n", "meal", "setting", "food", "CBTL: dip sig verb view bite",
-             "NP:   dip sig verb view bite", "CBTL better / tied / worse");
+  fmt::print("{:<5} {:<16} {:<12} {:<14} | {:^27} | {:^27} | {}\n", "meal", "setting", "table", "food",
+             "CBTL: dip sig verb view bite", "NP:   dip sig verb view bite", "CBTL better / tied / worse");
   std::string csv = "meal,food,setting,table,approach";
   for (const auto& p : feeding::studyPreferences()) csv += "," + p + "_met_rate";
   csv += ",cbtl_better,tied,cbtl_worse\n";
@@ -95,8 +95,8 @@ int runSimulate(const StudyArgs& a) {
       for (const auto& p : feeding::studyPreferences()) csv += fmt::format(",{:.6g}", met.at(p).rate());
       csv += fmt::format(",{},{},{}\n", m.cbtlBetter, m.tied, m.cbtlWorse);
     }
-    fmt::print("{:<5} {:<16} {:<14} | {:<27} | {:<27} | {} / {} / {}\n", k + 1, m.meal.setting, m.meal.food, cells[0],
-               cells[1], m.cbtlBetter, m.tied, m.cbtlWorse);
+    fmt::print("{:<5} {:<16} {:<12} {:<14} | {:<27} | {:<27} | {} / {} / {}\n", k + 1, m.meal.setting, m.meal.table,
+               m.meal.food, cells[0], cells[1], m.cbtlBetter, m.tied, m.cbtlWorse);
   }
   fmt::print("{} solutions re-checked before execution, {} refused\n", r.rechecks, r.recheckViolations);
   if (!a.out.empty()) {

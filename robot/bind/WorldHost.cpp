@@ -28,26 +28,20 @@ void appendText(std::vector<double>& k, const std::string& t) {
   for (unsigned char c : t) k.push_back(c);
 }
 
+void appendNamedPose(std::vector<double>& k, const std::string& name, const world::Pose3& p) {
+  appendText(k, name);
+  k.insert(k.end(), {p.position.x(), p.position.y(), p.position.z(), p.orientation.w(), p.orientation.x(),
+                     p.orientation.y(), p.orientation.z()});
+}
+
 // Every value of a WorldState in a fixed order (objects and fixtures by name: the maps' order).
 std::uint64_t stateFingerprint(const world::WorldState& s) {
   std::vector<double> k(s.arm.begin(), s.arm.end());
   k.insert(k.end(), {s.base.x, s.base.y, s.base.yaw, s.gripper});
-  for (const auto& [name, p] : s.objects) {
-    appendText(k, name);
-    k.insert(k.end(), {p.position.x(), p.position.y(), p.position.z(), p.orientation.w(), p.orientation.x(),
-                       p.orientation.y(), p.orientation.z()});
-  }
-  for (const auto& [name, p] : s.fixtures) {
-    appendText(k, name);
-    k.insert(k.end(), {p.position.x(), p.position.y(), p.position.z(), p.orientation.w(), p.orientation.x(),
-                       p.orientation.y(), p.orientation.z()});
-  }
-  if (s.held) {
-    appendText(k, s.held->object);
-    const world::Pose3& g = s.held->toolToObject;
-    k.insert(k.end(), {g.position.x(), g.position.y(), g.position.z(), g.orientation.w(), g.orientation.x(),
-                       g.orientation.y(), g.orientation.z()});
-  }
+  for (const auto& [name, p] : s.objects) appendNamedPose(k, name, p);
+  k.push_back(static_cast<double>(s.fixtures.size()));  // where the objects end and the fixtures begin
+  for (const auto& [name, p] : s.fixtures) appendNamedPose(k, name, p);
+  if (s.held) appendNamedPose(k, s.held->object, s.held->toolToObject);
   return world::fingerprintOf(k);
 }
 

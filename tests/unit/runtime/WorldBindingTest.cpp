@@ -203,6 +203,9 @@ require unknownNameIsNoConfiguration: not withinJointLimits(namedConf("noSuchPos
 require jointDistanceWraps: abs(jointDistance(gen3Conf(3.1, 0, 0, 0, 0, 0, 0), gen3Conf(-3.1, 0, 0, 0, 0, 0, 0)) - (2 * pi - 6.2)) < 1e-9;
 require plateAndDrinkOverlap: not bodiesApartAtXY("plate", vec2(0.34, 0.4), "drink", vec2(0.34, 0.4));
 require plateAndDrinkApart: bodiesApartAtXY("plate", vec2(0.34, 0.3), "drink", vec2(0.34, 0.7));
+require plateStandsOnTheTable: supportedAtXY("plate", vec2(0.34, 0.3));
+require plateOffTheTableDoesNot: not supportedAtXY("plate", vec2(0.34, 1.2));
+require unknownBodyStandsNowhere: not supportedAtXY("teapot", vec2(0.34, 0.3));
 require plateIsWhereTheSceneSays: distance(bodyPose("plate").position, vec3(0.30, 0.25, 0.1625)) < 1e-6;
 require eyesSite: distance(sitePose("user_eyes").position, vec3(-0.3, 0.5, 0.77)) < 1e-6;
 require frontIsReachable: ikExists(front);

@@ -8,6 +8,13 @@ domains::ProgramFacts simulatorFacts(const LoadedProgram& program) {
   facts.scenePath = program.worldPath();
   facts.scene = program.scene();
   facts.itemSets = program.graph().itemSets;
+  for (const ir::Constant& c : program.graph().constants) {
+    if (!c.indexSet.empty()) continue;
+    const ir::Expr& v = c.value;
+    if (v.op == ir::Op::Num) facts.numbers[c.name] = v.number;
+    if (v.op == ir::Op::Neg && v.children.size() == 1 && v.children[0].op == ir::Op::Num)
+      facts.numbers[c.name] = -v.children[0].number;
+  }
   return facts;
 }
 

@@ -1,6 +1,7 @@
 // ProgramFacts.h — what a domain simulator learns from the loaded program instead of compiling it in: the scene
 // of the program's `world "..."` line (its path and, when the caller has loaded it already, the loaded scene) and
-// the program's item sets (`items name : Type { ... }`, e.g. the Books catalogue).
+// the program's item sets (`items name : Type { ... }`, e.g. the Books catalogue), and its number constants
+// (`const name = 0.30;`, e.g. Feeding's plate area on the table).
 //
 // The program is the single source of these facts: the app fills them from what it compiled and bound
 // (app/SimulatorFacts.h), tests from the domain's .cbtl file or an explicit scene path. A robot domain's
@@ -10,7 +11,9 @@
 
 #include "ir/ConstraintGraph.h"
 
+#include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -25,6 +28,8 @@ struct ProgramFacts {
   std::string scenePath;                      // the program's scene file, resolved; empty: the program has none
   std::shared_ptr<const world::Scene> scene;  // that file, loaded and shared read-only; null: load scenePath
   std::vector<ir::ItemSet> itemSets;          // the program's item sets, in declaration order
+  // The program's constants whose value is a number as written (a literal, or a negated one), by name.
+  std::map<std::string, double> numbers;
 };
 
 // The program's item set of entries of `itemType` that comes first (the one Program::render names values by);
@@ -33,6 +38,16 @@ inline const ir::ItemSet* firstItemSetOfType(const ProgramFacts& facts, std::str
   for (const ir::ItemSet& set : facts.itemSets)
     if (set.itemType == itemType) return &set;
   return nullptr;
+}
+
+// Number constant `name` of the program; throws std::invalid_argument naming it and what it is for (`purpose`)
+// when the program declares none.
+inline double requireNumber(const ProgramFacts& facts, const std::string& name, std::string_view purpose) {
+  const auto it = facts.numbers.find(name);
+  if (it == facts.numbers.end())
+    throw std::invalid_argument("the program declares no number constant '" + name + "' (" + std::string(purpose) +
+                                ")");
+  return it->second;
 }
 
 }  // namespace cbtl::domains

@@ -20,9 +20,6 @@ namespace {
 
 using world::Pose3;
 
-// Plate and drink domains on the table (feeding.cbtl), metres.
-constexpr double kPlateX0 = 0.30, kPlateX1 = 0.38, kPlateY0 = 0.25, kPlateY1 = 0.64;
-constexpr double kDrinkX0 = 0.30, kDrinkX1 = 0.38, kDrinkY0 = 0.15, kDrinkY1 = 0.75;
 // Where the drink waits while it is not in use: off the table, out of every check of the table.
 constexpr double kDrinkParkedX = 0.55, kDrinkParkedY = 1.60;
 // The table fixtures of feeding.xml by shape (Meal::table); the scene's starting pose of "table" is where the table
@@ -98,13 +95,21 @@ FeedingSimulator::FeedingSimulator(const ProgramFacts& program, const sim::Simul
 
 FeedingSimulator::FeedingSimulator(const ProgramFacts& program, const sim::SimulatorOptions&, std::uint64_t seed,
                                    FeedingUser user)
-    : FeedingSimulator(home::programScene(program, "feeding"), std::make_shared<const FeedingUser>(std::move(user)),
-                       seed) {}
+    // Braces: the arguments are evaluated in order, so a program without a scene is told so first.
+    : FeedingSimulator{home::programScene(program, "feeding"), std::make_shared<const FeedingUser>(std::move(user)),
+                       TableAreas::of(program), seed} {}
+
+TableAreas TableAreas::of(const ProgramFacts& program) {
+  const auto number = [&](const char* name) { return requireNumber(program, name, "Feeding's plate and drink areas"); };
+  return TableAreas{{number("plateX0"), number("plateX1"), number("plateY0"), number("plateY1")},
+                    {number("drinkX0"), number("drinkX1"), number("drinkY0"), number("drinkY1")}};
+}
 
 FeedingSimulator::FeedingSimulator(std::shared_ptr<const world::Scene> scene, std::shared_ptr<const FeedingUser> user,
-                                   std::uint64_t seed)
+                                   TableAreas areas, std::uint64_t seed)
     : scene_(std::move(scene)),
       user_(std::move(user)),
+      areas_(areas),
       world_(std::make_unique<world::World>(scene_)),
       actions_(FeedingActions::forScene(*scene_)) {
   scenePoses_ = world_->workspace().state().objects;
@@ -114,9 +119,9 @@ FeedingSimulator::FeedingSimulator(std::shared_ptr<const world::Scene> scene, st
   reset(seed);
 }
 
-world::Pose2 FeedingSimulator::randomXY(double x0, double x1, double y0, double y1) {
-  const double x = rng_.uniform(x0, x1);
-  return world::Pose2{x, rng_.uniform(y0, y1), 0.0};
+world::Pose2 FeedingSimulator::randomXY(const TableAreas::Box& box) {
+  const double x = rng_.uniform(box.x0, box.x1);
+  return world::Pose2{x, rng_.uniform(box.y0, box.y1), 0.0};
 }
 
 void FeedingSimulator::reset(std::uint64_t seed) {
@@ -125,7 +130,7 @@ void FeedingSimulator::reset(std::uint64_t seed) {
   s.arm = world::configs::kRetract;
   s.gripper = 1.0;
   s.objects = scenePoses_;
-  const world::Pose2 plate = randomXY(kPlateX0, kPlateX1, kPlateY0, kPlateY1);
+  const world::Pose2 plate = randomXY(areas_.plate);
   s.objects["plate"].position.x() = plate.x;
   s.objects["plate"].position.y() = plate.y;
   world_->workspace().setState(s);
@@ -160,7 +165,7 @@ void FeedingSimulator::setTable(const std::string& shape) {
   Pose3 plate = *ws.objectPose("plate");
   if (world::supportAt(ws, "plate", plate).supported()) return;
   for (int i = 0; i < kSpotAttempts; ++i) {
-    const world::Pose2 xy = randomXY(kPlateX0, kPlateX1, kPlateY0, kPlateY1);
+    const world::Pose2 xy = randomXY(areas_.plate);
     plate.position.x() = xy.x;
     plate.position.y() = xy.y;
     if (world::supportAt(ws, "plate", plate).supported()) break;
@@ -217,7 +222,7 @@ void FeedingSimulator::startRequest(Request r) {
     drink.orientation = scenePoses_.at("drink").orientation;
     const Pose3 plate = *ws.objectPose("plate");
     for (int i = 0; i < kSpotAttempts; ++i) {
-      const world::Pose2 xy = randomXY(kDrinkX0, kDrinkX1, kDrinkY0, kDrinkY1);
+      const world::Pose2 xy = randomXY(areas_.drink);
       drink.position.x() = xy.x;
       drink.position.y() = xy.y;
       if (world_->clearance().objectDistance("drink", drink, "plate", plate) > 0.01 &&
@@ -403,7 +408,7 @@ sim::StepResult FeedingSimulator::idle() {
 }
 
 std::unique_ptr<sim::DomainSimulator> FeedingSimulator::makeEvaluationTwin() const {
-  return std::unique_ptr<sim::DomainSimulator>(new FeedingSimulator(scene_, user_, 0));
+  return std::unique_ptr<sim::DomainSimulator>(new FeedingSimulator(scene_, user_, areas_, 0));
 }
 
 }  // namespace cbtl::domains::feeding

@@ -79,11 +79,24 @@ struct Meal {
 // rectangular, tater tots, ketchup and BBQ.
 const std::vector<Meal>& paperMeals();
 
+// Where the caregiver puts the plate and the drink on the table when the simulator draws a spot (the plate an
+// episode starts with, the plate moved for a new table, a prepare request's drink): the program's constants
+// plateX0 .. plateY1 and drinkX0 .. drinkY1 (feeding.cbtl's variable domains), metres in the world frame.
+struct TableAreas {
+  struct Box {
+    double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  };
+  Box plate, drink;
+  // Throws std::invalid_argument naming the first constant the program does not declare.
+  static TableAreas of(const ProgramFacts& program);
+};
+
 class FeedingSimulator final : public sim::DomainSimulator {
  public:
   // The paper's user (FeedingUser::paperDefault), or participant `options.participant` when it is >= 0
   // (FeedingUser::participant), in the program's scene (feeding.xml). Throws
-  // std::invalid_argument when `program` names no scene, std::runtime_error when it cannot be loaded.
+  // std::invalid_argument when `program` names no scene or lacks a constant of TableAreas, std::runtime_error
+  // when the scene cannot be loaded.
   FeedingSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options, std::uint64_t seed);
   FeedingSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options, std::uint64_t seed,
                    FeedingUser user);
@@ -123,7 +136,7 @@ class FeedingSimulator final : public sim::DomainSimulator {
   world::World& world() { return *world_; }
 
  private:
-  FeedingSimulator(std::shared_ptr<const world::Scene> scene, std::shared_ptr<const FeedingUser> user,
+  FeedingSimulator(std::shared_ptr<const world::Scene> scene, std::shared_ptr<const FeedingUser> user, TableAreas areas,
                    std::uint64_t seed);
   struct Progress {
     bool biteTaken = false;
@@ -150,10 +163,11 @@ class FeedingSimulator final : public sim::DomainSimulator {
   void restoreHome();
   sim::StepResult fail(sim::StepResult r);
   sim::StepResult complete(sim::StepResult r, bool satisfied);
-  world::Pose2 randomXY(double x0, double x1, double y0, double y1);
+  world::Pose2 randomXY(const TableAreas::Box& box);
 
   std::shared_ptr<const world::Scene> scene_;  // shared with evaluation twins
   std::shared_ptr<const FeedingUser> user_;
+  TableAreas areas_;
   std::unique_ptr<world::World> world_;
   actions::RobotActions actions_;
   world::Rng rng_;

@@ -102,6 +102,22 @@ TEST(FeedingSimulator, AScriptedMealPutsItsTableInPlaceAndThePlateBackOnIt) {
   EXPECT_TRUE(sim.placeOnTable("plate", 0.35, 0.45));
 }
 
+TEST(FeedingSimulator, TheTableAreasAreTheProgramsConstants) {
+  const cbtl::domains::ProgramFacts& facts = feeding();
+  const auto areas = cbtl::domains::feeding::TableAreas::of(facts);
+  EXPECT_EQ(areas.plate.x0, 0.30);  // feeding.cbtl: const plateX0 = 0.30;
+  EXPECT_EQ(areas.plate.y1, 0.64);
+  EXPECT_EQ(areas.drink.y0, 0.15);
+  cbtl::domains::ProgramFacts without = facts;
+  without.numbers.erase("drinkY1");
+  try {
+    FeedingSimulator sim(without, {}, 0);
+    ADD_FAILURE() << "a program without drinkY1 was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("drinkY1"), std::string::npos) << e.what();
+  }
+}
+
 TEST(FeedingSimulator, ObservesTheMealAndItsSetting) {
   FeedingSimulator sim(feeding(), {}, 4);
   const auto o = sim.observe();

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <mutex>
 #include <stdexcept>
+#include <utility>
 
 namespace cbtl::domains::feeding {
 
@@ -101,8 +102,16 @@ FeedingSimulator::FeedingSimulator(const ProgramFacts& program, const sim::Simul
 
 TableAreas TableAreas::of(const ProgramFacts& program) {
   const auto number = [&](const char* name) { return requireNumber(program, name, "Feeding's plate and drink areas"); };
-  return TableAreas{{number("plateX0"), number("plateX1"), number("plateY0"), number("plateY1")},
-                    {number("drinkX0"), number("drinkX1"), number("drinkY0"), number("drinkY1")}};
+  const TableAreas areas{{number("plateX0"), number("plateX1"), number("plateY0"), number("plateY1")},
+                         {number("drinkX0"), number("drinkX1"), number("drinkY0"), number("drinkY1")}};
+  for (const auto& [name, box] : {std::pair{"plate", areas.plate}, std::pair{"drink", areas.drink}}) {
+    const bool ordered = box.x0 <= box.x1 && box.y0 <= box.y1;  // false for NaN too
+    if (!ordered || !std::isfinite(box.x0) || !std::isfinite(box.x1) || !std::isfinite(box.y0) ||
+        !std::isfinite(box.y1))
+      throw std::invalid_argument(fmt::format("the program's {} area [{} .. {}, {} .. {}] is empty or not finite", name,
+                                              box.x0, box.x1, box.y0, box.y1));
+  }
+  return areas;
 }
 
 FeedingSimulator::FeedingSimulator(std::shared_ptr<const world::Scene> scene, std::shared_ptr<const FeedingUser> user,

@@ -87,7 +87,8 @@ struct TableAreas {
     double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
   };
   Box plate, drink;
-  // Throws std::invalid_argument naming the first constant the program does not declare.
+  // Throws std::invalid_argument naming the first constant the program does not declare, or an area that is
+  // empty (x0 > x1 or y0 > y1) or not finite.
   static TableAreas of(const ProgramFacts& program);
 };
 

@@ -116,6 +116,9 @@ TEST(FeedingSimulator, TheTableAreasAreTheProgramsConstants) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("drinkY1"), std::string::npos) << e.what();
   }
+  cbtl::domains::ProgramFacts inverted = facts;
+  inverted.numbers["plateX0"] = 0.5;  // beyond plateX1 = 0.38
+  EXPECT_THROW(cbtl::domains::feeding::TableAreas::of(inverted), std::invalid_argument);
 }
 
 TEST(FeedingSimulator, ObservesTheMealAndItsSetting) {

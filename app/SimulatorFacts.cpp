@@ -11,9 +11,9 @@ domains::ProgramFacts simulatorFacts(const LoadedProgram& program) {
   for (const ir::Constant& c : program.graph().constants) {
     if (!c.indexSet.empty()) continue;
     const ir::Expr& v = c.value;
-    if (v.op == ir::Op::Num) facts.numbers[c.name] = v.number;
+    if (v.op == ir::Op::Num) facts.numbers[c.name] = {v.number, c.span};
     if (v.op == ir::Op::Neg && v.children.size() == 1 && v.children[0].op == ir::Op::Num)
-      facts.numbers[c.name] = -v.children[0].number;
+      facts.numbers[c.name] = {-v.children[0].number, c.span};
   }
   return facts;
 }

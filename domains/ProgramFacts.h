@@ -10,10 +10,10 @@
 #pragma once
 
 #include "ir/ConstraintGraph.h"
+#include "runtime/core/Values.h"  // rt::RuntimeError
 
 #include <map>
 #include <memory>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -29,7 +29,11 @@ struct ProgramFacts {
   std::shared_ptr<const world::Scene> scene;  // that file, loaded and shared read-only; null: load scenePath
   std::vector<ir::ItemSet> itemSets;          // the program's item sets, in declaration order
   // The program's constants whose value is a number as written (a literal, or a negated one), by name.
-  std::map<std::string, double> numbers;
+  struct Number {
+    double value = 0;
+    ir::Span span;  // the declaration
+  };
+  std::map<std::string, Number> numbers;
 };
 
 // The program's item set of entries of `itemType` that comes first (the one Program::render names values by);
@@ -40,14 +44,20 @@ inline const ir::ItemSet* firstItemSetOfType(const ProgramFacts& facts, std::str
   return nullptr;
 }
 
-// Number constant `name` of the program; throws std::invalid_argument naming it and what it is for (`purpose`)
-// when the program declares none.
-inline double requireNumber(const ProgramFacts& facts, const std::string& name, std::string_view purpose) {
+// Number constant `name` of the program; throws rt::RuntimeError (bad input: a program that does not fit its
+// simulator) naming it and what it is for (`purpose`) when the program declares none.
+inline const ProgramFacts::Number& requireNumber(const ProgramFacts& facts, const std::string& name,
+                                                 std::string_view purpose) {
   const auto it = facts.numbers.find(name);
   if (it == facts.numbers.end())
-    throw std::invalid_argument("the program declares no number constant '" + name + "' (" + std::string(purpose) +
-                                ")");
+    throw rt::RuntimeError("", "the program declares no number constant '" + name + "' (" + std::string(purpose) + ")");
   return it->second;
+}
+
+// "file:line:col" of a declaration, as rt::RuntimeError's `where`.
+inline std::string whereOf(const ir::Span& span) {
+  if (span.file.empty()) return {};
+  return span.file + ":" + std::to_string(span.line) + ":" + std::to_string(span.column);
 }
 
 }  // namespace cbtl::domains

@@ -101,15 +101,22 @@ FeedingSimulator::FeedingSimulator(const ProgramFacts& program, const sim::Simul
                        TableAreas::of(program), seed} {}
 
 TableAreas TableAreas::of(const ProgramFacts& program) {
-  const auto number = [&](const char* name) { return requireNumber(program, name, "Feeding's plate and drink areas"); };
-  const TableAreas areas{{number("plateX0"), number("plateX1"), number("plateY0"), number("plateY1")},
-                         {number("drinkX0"), number("drinkX1"), number("drinkY0"), number("drinkY1")}};
-  for (const auto& [name, box] : {std::pair{"plate", areas.plate}, std::pair{"drink", areas.drink}}) {
+  static constexpr const char* kNames[2][4] = {{"plateX0", "plateX1", "plateY0", "plateY1"},
+                                               {"drinkX0", "drinkX1", "drinkY0", "drinkY1"}};
+  TableAreas areas;
+  Box* boxes[2] = {&areas.plate, &areas.drink};
+  for (int b = 0; b < 2; ++b) {
+    const ProgramFacts::Number* n[4];
+    for (int k = 0; k < 4; ++k) n[k] = &requireNumber(program, kNames[b][k], "Feeding's plate and drink areas");
+    *boxes[b] = Box{n[0]->value, n[1]->value, n[2]->value, n[3]->value};
+    const Box& box = *boxes[b];
     const bool ordered = box.x0 <= box.x1 && box.y0 <= box.y1;  // false for NaN too
     if (!ordered || !std::isfinite(box.x0) || !std::isfinite(box.x1) || !std::isfinite(box.y0) ||
         !std::isfinite(box.y1))
-      throw std::invalid_argument(fmt::format("the program's {} area [{} .. {}, {} .. {}] is empty or not finite", name,
-                                              box.x0, box.x1, box.y0, box.y1));
+      throw rt::RuntimeError(
+          whereOf(n[0]->span),
+          fmt::format("the {} area [{} .. {}, {} .. {}] ({} .. {}) is empty or not finite", b == 0 ? "plate" : "drink",
+                      box.x0, box.x1, box.y0, box.y1, kNames[b][0], kNames[b][3]));
   }
   return areas;
 }

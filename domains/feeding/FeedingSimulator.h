@@ -87,8 +87,8 @@ struct TableAreas {
     double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
   };
   Box plate, drink;
-  // Throws std::invalid_argument naming the first constant the program does not declare, or an area that is
-  // empty (x0 > x1 or y0 > y1) or not finite.
+  // Throws rt::RuntimeError naming the first constant the program does not declare, or an area that is empty
+  // (x0 > x1 or y0 > y1) or not finite (at its first constant's declaration).
   static TableAreas of(const ProgramFacts& program);
 };
 
@@ -96,8 +96,8 @@ class FeedingSimulator final : public sim::DomainSimulator {
  public:
   // The paper's user (FeedingUser::paperDefault), or participant `options.participant` when it is >= 0
   // (FeedingUser::participant), in the program's scene (feeding.xml). Throws
-  // std::invalid_argument when `program` names no scene or lacks a constant of TableAreas, std::runtime_error
-  // when the scene cannot be loaded.
+  // std::invalid_argument when `program` names no scene, rt::RuntimeError when it lacks a constant of TableAreas
+  // (or its area is empty), std::runtime_error when the scene cannot be loaded.
   FeedingSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options, std::uint64_t seed);
   FeedingSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options, std::uint64_t seed,
                    FeedingUser user);

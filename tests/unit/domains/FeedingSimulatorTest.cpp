@@ -106,6 +106,7 @@ TEST(FeedingSimulator, TheTableAreasAreTheProgramsConstants) {
   const cbtl::domains::ProgramFacts& facts = feeding();
   const auto areas = cbtl::domains::feeding::TableAreas::of(facts);
   EXPECT_EQ(areas.plate.x0, 0.30);  // feeding.cbtl: const plateX0 = 0.30;
+  EXPECT_GT(facts.numbers.at("plateX0").span.line, 0u);
   EXPECT_EQ(areas.plate.y1, 0.64);
   EXPECT_EQ(areas.drink.y0, 0.15);
   cbtl::domains::ProgramFacts without = facts;
@@ -113,12 +114,17 @@ TEST(FeedingSimulator, TheTableAreasAreTheProgramsConstants) {
   try {
     FeedingSimulator sim(without, {}, 0);
     ADD_FAILURE() << "a program without drinkY1 was accepted";
-  } catch (const std::invalid_argument& e) {
+  } catch (const cbtl::rt::RuntimeError& e) {
     EXPECT_NE(std::string(e.what()).find("drinkY1"), std::string::npos) << e.what();
   }
   cbtl::domains::ProgramFacts inverted = facts;
-  inverted.numbers["plateX0"] = 0.5;  // beyond plateX1 = 0.38
-  EXPECT_THROW(cbtl::domains::feeding::TableAreas::of(inverted), std::invalid_argument);
+  inverted.numbers["plateX0"].value = 0.5;  // beyond plateX1 = 0.38
+  try {
+    cbtl::domains::feeding::TableAreas::of(inverted);
+    ADD_FAILURE() << "an empty plate area was accepted";
+  } catch (const cbtl::rt::RuntimeError& e) {
+    EXPECT_NE(e.location.find("feeding.cbtl:"), std::string::npos) << e.what();  // where plateX0 is declared
+  }
 }
 
 TEST(FeedingSimulator, ObservesTheMealAndItsSetting) {

@@ -19,6 +19,22 @@ const char* toString(StateStatus s) {
   return "unknown";
 }
 
+namespace {
+
+// A pose as MuJoCo stores it: position (x y z) and unit quaternion (w x y z).
+void writePose(const Pose3& pose, mjtNum* position, mjtNum* quaternion) {
+  const Eigen::Quaterniond o = pose.orientation.normalized();
+  position[0] = pose.position.x();
+  position[1] = pose.position.y();
+  position[2] = pose.position.z();
+  quaternion[0] = o.w();
+  quaternion[1] = o.x();
+  quaternion[2] = o.y();
+  quaternion[3] = o.z();
+}
+
+}  // namespace
+
 Workspace::Workspace(std::shared_ptr<const Scene> scene) : scene_(std::move(scene)) {
   installMujocoHandlers();
   data_ = mj_makeData(scene_->model());
@@ -125,28 +141,12 @@ StateStatus Workspace::setFixturePose(std::string_view fixture, const Pose3& pos
 
 void Workspace::writeFixture(int index, const Pose3& pose) {
   const int id = scene_->fixtures()[static_cast<size_t>(index)].mocapId;
-  const Eigen::Quaterniond o = pose.orientation.normalized();
-  mjtNum* p = data_->mocap_pos + 3 * id;
-  mjtNum* q = data_->mocap_quat + 4 * id;
-  p[0] = pose.position.x();
-  p[1] = pose.position.y();
-  p[2] = pose.position.z();
-  q[0] = o.w();
-  q[1] = o.x();
-  q[2] = o.y();
-  q[3] = o.z();
+  writePose(pose, data_->mocap_pos + 3 * id, data_->mocap_quat + 4 * id);
 }
 
 void Workspace::writeObject(int index, const Pose3& pose) {
   mjtNum* q = data_->qpos + scene_->objects()[static_cast<size_t>(index)].qposAdr;
-  const Eigen::Quaterniond o = pose.orientation.normalized();
-  q[0] = pose.position.x();
-  q[1] = pose.position.y();
-  q[2] = pose.position.z();
-  q[3] = o.w();
-  q[4] = o.x();
-  q[5] = o.y();
-  q[6] = o.z();
+  writePose(pose, q, q + 3);  // a free joint's qpos: x y z, then qw qx qy qz
 }
 
 void Workspace::recompute(const KinematicSubtree& moved) {

@@ -102,11 +102,12 @@ exp=(experiment "$cooking" --approaches cbtl,no-personalization --seeds 0..1 --s
 "$cbtl" "${exp[@]}" --out "$work/exp" >/dev/null || fail "the experiment failed"
 expect 1 "'$work/exp' already holds a run \(summary.csv.*--force.*--resume" -- "$cbtl" "${exp[@]}" --out "$work/exp"
 expect 0 "" -- "$cbtl" "${exp[@]}" --out "$work/exp" --force
-# seed 0 finishes first (an earlier, shorter command); the kill then lands in cbtl seed 1.
+# seed 0 finishes first (an earlier, shorter command); the kill then lands in cbtl seed 1. --jobs 1: with trials on
+# several threads, whichever reaches step 150 first (often a no-personalization trial) takes the kill.
 "$cbtl" experiment "$cooking" --approaches cbtl,no-personalization --seeds 0 --steps 300 --eval-every 100 --eval-tasks 2 -q \
   --out "$work/exp-killed" >/dev/null || fail "the one-seed experiment failed"
 rm "$work/exp-killed/summary.csv"
-CBTL_TEST_KILL_AT=step:150 "$cbtl" "${exp[@]}" --out "$work/exp-killed" --resume >/dev/null 2>&1
+CBTL_TEST_KILL_AT=step:150 "$cbtl" "${exp[@]}" --out "$work/exp-killed" --resume --jobs 1 >/dev/null 2>&1
 [[ -f $work/exp-killed/cbtl/seed1/checkpoint.json ]] || fail "the kill did not land in cbtl seed 1"
 [[ ! -e $work/exp-killed/summary.csv ]] || fail "a killed experiment wrote summary.csv"
 expect 0 "" -- "$cbtl" "${exp[@]}" --out "$work/exp-killed" --resume

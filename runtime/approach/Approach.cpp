@@ -52,6 +52,13 @@ CspChoice trainingChoice(const ApproachConfig& config, rt::Rng& rng) {
 
 CspChoice evaluationChoice() { return {solver::PersonalMode::Include, solver::CostKind::Declared}; }
 
+std::optional<CspChoice> cspChoiceNamed(const std::string& name) {
+  if (name == "exploit") return evaluationChoice();
+  if (name == "explore") return CspChoice{solver::PersonalMode::Exclude, solver::CostKind::Entropy};
+  if (name == "hard") return CspChoice{solver::PersonalMode::Exclude, solver::CostKind::Declared};
+  return std::nullopt;
+}
+
 bool learns(const ApproachConfig& config) { return config.kind != ApproachKind::NoPersonalization; }
 
 bool fallsBack(const ApproachConfig& config) {

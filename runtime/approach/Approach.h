@@ -44,6 +44,9 @@ struct CspChoice {
 CspChoice trainingChoice(const ApproachConfig& config, rt::Rng& rng);
 // What every approach solves in evaluation.
 CspChoice evaluationChoice();
+// The CSPs a person may ask for by name: "exploit" (hard + personalized constraints, evaluation's), "explore"
+// (hard constraints, maximum entropy: CBTL's exploration), "hard" (hard constraints only); nullopt for other names.
+std::optional<CspChoice> cspChoiceNamed(const std::string& name);
 bool learns(const ApproachConfig& config);
 // Whether a failed full CSP is re-solved without the personalized constraints.
 bool fallsBack(const ApproachConfig& config);

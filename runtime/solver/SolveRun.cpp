@@ -456,6 +456,11 @@ SolveResult SolveRun::search() {
   std::vector<double> best;
   std::uint64_t attempts = 0;
   for (std::uint64_t iter = 0; iter < options_.maxIters; ++iter) {
+    if (options_.interrupt != nullptr && options_.interrupt->load(std::memory_order_relaxed)) {
+      result_.outcome = SolveOutcome::Interrupted;
+      result_.assignment = x_;
+      return std::move(result_);
+    }
     if (found && (attempts >= options_.maxImprovementAttempts || result_.improvements >= options_.numImprovements ||
                   (csp_.cost == CostKind::Likelihood && bestCost <= 0))) {
       break;  // (nothing is more likely than certain)

@@ -14,6 +14,8 @@ const char* toString(SolveOutcome o) {
       return "SamplersStuck";
     case SolveOutcome::NoSamplers:
       return "NoSamplers";
+    case SolveOutcome::Interrupted:
+      return "Interrupted";
   }
   return "?";
 }

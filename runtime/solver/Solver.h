@@ -36,6 +36,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <atomic>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -55,6 +56,9 @@ struct SolverOptions {
   std::size_t memorySize = 100;
   bool useMemory = true;
   MemoryPolicy memoryPolicy = MemoryPolicy::EverySatisfiedCheck;
+  // Set from outside (the REPL's Ctrl-C): the solve stops before its next iteration with Interrupted. Null: never.
+  // Only a person sets it, so budgets stay iteration counts and runs stay deterministic.
+  const std::atomic<bool>* interrupt = nullptr;
 };
 
 enum class SolveOutcome {
@@ -62,6 +66,7 @@ enum class SolveOutcome {
   InfeasibleWithinBudget,  // no satisfying assignment within maxIters
   SamplersStuck,           // every sampler failed to produce a value for the current assignment
   NoSamplers,              // the CSP has no sampler and its initial assignment does not satisfy it
+  Interrupted,             // SolverOptions::interrupt was set; no solution is returned (even one found before)
 };
 
 const char* toString(SolveOutcome o);

@@ -5,10 +5,10 @@
 #include "tools/cbtl/ErrorHandling.h"
 #include "tools/cbtl/RuntimeSupport.h"
 
+#include "app/PlanReport.h"
 #include "runtime/approach/Planner.h"
 #include "runtime/approach/ValueBridge.h"
 #include "runtime/model/UserModel.h"
-#include "runtime/solver/PersonalExplanation.h"
 
 #include <fmt/core.h>
 
@@ -25,107 +25,10 @@ struct SolveArgs {
   cbtl::cli::TextBackendArgs text;
 };
 
-std::string renderCall(const cbtl::sim::ActionCall& c) {
-  std::string s = c.name + "(";
-  for (std::size_t i = 0; i < c.args.size(); ++i) {
-    const auto& a = c.args[i];
-    if (i) s += ", ";
-    if (a.kind == cbtl::sim::Value::Kind::Name)
-      s += a.text;
-    else if (a.kind == cbtl::sim::Value::Kind::Number)
-      s += fmt::format("{:.6g}", a.number);
-    else {
-      s += "(";
-      for (std::size_t k = 0; k < a.vector.size(); ++k) s += fmt::format("{}{:.6g}", k ? ", " : "", a.vector[k]);
-      s += ")";
-    }
-  }
-  return s + ")";
-}
-
-void explain(const cbtl::approach::Plan& plan) {
-  using namespace cbtl::solver;
-  auto print = [&](const Csp& csp, const SolveResult& r, const char* title) {
-    fmt::print("{}: {} after {} iterations ({} candidates checked, {} pruned by cost, {} improvements)\n", title,
-               toString(r.outcome), r.iterations, r.candidatesChecked, r.prunedByCost, r.improvements);
-    std::vector<ConstraintStats> stats = r.constraints;
-    std::stable_sort(stats.begin(), stats.end(),
-                     [](const auto& a, const auto& b) { return a.rejections > b.rejections; });
-    fmt::print("  {:>10} {:>11}  {:<48} {}\n", "rejected", "evaluated", "constraint", "declared at");
-    for (const auto& s : stats) {
-      if (s.evaluations == 0 && s.rejections == 0) continue;
-      fmt::print("  {:>10} {:>11}  {:<48} {}\n", s.rejections, s.evaluations, constraintName(csp, s.ref),
-                 constraintLocation(csp, s.ref));
-    }
-    if (!r.planFailures.empty()) {
-      std::vector<std::pair<std::string, PlanFailure>> failures(r.planFailures.begin(), r.planFailures.end());
-      std::stable_sort(failures.begin(), failures.end(),
-                       [](const auto& a, const auto& b) { return a.second.count > b.second.count; });
-      fmt::print("  {} rejections by failing action (the first detail of each):\n", kPlanExecutesName);
-      for (const auto& [what, f] : failures)
-        fmt::print("  {:>10}  {}{}\n", f.count, what, f.example.empty() ? "" : " (" + f.example + ")");
-    }
-  };
-  for (const auto& [budget, result] : plan.failedTiers)
-    print(plan.csp, result, fmt::format("dry-run tier with {} planner iterations per motion", budget).c_str());
-  if (plan.dryRun())
-    fmt::print("dry-run tier of the result: {} planner iterations per motion\n", plan.motionIterations);
-  if (plan.failedFull) print(plan.csp, *plan.failedFull, "with personalized constraints");
-  print(plan.csp, plan.solve, plan.failedFull ? "replanned without personalized constraints" : "solve");
-  if (!plan.dryRun() && plan.csp.program->host() != nullptr && plan.csp.program->host()->executionModel() != nullptr)
-    fmt::print("note: the plan was not dry-run: the world model does not know every action of the task\n");
-}
-
-// What the CSP was solved against: every observation, a set as the members it holds.
-void explainObservation(const cbtl::rt::Program& program, const std::vector<double>& observation) {
-  if (program.observationSlots().empty()) return;
-  fmt::print("observed:\n");
-  for (const auto& [name, slot] : program.observationSlots()) {
-    if (slot.offset + slot.type.width > observation.size()) continue;
-    const double* v = observation.data() + slot.offset;
-    std::string text;
-    if (slot.type.kind == cbtl::rt::ValueKind::Set) {
-      const cbtl::rt::ValueType element = program.setElementType(slot.type);
-      for (std::size_t i = 0; i < program.setElementCount(slot.type); ++i) {
-        const double member = static_cast<double>(i);
-        if (v[i] != 0) text += (text.empty() ? "" : ", ") + program.render(element, &member);
-      }
-      text = "{" + text + "}";
-    } else {
-      text = program.render(slot.type, v);
-    }
-    fmt::print("  {} = {}\n", name, text);
-  }
-}
-
-// The personalized constraints at the chosen assignment: P(holds) against accept, entropy, and what each text
-// model was asked (subject, context) and has learned (theta).
-void explainPersonal(const cbtl::approach::Plan& plan) {
-  const auto instances = cbtl::solver::explainPersonal(plan.csp, plan.solve.assignment);
-  if (instances.empty()) return;
-  fmt::print("personalized constraints at the solution:\n");
-  fmt::print("  {:<8} {:>7} {:>7} {:>8}  {}\n", "", "P", "accept", "entropy", "instance");
-  for (const auto& e : instances) {
-    const char* status = !e.applies ? "n/a" : e.holds ? "holds" : "fails";
-    fmt::print("  {:<8} {:>7.3f} {:>7.3f} {:>8.3f}  {}{}{}\n", status, e.probability, e.accept, e.entropyBits, e.name,
-               e.key.empty() ? "" : " [" + e.key + "]", e.inCsp ? "" : " (not in this CSP)");
-    for (const auto& t : e.text) {
-      fmt::print("           {} = {}{}\n", t.factor, t.subject, t.context.empty() ? "" : " in " + t.context);
-      fmt::print("           theta: {}\n", t.theta);
-    }
-  }
-}
-
 int runSolve(const SolveArgs& a) {
   using namespace cbtl;
-  approach::CspChoice choice;
-  if (a.csp == "exploit")
-    choice = approach::evaluationChoice();
-  else if (a.csp == "explore")
-    choice = {solver::PersonalMode::Exclude, solver::CostKind::Entropy};
-  else if (a.csp == "hard")
-    choice = {solver::PersonalMode::Exclude, solver::CostKind::Declared};
-  else {
+  const std::optional<approach::CspChoice> choice = approach::cspChoiceNamed(a.csp);
+  if (!choice) {
     fmt::print(stderr, "cbtl solve: error: unknown --csp '{}' (exploit, explore, hard)\n", a.csp);
     return 2;
   }
@@ -150,30 +53,13 @@ int runSolve(const SolveArgs& a) {
   }
   solver::Solver solver(cli::solverOptionsFor(a.solver, lp->graph().domain), approach::deriveSeed(a.seed, 1));
   const approach::Plan plan =
-      approach::makePlan(*lp, static_cast<std::size_t>(task), observation, choice, a.replan, solver, user);
-  const auto& program = lp->program();
-  const ir::Task& t = lp->graph().tasks[static_cast<std::size_t>(task)];
-  fmt::print(
-      "task {}: {}{}\n", t.name, solver::toString(plan.solve.outcome),
-      plan.replanned ? " (replanned without personalized constraints: the user's preferences cannot be met)" : "");
-  if (plan.ok) {
-    for (ir::VarId v : t.vars) {
-      const auto& slot = program.slot(v);
-      fmt::print("  {} = {}\n", lp->graph().variables[v].name,
-                 program.render(slot.type, plan.solve.assignment.data() + slot.offset));
-    }
-    fmt::print("plan ({} calls):\n", plan.calls.size());
-    for (const auto& c : plan.calls) fmt::print("  {}\n", renderCall(c));
-  }
-  if (a.explain || !plan.ok) explain(plan);
-  if (a.explain) explainObservation(program, observation);
-  if (a.explain && plan.ok) explainPersonal(plan);
+      approach::makePlan(*lp, static_cast<std::size_t>(task), observation, *choice, a.replan, solver, user);
+  app::printSolution(stdout, plan);
+  if (a.explain || !plan.ok) app::printSolveStatistics(stdout, plan);
+  if (a.explain) app::printObservation(stdout, lp->program(), observation);
+  if (a.explain && plan.ok) app::printPersonal(stdout, plan, plan.solve.assignment);
   if (*textBackend) cli::printLlmFaults(stdout, (*textBackend)->faultReport());
-  if (plan.rechecked) {
-    fmt::print("re-check: {} constraints and {} variables evaluated from scratch: {}\n",
-               plan.recheck.constraintsChecked, plan.recheck.variablesChecked,
-               plan.recheck.holds() ? "all hold" : "VIOLATED");
-  }
+  app::printRecheck(stdout, plan);
   if (plan.refused()) {
     fmt::print(stderr,
                "cbtl solve: internal error: the solver accepted a solution that fails the independent re-check; it was "

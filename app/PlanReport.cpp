@@ -1,0 +1,139 @@
+#include "app/PlanReport.h"
+
+#include "runtime/solver/PersonalExplanation.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+
+namespace cbtl::app {
+
+namespace {
+
+std::string renderValue(const sim::Value& a) {
+  switch (a.kind) {
+    case sim::Value::Kind::Name:
+      return a.text;
+    case sim::Value::Kind::Number:
+      return fmt::format("{:.6g}", a.number);
+    case sim::Value::Kind::Vector: {
+      std::string s = "(";
+      for (std::size_t k = 0; k < a.vector.size(); ++k) s += fmt::format("{}{:.6g}", k ? ", " : "", a.vector[k]);
+      return s + ")";
+    }
+    case sim::Value::Kind::Names: {
+      std::string s = "{";
+      for (std::size_t k = 0; k < a.members.size(); ++k) s += (k ? ", " : "") + a.members[k];
+      return s + "}";
+    }
+  }
+  return {};
+}
+
+std::string renderArgs(const std::string& name, const std::vector<sim::Value>& args) {
+  std::string s = name + "(";
+  for (std::size_t i = 0; i < args.size(); ++i) s += (i ? ", " : "") + renderValue(args[i]);
+  return s + ")";
+}
+
+void printStatistics(std::FILE* out, const solver::Csp& csp, const solver::SolveResult& r, const std::string& title) {
+  using namespace cbtl::solver;
+  fmt::print(out, "{}: {} after {} iterations ({} candidates checked, {} pruned by cost, {} improvements)\n", title,
+             toString(r.outcome), r.iterations, r.candidatesChecked, r.prunedByCost, r.improvements);
+  std::vector<ConstraintStats> stats = r.constraints;
+  std::stable_sort(stats.begin(), stats.end(),
+                   [](const auto& a, const auto& b) { return a.rejections > b.rejections; });
+  fmt::print(out, "  {:>10} {:>11}  {:<48} {}\n", "rejected", "evaluated", "constraint", "declared at");
+  for (const auto& s : stats) {
+    if (s.evaluations == 0 && s.rejections == 0) continue;
+    fmt::print(out, "  {:>10} {:>11}  {:<48} {}\n", s.rejections, s.evaluations, constraintName(csp, s.ref),
+               constraintLocation(csp, s.ref));
+  }
+  if (r.planFailures.empty()) return;
+  std::vector<std::pair<std::string, PlanFailure>> failures(r.planFailures.begin(), r.planFailures.end());
+  std::stable_sort(failures.begin(), failures.end(),
+                   [](const auto& a, const auto& b) { return a.second.count > b.second.count; });
+  fmt::print(out, "  {} rejections by failing action (the first detail of each):\n", kPlanExecutesName);
+  for (const auto& [what, f] : failures)
+    fmt::print(out, "  {:>10}  {}{}\n", f.count, what, f.example.empty() ? "" : " (" + f.example + ")");
+}
+
+}  // namespace
+
+std::string renderCall(const sim::ActionCall& call) { return renderArgs(call.name, call.args); }
+
+std::string renderEvent(const sim::FeedbackEvent& event) { return renderArgs(event.name, event.args); }
+
+void printSolution(std::FILE* out, const approach::Plan& plan) {
+  const rt::Program& program = *plan.csp.program;
+  const ir::Task& task = *plan.csp.task;
+  fmt::print(
+      out, "task {}: {}{}\n", task.name, solver::toString(plan.solve.outcome),
+      plan.replanned ? " (replanned without personalized constraints: the user's preferences cannot be met)" : "");
+  if (!plan.ok) return;
+  for (ir::VarId v : task.vars) {
+    const auto& slot = program.slot(v);
+    fmt::print(out, "  {} = {}\n", program.graph().variables[v].name,
+               program.render(slot.type, plan.solve.assignment.data() + slot.offset));
+  }
+  fmt::print(out, "plan ({} calls):\n", plan.calls.size());
+  for (const auto& c : plan.calls) fmt::print(out, "  {}\n", renderCall(c));
+}
+
+void printSolveStatistics(std::FILE* out, const approach::Plan& plan) {
+  for (const auto& [budget, result] : plan.failedTiers)
+    printStatistics(out, plan.csp, result, fmt::format("dry-run tier with {} planner iterations per motion", budget));
+  if (plan.dryRun())
+    fmt::print(out, "dry-run tier of the result: {} planner iterations per motion\n", plan.motionIterations);
+  if (plan.failedFull) printStatistics(out, plan.csp, *plan.failedFull, "with personalized constraints");
+  printStatistics(out, plan.csp, plan.solve, plan.failedFull ? "replanned without personalized constraints" : "solve");
+  rt::BuiltinHost* host = plan.csp.program->host();
+  if (!plan.dryRun() && host != nullptr && host->executionModel() != nullptr)
+    fmt::print(out, "note: the plan was not dry-run: the world model does not know every action of the task\n");
+}
+
+std::string renderObserved(const rt::Program& program, const rt::ValueType& type, const double* v) {
+  if (type.kind != rt::ValueKind::Set) return program.render(type, v);
+  const rt::ValueType element = program.setElementType(type);
+  std::string text;
+  for (std::size_t i = 0; i < program.setElementCount(type); ++i) {
+    const double member = static_cast<double>(i);
+    if (v[i] != 0) text += (text.empty() ? "" : ", ") + program.render(element, &member);
+  }
+  return "{" + text + "}";
+}
+
+void printObservation(std::FILE* out, const rt::Program& program, const std::vector<double>& observation) {
+  if (program.observationSlots().empty()) return;
+  fmt::print(out, "observed:\n");
+  for (const auto& [name, slot] : program.observationSlots()) {
+    if (slot.offset + slot.type.width > observation.size()) continue;
+    fmt::print(out, "  {} = {}\n", name, renderObserved(program, slot.type, observation.data() + slot.offset));
+  }
+}
+
+void printPersonal(std::FILE* out, const approach::Plan& plan, const std::vector<double>& assignment,
+                   const std::string& heading) {
+  const auto instances = solver::explainPersonal(plan.csp, assignment);
+  if (instances.empty()) return;
+  fmt::print(out, "{}:\n", heading);
+  fmt::print(out, "  {:<8} {:>7} {:>7} {:>8}  {}\n", "", "P", "accept", "entropy", "instance");
+  for (const auto& e : instances) {
+    const char* status = !e.applies ? "n/a" : e.holds ? "holds" : "fails";
+    fmt::print(out, "  {:<8} {:>7.3f} {:>7.3f} {:>8.3f}  {}{}{}\n", status, e.probability, e.accept, e.entropyBits,
+               e.name, e.key.empty() ? "" : " [" + e.key + "]", e.inCsp ? "" : " (not in this CSP)");
+    for (const auto& t : e.text) {
+      fmt::print(out, "           {} = {}{}\n", t.factor, t.subject, t.context.empty() ? "" : " in " + t.context);
+      fmt::print(out, "           theta: {}\n", t.theta);
+    }
+  }
+}
+
+void printRecheck(std::FILE* out, const approach::Plan& plan) {
+  if (!plan.rechecked) return;
+  fmt::print(out, "re-check: {} constraints and {} variables evaluated from scratch: {}\n",
+             plan.recheck.constraintsChecked, plan.recheck.variablesChecked,
+             plan.recheck.holds() ? "all hold" : "VIOLATED");
+}
+
+}  // namespace cbtl::app

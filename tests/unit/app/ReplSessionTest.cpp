@@ -1,0 +1,135 @@
+#include "app/repl/ReplSession.h"
+
+#include "app/DomainSolverOptions.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include <unistd.h>
+
+using namespace cbtl;
+using cbtl::app::repl::ReplSession;
+
+namespace {
+
+// A session over Cooking whose output is captured in memory.
+class Session {
+ public:
+  explicit Session(std::atomic<bool>* interrupt = nullptr) {
+    out_ = open_memstream(&buffer_, &size_);
+    app::repl::ReplConfig config;
+    config.solverOptions = [](const std::string& domain) { return app::domainSolverOptions(domain); };
+    config.interrupt = interrupt;
+    session_ = std::make_unique<ReplSession>(config, out_);
+  }
+  ~Session() {
+    session_.reset();
+    std::fclose(out_);
+    std::free(buffer_);
+  }
+  // Runs `input` and returns what it printed.
+  std::string run(const std::string& input, ReplSession::Outcome expected = ReplSession::Outcome::Ok) {
+    const std::size_t before = (std::fflush(out_), size_);
+    EXPECT_EQ(session_->execute(input), expected) << input;
+    std::fflush(out_);
+    return std::string(buffer_ + before, size_ - before);
+  }
+  ReplSession& operator*() { return *session_; }
+
+ private:
+  char* buffer_ = nullptr;
+  std::size_t size_ = 0;
+  std::FILE* out_ = nullptr;
+  std::unique_ptr<ReplSession> session_;
+};
+
+const std::string kCooking = std::string(CBTL_DOMAINS_DIR) + "/cooking/cooking.cbtl";
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST(ReplSession, UndoRestoresTheModelExactly) {
+  const auto dir = std::filesystem::temp_directory_path() / ("cbtl-repl-undo-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  Session s;
+  s.run("load " + kCooking);
+  s.run("profile save " + (dir / "before.json").string());
+  s.run("feedback mealCritique(seasoning, salt, 3, 31, 0.9, wantHotter, wantMore)");
+  EXPECT_NE(s.run("learn").find("learned 2 labels from 1 event"), std::string::npos);
+  s.run("profile save " + (dir / "learned.json").string());
+  EXPECT_NE(slurp(dir / "before.json"), slurp(dir / "learned.json"));
+  s.run("undo");
+  s.run("profile save " + (dir / "after.json").string());
+  EXPECT_EQ(slurp(dir / "before.json"), slurp(dir / "after.json"));
+  s.run("undo", ReplSession::Outcome::Failed);
+  // A profile load is undone the same way.
+  s.run("profile load " + (dir / "learned.json").string());
+  s.run("undo");
+  s.run("profile save " + (dir / "after-load.json").string());
+  EXPECT_EQ(slurp(dir / "before.json"), slurp(dir / "after-load.json"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ReplSession, ActQueuesTheSimulatedUsersFeedback) {
+  Session s;
+  s.run("load " + kCooking);
+  s.run("act", ReplSession::Outcome::Failed);  // nothing solved yet
+  EXPECT_NE(s.run("solve").find("status: solved"), std::string::npos);
+  const std::string acted = s.run("act");
+  EXPECT_NE(acted.find("the user: mealCritique("), std::string::npos) << acted;
+  EXPECT_NE(s.run("show feedback").find("[simulated user]"), std::string::npos);
+  s.run("act", ReplSession::Outcome::Failed);  // a plan is carried out once
+  EXPECT_NE(s.run("learn").find("labels in the model"), std::string::npos);
+  s.run("learn", ReplSession::Outcome::Failed);
+}
+
+TEST(ReplSession, AnInterruptStopsTheSolveWithoutAPlan) {
+  std::atomic<bool> interrupt{false};
+  Session s(&interrupt);
+  s.run("load " + kCooking);
+  // execute() clears a Ctrl-C pressed at the prompt, so the flag is raised from inside the command: the solver's
+  // first iteration sees it only if it is still set, which a second thread guarantees here.
+  std::atomic<bool> stop{false};
+  std::thread raiser([&] {
+    while (!stop.load()) interrupt.store(true);
+  });
+  for (const char* ing : {"salt", "pepper", "sugar", "flour"}) s.run(std::string("observe stock[") + ing + "] = 0");
+  const std::string out = s.run("solve");
+  stop.store(true);
+  raiser.join();
+  EXPECT_NE(out.find("status: interrupted"), std::string::npos) << out;
+  EXPECT_EQ(out.find("plan ("), std::string::npos);
+  EXPECT_NE(s.run("observe simulator").find("a new cooking world"), std::string::npos);
+}
+
+TEST(ReplSession, CompletionOffersCommandsAndTheProgramsNames) {
+  Session s;
+  EXPECT_EQ((*s).completions("li"), std::vector<std::string>{"list"});
+  EXPECT_EQ((*s).completions("re"), (std::vector<std::string>{"reload", "reset"}));
+  EXPECT_EQ((*s).completions("list ta"), std::vector<std::string>{"tasks"});
+  s.run("load " + kCooking);
+  EXPECT_EQ((*s).completions("observe stock[s"), (std::vector<std::string>{"stock[salt]", "stock[sugar]"}));
+  EXPECT_EQ((*s).completions("feedback mealC"), std::vector<std::string>{"mealCritique("});
+  EXPECT_EQ((*s).completions("feedback mealCritique(seasoning, salt, 3, 31, 0.9, wantH"),
+            std::vector<std::string>{"wantHotter"});
+  EXPECT_EQ((*s).completions("solve h"), std::vector<std::string>{"hard"});
+}
+
+TEST(ReplSession, UnfinishedInputContinues) {
+  EXPECT_TRUE(ReplSession::needsMoreInput("feedback mealCritique(seasoning,"));
+  EXPECT_TRUE(ReplSession::needsMoreInput("observe x = \"open ("));
+  EXPECT_TRUE(ReplSession::needsMoreInput("solve \\"));
+  EXPECT_FALSE(ReplSession::needsMoreInput("observe x = \"(\""));
+  EXPECT_FALSE(ReplSession::needsMoreInput("feedback f(a, (1, 2))"));
+}

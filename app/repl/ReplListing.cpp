@@ -55,7 +55,8 @@ const std::vector<ReplSession::CommandInfo>& ReplSession::commands() {
       {"reload", "", "load the same file again, keeping what was learned when it still fits"},
       {"list", "variables|constraints|personal|skills|tasks|observations|events", "what the program declares"},
       {"show", "observations|plan|feedback|profile", "the current observation, plan, queued feedback or model"},
-      {"observe", "NAME = VALUE | simulator [SEED]", "set one observation, or take them all from a new world"},
+      {"observe", "NAME = VALUE | file PATH | simulator [SEED]",
+       "set one observation, those of a JSON file, or take them all from a new world"},
       {"solve", "[TASK] [exploit|explore|hard] [--replan]",
        "solve a task: hard + personalized constraints (exploit, the default), hard only maximizing entropy "
        "(explore), or hard only"},
@@ -219,6 +220,7 @@ std::vector<std::string> ReplSession::namesOf(const std::string& kind) const {
   } else if (kind == "observe") {
     for (const auto& [name, slot] : lp_->program().observationSlots()) names.push_back(name);
     names.push_back("simulator");
+    names.push_back("file");
   } else if (kind == "why-not") {
     for (const auto& v : g.variables) names.push_back(v.name);
   } else if (kind == "feedback") {

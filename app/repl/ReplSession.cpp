@@ -1,7 +1,9 @@
 #include "app/repl/ReplSession.h"
 
+#include "app/ObservationFile.h"
 #include "app/PlanReport.h"
 #include "app/SimulatorFacts.h"
+#include "app/SolutionJson.h"
 #include "app/repl/ValueSyntax.h"
 #include "domains/DomainRegistry.h"
 #include "runtime/approach/Experiment.h"
@@ -38,13 +40,6 @@ std::optional<std::pair<std::string, std::string>> assignmentOf(const std::strin
   const auto eq = args.find('=');
   if (eq == std::string::npos) return std::nullopt;
   return std::pair{trim(args.substr(0, eq)), trim(args.substr(eq + 1))};
-}
-
-const char* statusMarker(const approach::Plan& plan) {
-  if (plan.solve.outcome == solver::SolveOutcome::Interrupted) return "status: interrupted";
-  if (plan.refused()) return "status: refused (failed the independent re-check)";
-  if (plan.ok) return "status: solved";
-  return "status: unsatisfiable within budget";
 }
 
 }  // namespace
@@ -230,8 +225,13 @@ bool ReplSession::cmdObserve(const std::string& args) {
     printObservation(out_, lp_->program(), observation_);
     return true;
   }
+  if (w[0] == "file") {
+    if (w.size() != 2) return fail("observe file PATH (a JSON object of observations by name)");
+    return observeFile(w[1]);
+  }
   const auto a = assignmentOf(args);
-  if (!a) return fail("observe NAME = VALUE, observe simulator [SEED], or observe alone to show them");
+  if (!a)
+    return fail("observe NAME = VALUE, observe file PATH, observe simulator [SEED], or observe alone to show them");
   const auto& slots = lp_->program().observationSlots();
   const auto slot = slots.find(a->first);
   if (slot == slots.end()) return fail(fmt::format("no observation named '{}' (list observations)", a->first));
@@ -246,6 +246,25 @@ bool ReplSession::cmdObserve(const std::string& args) {
   typedObservations_[a->first] = a->second;
   fmt::print(out_, "{} = {}\n", a->first,
              renderObserved(lp_->program(), slot->second.type, observation_.data() + slot->second.offset));
+  return true;
+}
+
+bool ReplSession::observeFile(const std::string& path) {
+  const rt::Program& program = lp_->program();
+  const sim::Observation entries = readObservationEntries(path, program);
+  std::vector<double> updated = observation_;  // all or nothing: a bad entry changes no observation
+  for (const auto& [name, value] : entries) {
+    const auto& slot = program.observationSlots().at(name);
+    std::string error;
+    if (!approach::fromSimValue(program, slot.type, value, updated.data() + slot.offset, error))
+      return fail(fmt::format("{}: {}: {}", path, name, error));
+  }
+  observation_ = std::move(updated);
+  for (const auto& [name, value] : entries) {
+    const auto& slot = program.observationSlots().at(name);
+    typedObservations_[name] = renderObserved(program, slot.type, observation_.data() + slot.offset);
+    fmt::print(out_, "{} = {}\n", name, typedObservations_[name]);
+  }
   return true;
 }
 
@@ -278,7 +297,7 @@ bool ReplSession::cmdSolve(const std::string& args) {
   printSolution(out_, *plan);
   if (!plan->ok) printSolveStatistics(out_, *plan);
   printRecheck(out_, *plan);
-  fmt::print(out_, "{}\n", statusMarker(*plan));
+  fmt::print(out_, "status: {}\n", solveStatus(*plan));
   planObservation_ = observation_;
   planActed_ = false;
   const bool ok = plan->ok;

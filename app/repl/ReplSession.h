@@ -97,6 +97,7 @@ class ReplSession {
   bool cmdList(const std::string& args);
   bool cmdShow(const std::string& args);
   bool cmdObserve(const std::string& args);
+  bool observeFile(const std::string& path);
   bool cmdSolve(const std::string& args);
   bool cmdExplain(const std::string& args);
   bool cmdWhyNot(const std::string& args);

@@ -5,7 +5,9 @@
 #include "tools/cbtl/ErrorHandling.h"
 #include "tools/cbtl/RuntimeSupport.h"
 
+#include "app/ObservationFile.h"
 #include "app/PlanReport.h"
+#include "app/SolutionJson.h"
 #include "runtime/approach/Planner.h"
 #include "runtime/approach/ValueBridge.h"
 #include "runtime/model/UserModel.h"
@@ -18,14 +20,14 @@
 namespace {
 
 struct SolveArgs {
-  std::string file, task, csp = "exploit", profile, stdlibDir;
+  std::string file, task, csp = "exploit", profile, stdlibDir, observe, format = "text";
   std::uint64_t seed = 0;
   bool explain = false, replan = false;
   cbtl::cli::SolverArgs solver;
   cbtl::cli::TextBackendArgs text;
 };
 
-int runSolve(const SolveArgs& a) {
+int runSolve(const SolveArgs& a, bool& statusPrinted) {
   using namespace cbtl;
   const std::optional<approach::CspChoice> choice = approach::cspChoiceNamed(a.csp);
   if (!choice) {
@@ -43,23 +45,33 @@ int runSolve(const SolveArgs& a) {
   }
   model::UserModel user(lp->graph(), *textBackend);
   if (!a.profile.empty()) user.load(a.profile);
-  std::vector<double> observation(lp->program().observationWidth(), 0.0);
+  sim::Observation observed;
   if (auto world = domains::createSimulator(lp->graph().domain, app::simulatorFacts(*lp), {}, a.seed)) {
     lp->syncWorld(*world);
     if (a.task.empty()) task = static_cast<int>(lp->taskFor(*world, static_cast<std::size_t>(task)));
-    observation = approach::observationVector(lp->program(), world->observe());
-  } else if (lp->program().observationWidth() > 0) {
-    fmt::print(stderr, "cbtl solve: note: no simulator for domain '{}'; observations are zero\n", lp->graph().domain);
+    observed = world->observe();
+  } else if (lp->program().observationWidth() > 0 && a.observe.empty()) {
+    fmt::print(stderr, "cbtl solve: note: no simulator for domain '{}' and no --observe file; observations are zero\n",
+               lp->graph().domain);
   }
+  std::vector<double> observation(lp->program().observationWidth(), 0.0);
+  if (!a.observe.empty()) observed = app::readObservationFile(a.observe, lp->program(), std::move(observed));
+  if (!observed.empty() || !a.observe.empty()) observation = approach::observationVector(lp->program(), observed);
   solver::Solver solver(cli::solverOptionsFor(a.solver, lp->graph().domain), approach::deriveSeed(a.seed, 1));
   const approach::Plan plan =
       approach::makePlan(*lp, static_cast<std::size_t>(task), observation, *choice, a.replan, solver, user);
-  app::printSolution(stdout, plan);
-  if (a.explain || !plan.ok) app::printSolveStatistics(stdout, plan);
-  if (a.explain) app::printObservation(stdout, lp->program(), observation);
-  if (a.explain && plan.ok) app::printPersonal(stdout, plan, plan.solve.assignment);
-  if (*textBackend) cli::printLlmFaults(stdout, (*textBackend)->faultReport());
-  app::printRecheck(stdout, plan);
+  statusPrinted = true;
+  if (a.format == "json") {
+    fmt::print("{}\n", app::solutionJson(plan, observation));
+  } else {
+    app::printSolution(stdout, plan);
+    if (a.explain || !plan.ok) app::printSolveStatistics(stdout, plan);
+    if (a.explain) app::printObservation(stdout, lp->program(), observation);
+    if (a.explain && plan.ok) app::printPersonal(stdout, plan, plan.solve.assignment);
+    if (*textBackend) cli::printLlmFaults(stdout, (*textBackend)->faultReport());
+    app::printRecheck(stdout, plan);
+    fmt::print("status: {}\n", app::solveStatus(plan));
+  }
   if (plan.refused()) {
     fmt::print(stderr,
                "cbtl solve: internal error: the solver accepted a solution that fails the independent re-check; it was "
@@ -86,6 +98,11 @@ void addSolve(CLI::App& app, int& exitCode) {
          "exploit: hard + personalized constraints; explore: hard constraints, maximize entropy; hard: hard only")
       ->capture_default_str();
   cmd->add_option("--profile", args->profile, "the user profile to personalize with");
+  cmd->add_option("--observe", args->observe,
+                  "a JSON file of observations by name, written over the simulator's (every one, without a simulator)");
+  cmd->add_option("--format", args->format, "text, or json: one cbtl-solution document (docs/runtime.md)")
+      ->check(CLI::IsMember({"text", "json"}))
+      ->capture_default_str();
   cmd->add_flag("--replan", args->replan, "if unsatisfiable, replan without personalized constraints");
   cmd->add_flag("--explain", args->explain,
                 "which constraints rejected candidates, how often, and where they are declared; the personalized "
@@ -94,7 +111,17 @@ void addSolve(CLI::App& app, int& exitCode) {
                   "standard library folder (default: embedded; not used by an emitted graph)");
   cbtl::cli::addSolverOptions(cmd, args->solver);
   cbtl::cli::addTextBackendOptions(cmd, args->text);
-  cmd->callback([args, &exitCode]() { cbtl::cli::runCommand("solve", exitCode, [&] { return runSolve(*args); }); });
+  cmd->callback([args, &exitCode]() {
+    bool statusPrinted = false;
+    cbtl::cli::runCommand("solve", exitCode, [&] { return runSolve(*args, statusPrinted); });
+    // Every solve ends with a status a script can test, bad input included (its message is on stderr).
+    if (!statusPrinted) {
+      if (args->format == "json")
+        fmt::print("{{\"format\": \"cbtl-solution\", \"version\": 1, \"status\": \"error\"}}\n");
+      else
+        fmt::print("status: error\n");
+    }
+  });
 }
 
 const cbtl::cli::RegisterCommand registerSolve(20, addSolve);

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# The REPL's loop from the command line, for scripts and other programs: `cbtl solve --observe FILE` (observations
+# from a file, checked against their declarations), `--format json` (one cbtl-solution document), and the status
+# marker every solve ends with (solved / unsatisfiable / error; exit 0 / 3 / 1).
+# usage: loop_cli.sh CBTL DOMAINS_DIR
+set -u
+cbtl=$1
+domains=$2
+source "$(dirname "$0")/expect.sh"
+
+# Cooking's program under a domain name no simulator serves: every observation must come from the file.
+pantry=$work/pantry.cbtl
+sed 's/^domain cooking;/domain pantry;/' "$cooking" >"$pantry"
+stock() { printf '{"stock[salt]": %s, "stock[pepper]": %s, "stock[sugar]": 5, "stock[flour]": 5}\n' "$1" "$2"; }
+stock 5 5 >"$work/plenty.json"
+stock 0.1 5 >"$work/no-salt.json"   # the seasoning spec needs 0.9 .. 1.1 of salt
+echo '{"stock[salt]": 5}' >"$work/partial.json"
+echo '{"stock[salt]": "lots", "stock[pepper]": 5, "stock[sugar]": 5, "stock[flour]": 5}' >"$work/bad-type.json"
+echo '{"stok": 1}' >"$work/bad-key.json"
+echo '{"stock[salt]": 5,' >"$work/not-json.json"
+echo '[1, 2]' >"$work/not-object.json"
+
+expect 0 '^status: solved$' -- "$cbtl" solve "$pantry" --observe "$work/plenty.json"
+expect 3 '^status: unsatisfiable$' -- "$cbtl" solve "$pantry" --observe "$work/no-salt.json" --max-iters 300
+expect 3 'no --observe file; observations are zero' -- "$cbtl" solve "$pantry" --max-iters 300
+expect 1 'partial.json: no value for stock\[flour\], stock\[pepper\], stock\[sugar\]' -- \
+  "$cbtl" solve "$pantry" --observe "$work/partial.json"
+expect 1 '^status: error$' -- "$cbtl" solve "$pantry" --observe "$work/partial.json"
+expect 1 'bad-type.json: /stock\[salt\]: expected a real number' -- "$cbtl" solve "$pantry" --observe "$work/bad-type.json"
+expect 1 "bad-key.json: /stok: the program has no observation 'stok' \(it has: stock\[flour\]" -- \
+  "$cbtl" solve "$pantry" --observe "$work/bad-key.json"
+expect 1 'not-json.json: not JSON' -- "$cbtl" solve "$pantry" --observe "$work/not-json.json"
+expect 1 'not-object.json: expected an object' -- "$cbtl" solve "$pantry" --observe "$work/not-object.json"
+expect 1 'missing.json: cannot read' -- "$cbtl" solve "$pantry" --observe "$work/missing.json"
+expect 2 'format' -- "$cbtl" solve "$pantry" --format yaml
+# With a simulator the file's values are written over the simulator's.
+expect 0 '^status: solved$' -- "$cbtl" solve "$cooking" --observe "$work/partial.json"
+
+# json: one document, the same bytes for the same seed, the file's observation in it, the status field set.
+json() { python3 -c 'import json, sys; d = json.load(sys.stdin); print(eval(sys.argv[1]))' "$1"; }
+out=$("$cbtl" solve "$pantry" --observe "$work/plenty.json" --format json --seed 4)
+again=$("$cbtl" solve "$pantry" --observe "$work/plenty.json" --format json --seed 4)
+[[ $out == "$again" ]] || fail "json solve: two runs with --seed 4 differ"
+[[ $(json 'd["status"], d["format"], d["version"]' <<<"$out") == "('solved', 'cbtl-solution', 1)" ]] ||
+  fail "json solve: header: $(head -c 200 <<<"$out")"
+[[ $(json 'd["observation"]["stock[salt]"]' <<<"$out") == 5* ]] || fail "json solve: observation not from the file"
+[[ $(json 'd["recheck"]["holds"]' <<<"$out") == True ]] || fail "json solve: re-check does not hold"
+[[ $(json 'd["plan"][-1]["action"]' <<<"$out") == serve ]] || fail "json solve: plan does not end with serve"
+[[ $(json 'd["assignment"]["used[salt]"]' <<<"$out") == True ]] || fail "json solve: salt not used"
+# Quantities respect the stock given in the file.
+[[ $(json 'all(d["assignment"][f"quantity[{i}]"] <= 5 for i in ("salt", "pepper"))' <<<"$out") == True ]] ||
+  fail "json solve: a quantity exceeds the file's stock"
+out=$("$cbtl" solve "$pantry" --observe "$work/no-salt.json" --format json --max-iters 300)
+[[ $? -eq 3 ]] || fail "json unsatisfiable solve: exit code"
+[[ $(json 'd["status"], "assignment" in d, len(d["constraints"]) > 0' <<<"$out") == "('unsatisfiable', False, True)" ]] ||
+  fail "json unsatisfiable solve: $(head -c 200 <<<"$out")"
+out=$("$cbtl" solve "$pantry" --observe "$work/bad-key.json" --format json 2>/dev/null)
+[[ $(json 'd["status"]' <<<"$out") == error ]] || fail "json error: $out"
+
+echo "$failures failure(s)"
+[[ $failures -eq 0 ]]

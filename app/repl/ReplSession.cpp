@@ -414,26 +414,11 @@ bool ReplSession::cmdFeedback(const std::string& args) {
     showPending();
     return true;
   }
-  SyntaxError syntax;
-  auto event = parseEvent(args, syntax);
-  if (!event) return fail(fmt::format("{}\n  {}\n  {}^", syntax.message, args, std::string(syntax.column, ' ')));
-  const auto& decls = lp_->graph().feedback;
-  const auto decl =
-      std::find_if(decls.begin(), decls.end(), [&](const ir::Function& f) { return f.name == event->name; });
-  if (decl == decls.end()) return fail(fmt::format("no feedback event named '{}' (list events)", event->name));
-  if (decl->params.size() != event->args.size())
-    return fail(fmt::format("{} takes {} argument{}, not {}", decl->name, decl->params.size(),
-                            decl->params.size() == 1 ? "" : "s", event->args.size()));
-  for (std::size_t i = 0; i < event->args.size(); ++i) {
-    std::string error;
-    const rt::ValueType type = lp_->program().typeOf(decl->params[i].type);
-    if (!coerceTo(lp_->program(), type, event->args[i], error))
-      return fail(fmt::format("{}, argument {} ({}): {}\n  {}\n  {}^", decl->name, i + 1, decl->params[i].name, error,
-                              args, std::string(event->argColumns[i], ' ')));
-  }
-  sim::FeedbackEvent e{event->name, std::move(event->args)};
-  fmt::print(out_, "queued {} ({} pending; learn applies them)\n", renderEvent(e), pending_.size() + 1);
-  pending_.push_back({std::move(e), "typed"});
+  std::string error;
+  std::optional<sim::FeedbackEvent> e = checkedEvent(lp_->program(), args, error);
+  if (!e) return fail(error);
+  fmt::print(out_, "queued {} ({} pending; learn applies them)\n", renderEvent(*e), pending_.size() + 1);
+  pending_.push_back({std::move(*e), "typed"});
   return true;
 }
 

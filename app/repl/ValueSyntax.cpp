@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -311,6 +312,38 @@ std::string describeType(const rt::Program& program, const rt::ValueType& type) 
       break;
   }
   return rt::toString(type.kind);
+}
+
+std::optional<sim::FeedbackEvent> checkedEvent(const rt::Program& program, const std::string& text,
+                                               std::string& error) {
+  const auto caret = [&](std::size_t column) { return fmt::format("\n  {}\n  {}^", text, std::string(column, ' ')); };
+  SyntaxError syntax;
+  auto event = parseEvent(text, syntax);
+  if (!event) {
+    error = syntax.message + caret(syntax.column);
+    return std::nullopt;
+  }
+  const auto& decls = program.graph().feedback;
+  const auto decl =
+      std::find_if(decls.begin(), decls.end(), [&](const ir::Function& f) { return f.name == event->name; });
+  if (decl == decls.end()) {
+    error = fmt::format("no feedback event named '{}' (list events)", event->name);
+    return std::nullopt;
+  }
+  if (decl->params.size() != event->args.size()) {
+    error = fmt::format("{} takes {} argument{}, not {}", decl->name, decl->params.size(),
+                        decl->params.size() == 1 ? "" : "s", event->args.size());
+    return std::nullopt;
+  }
+  for (std::size_t i = 0; i < event->args.size(); ++i) {
+    std::string why;
+    if (!coerceTo(program, program.typeOf(decl->params[i].type), event->args[i], why)) {
+      error = fmt::format("{}, argument {} ({}): {}", decl->name, i + 1, decl->params[i].name, why) +
+              caret(event->argColumns[i]);
+      return std::nullopt;
+    }
+  }
+  return sim::FeedbackEvent{event->name, std::move(event->args)};
 }
 
 }  // namespace cbtl::app::repl

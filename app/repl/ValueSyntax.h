@@ -35,6 +35,10 @@ struct ParsedEvent {
 };
 std::optional<ParsedEvent> parseEvent(std::string_view text, SyntaxError& error);
 
+// A feedback event as typed, checked against its `feedback` declaration: its name, its argument count and every
+// argument's type. On error, nullopt and a message of three lines: what is wrong, the text, a caret under it.
+std::optional<sim::FeedbackEvent> checkedEvent(const rt::Program& program, const std::string& text, std::string& error);
+
 // Makes `value` the form the boundary uses for `type` (true/false for a bool, a qualified member's last part, a
 // text that was spelled as a name) and checks that it fits: a member of the enum or item set, an integer for int,
 // the width of a vector. Returns false with a message naming what was expected.

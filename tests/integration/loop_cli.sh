@@ -57,5 +57,41 @@ out=$("$cbtl" solve "$pantry" --observe "$work/no-salt.json" --format json --max
 out=$("$cbtl" solve "$pantry" --observe "$work/bad-key.json" --format json 2>/dev/null)
 [[ $(json 'd["status"]' <<<"$out") == error ]] || fail "json error: $out"
 
+# feedback: typed events learned into a profile; a bad event anywhere changes nothing.
+critique='mealCritique(seasoning, salt, 3, 31, 0.9, wantHotter, wantMore)'
+profile=$work/alice.json
+expect 0 'learned 2 labels from 1 event; the new profile .*alice.json holds 2 labels \(was 0\)' -- \
+  "$cbtl" feedback "$cooking" --profile "$profile" --event "$critique"
+cp "$profile" "$work/before.json"
+expect 1 "argument 6 \(heat\): 'tooHot' is not a TempCritique" -- \
+  "$cbtl" feedback "$cooking" --profile "$profile" --event "$critique" --event "${critique/wantHotter/tooHot}"
+expect 1 "expected ',' or '\)'" -- "$cbtl" feedback "$cooking" --profile "$profile" --event 'mealCritique(seasoning salt)'
+expect 1 "no feedback event named 'praise'" -- "$cbtl" feedback "$cooking" --profile "$profile" --event 'praise()'
+expect 1 'mealCritique takes 7 arguments, not 2' -- \
+  "$cbtl" feedback "$cooking" --profile "$profile" --event 'mealCritique(seasoning, salt)'
+cmp -s "$profile" "$work/before.json" || fail "feedback: a rejected event changed the profile"
+expect 2 'event' -- "$cbtl" feedback "$cooking" --profile "$profile"
+# About a solution: solve, then give feedback on what it chose; the profile grows and the next solve reads it.
+"$cbtl" solve "$cooking" --profile "$profile" --format json >"$work/sol.json"
+expect 0 'holds 4 labels \(was 2\)' -- \
+  "$cbtl" feedback "$cooking" --profile "$profile" --solution "$work/sol.json" --event "${critique/salt/pepper}"
+expect 1 'sol-unsat.json: /status: the solve it records found no solution' -- \
+  bash -c "'$cbtl' solve '$pantry' --observe '$work/no-salt.json' --format json --max-iters 50 >'$work/sol-unsat.json'; \
+           '$cbtl' feedback '$cooking' --profile '$profile' --solution '$work/sol-unsat.json' --event '$critique'"
+expect 1 'plenty.json: not a cbtl-solution' -- \
+  "$cbtl" feedback "$cooking" --profile "$profile" --solution "$work/plenty.json" --event "$critique"
+expect 0 '^status: solved$' -- "$cbtl" solve "$cooking" --profile "$profile"
+
+# Feeding: the dip the user names for the food on the plate is the one the next solve offers.
+feeding=$domains/feeding/feeding.cbtl
+"$cbtl" solve "$feeding" --format json --seed 2 >"$work/bite.json"
+food=$(json 'd["observation"]["foodOnPlate"]' <"$work/bite.json")
+offered=$(json 'd["assignment"]["acquireBite.dip"]' <"$work/bite.json")
+ideal=$(json '[x for x in d["observation"]["dipChoices"] if x != d["assignment"]["acquireBite.dip"]][0]' <"$work/bite.json")
+expect 0 'learned [0-9]+ labels? from 1 event' -- "$cbtl" feedback "$feeding" --profile "$work/bob.json" \
+  --solution "$work/bite.json" --event "dipAnswer($food, $offered, $ideal)"
+chosen=$("$cbtl" solve "$feeding" --format json --seed 2 --profile "$work/bob.json" | json 'd["assignment"]["acquireBite.dip"]')
+[[ $chosen == "$ideal" ]] || fail "feeding: after 'dipAnswer($food, $offered, $ideal)' the solve offers $chosen"
+
 echo "$failures failure(s)"
 [[ $failures -eq 0 ]]

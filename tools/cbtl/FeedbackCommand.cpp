@@ -1,0 +1,127 @@
+// cbtl feedback — one step of the learning loop from the command line: feedback events, typed as a person would
+// give them in the REPL, checked against their declarations, learned into a profile and saved.
+//
+//   cbtl feedback domains/cooking/cooking.cbtl --profile alice.json \
+//       --event 'mealCritique(seasoning, salt, 3, 31, 0.9, wantHotter, wantMore)' [--solution sol.json]
+//
+// Every event is checked before anything is learned: one bad event changes nothing. A profile file that does not
+// exist yet is created from the prior. The world the events' features are read in (an occlusion score, say) is the
+// solution's (--solution, from `cbtl solve --format json`) or else the domain simulator's with --seed, with
+// --observe values written over it.
+#include "tools/cbtl/CommandRegistry.h"
+#include "tools/cbtl/ErrorHandling.h"
+#include "tools/cbtl/RuntimeSupport.h"
+
+#include "app/ObservationFile.h"
+#include "app/PlanReport.h"
+#include "app/SolutionFile.h"
+#include "app/repl/ValueSyntax.h"
+#include "runtime/approach/ValueBridge.h"
+#include "runtime/model/UserModel.h"
+
+#include <fmt/core.h>
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace {
+
+struct FeedbackArgs {
+  std::string file, profile, solution, observe, stdlibDir;
+  std::vector<std::string> events;
+  std::uint64_t seed = 0;
+  cbtl::cli::TextBackendArgs text;
+};
+
+// The moment the events are about: the solution's when given, else the simulator's world (or zeros).
+cbtl::approach::StepWorld momentOf(const FeedbackArgs& a, cbtl::app::LoadedProgram& lp) {
+  using namespace cbtl;
+  approach::StepWorld moment;
+  sim::Observation observed;
+  if (!a.solution.empty()) {
+    app::SolutionMoment s = app::readSolutionFile(a.solution, lp.program());
+    moment.assignment = std::move(s.assignment);
+    moment.observation = std::move(s.observation);
+  } else if (auto world = domains::createSimulator(lp.graph().domain, app::simulatorFacts(lp), {}, a.seed)) {
+    lp.syncWorld(*world);
+    observed = world->observe();
+  }
+  if (!a.observe.empty()) {
+    if (!a.solution.empty()) {
+      observed = app::readObservationEntries(a.observe, lp.program());
+    } else {
+      observed = app::readObservationFile(a.observe, lp.program(), std::move(observed));
+    }
+  }
+  if (moment.observation.empty()) moment.observation.assign(lp.program().observationWidth(), 0.0);
+  for (const auto& [name, value] : observed) {
+    const auto& slot = lp.program().observationSlots().at(name);
+    std::string error;
+    if (!approach::fromSimValue(lp.program(), slot.type, value, moment.observation.data() + slot.offset, error))
+      throw std::runtime_error(fmt::format("observation {}: {}", name, error));
+  }
+  return moment;
+}
+
+int runFeedback(const FeedbackArgs& a) {
+  using namespace cbtl;
+  const auto textBackend = cli::makeTextBackend("feedback", a.text);
+  if (!textBackend) return 2;
+  auto lp = cli::loadForRun("feedback", a.file, a.stdlibDir);
+  if (!lp) return 1;
+  std::vector<sim::FeedbackEvent> events;
+  for (const auto& text : a.events) {
+    std::string error;
+    std::optional<sim::FeedbackEvent> e = app::repl::checkedEvent(lp->program(), text, error);
+    if (!e) {
+      fmt::print(stderr, "cbtl feedback: error: --event: {}\n", error);
+      return 1;
+    }
+    events.push_back(std::move(*e));
+  }
+  model::UserModel user(lp->graph(), *textBackend);
+  const bool exists = std::filesystem::exists(a.profile);
+  if (exists) user.load(a.profile);
+  const std::size_t before = user.dataCount();
+  const approach::StepWorld moment = momentOf(a, *lp);
+  const approach::LearnReport report = lp->learner().learn(events, user, moment);
+  for (const auto& p : report.problems) fmt::print("warning: not learned: {}\n", p);
+  for (const auto& m : report.modelErrors) fmt::print("warning: {}\n", m);
+  for (const auto& e : events) fmt::print("event: {}\n", app::renderEvent(e));
+  user.save(a.profile);
+  fmt::print("learned {} label{} from {} event{}; {} {} holds {} labels (was {})\n", report.labels,
+             report.labels == 1 ? "" : "s", events.size(), events.size() == 1 ? "" : "s",
+             exists ? "the profile" : "the new profile", a.profile, user.dataCount(), before);
+  if (*textBackend) cli::printLlmFaults(stdout, (*textBackend)->faultReport());
+  return 0;
+}
+
+void addFeedback(CLI::App& app, int& exitCode) {
+  auto args = std::make_shared<FeedbackArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "feedback", "learn feedback events, typed as in the REPL (name(args...)), into a user profile and save it");
+  cmd->add_option("file", args->file, "the domain's .cbtl file, or its graph from `cbtlc emit --format json`")
+      ->required();
+  cmd->add_option("--profile", args->profile, "the profile to update (created from the prior when missing)")
+      ->required();
+  cmd->add_option("--event", args->events, "a feedback event, e.g. 'dipAnswer(frenchFries, ketchup, bbqSauce)'")
+      ->required();
+  cmd->add_option("--solution", args->solution,
+                  "the solution the events are about (cbtl solve --format json): its assignment and observation");
+  cmd->add_option("--observe", args->observe, "a JSON file of observations by name, written over the world's");
+  cmd->add_option("--seed", args->seed, "seed of the domain simulator's world (without --solution)")
+      ->capture_default_str()
+      ->check(cbtl::cli::unsignedIn(0));
+  cmd->add_option("--stdlib", args->stdlibDir,
+                  "standard library folder (default: embedded; not used by an emitted graph)");
+  cbtl::cli::addTextBackendOptions(cmd, args->text);
+  cmd->callback(
+      [args, &exitCode]() { cbtl::cli::runCommand("feedback", exitCode, [&] { return runFeedback(*args); }); });
+}
+
+const cbtl::cli::RegisterCommand registerFeedback(21, addFeedback);
+
+}  // namespace

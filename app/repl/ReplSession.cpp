@@ -137,6 +137,12 @@ bool ReplSession::load(const std::string& path) {
   path_ = path;
   user_ = std::make_unique<model::UserModel>(lp_->graph(), config_.textBackend);
   const std::string& domain = lp_->graph().domain;
+  try {
+    loadStoredProfile();
+  } catch (const std::exception& e) {
+    dropProgram();
+    return fail(fmt::format("{}; '{}' was not loaded", e.what(), path));
+  }
   makeSolver();
   resetWorld(config_.seed);
   const auto& g = lp_->graph();
@@ -432,12 +438,18 @@ bool ReplSession::cmdLearn(const std::string& args) {
   // A label's feature may query the world (an occlusion score): it is read in the world as it is now.
   if (world_) lp_->syncWorld(*world_);
   const approach::LearnReport report = lp_->learner().learn(batch.events, *user_, stepWorld());
+  batch.what = fmt::format("learn of {} event{}", batch.events.size(), batch.events.size() == 1 ? "" : "s");
+  try {
+    batch.version = storeModel(pending_, "learn");
+  } catch (const std::exception& e) {
+    user_->fromJson(batch.modelBefore, "the model before the learn");
+    return fail(fmt::format("{}; nothing was learned (the feedback stays queued)", e.what()));
+  }
   for (const auto& p : report.problems) fmt::print(out_, "warning: not learned: {}\n", p);
   for (const auto& m : report.modelErrors) fmt::print(out_, "warning: {}\n", m);
-  fmt::print(out_, "learned {} label{} from {} event{} ({} labels in the model)\n", report.labels,
+  fmt::print(out_, "learned {} label{} from {} event{} ({} labels in the model){}\n", report.labels,
              report.labels == 1 ? "" : "s", batch.events.size(), batch.events.size() == 1 ? "" : "s",
-             user_->dataCount());
-  batch.what = fmt::format("learn of {} event{}", batch.events.size(), batch.events.size() == 1 ? "" : "s");
+             user_->dataCount(), storedNote(batch.version));
   learned_.push_back(std::move(batch));
   pending_.clear();
   return true;
@@ -452,8 +464,18 @@ bool ReplSession::cmdUndo(const std::string& args) {
     return true;
   }
   if (learned_.empty()) return fail("nothing to undo");
+  const std::string after = user_->toJson();
   user_->fromJson(learned_.back().modelBefore, "the model before the last learn");
-  fmt::print(out_, "undid the {} ({} labels in the model)\n", learned_.back().what, user_->dataCount());
+  std::int64_t stored = 0;
+  try {
+    const LearnedBatch& b = learned_.back();
+    stored = storeModel({}, b.version > 0 ? fmt::format("undo of version {}", b.version) : "undo of " + b.what);
+  } catch (const std::exception& e) {
+    user_->fromJson(after, "the model before the undo");
+    return fail(fmt::format("{}; nothing was undone", e.what()));
+  }
+  fmt::print(out_, "undid the {} ({} labels in the model){}\n", learned_.back().what, user_->dataCount(),
+             storedNote(stored));
   learned_.pop_back();
   return true;
 }
@@ -461,7 +483,17 @@ bool ReplSession::cmdUndo(const std::string& args) {
 bool ReplSession::cmdReset(const std::string& args) {
   if (!args.empty()) return fail("reset takes no arguments");
   if (!requireProgram()) return false;
+  const std::string before = user_->toJson();
+  const bool hadData = user_->dataCount() > 0;
   user_->reset();
+  std::int64_t stored = 0;
+  try {
+    if (hadData) stored = storeModel({}, "reset to the prior");
+  } catch (const std::exception& e) {
+    user_->fromJson(before, "the model before the reset");
+    return fail(fmt::format("{}; nothing was reset", e.what()));
+  }
+  if (stored > 0) fmt::print(out_, "the prior model{}\n", storedNote(stored));
   pending_.clear();
   learned_.clear();
   plan_.reset();
@@ -495,8 +527,15 @@ bool ReplSession::cmdProfile(const std::string& args) {
       return fail(fmt::format("{} (the model is unchanged)", e.what()));
     }
     batch.what = "profile load of " + file;
+    try {
+      batch.version = storeModel({}, "import of " + file);
+    } catch (const std::exception& e) {
+      user_->fromJson(batch.modelBefore, "the model before the load");
+      return fail(fmt::format("{} (the model is unchanged)", e.what()));
+    }
+    const std::int64_t version = batch.version;
     learned_.push_back(std::move(batch));
-    fmt::print(out_, "loaded the profile {} ({} labels)\n", file, user_->dataCount());
+    fmt::print(out_, "loaded the profile {} ({} labels){}\n", file, user_->dataCount(), storedNote(version));
     return true;
   }
   return fail("profile show | profile save FILE | profile load FILE");

@@ -17,6 +17,7 @@
 #pragma once
 
 #include "app/LoadedProgram.h"
+#include "app/profile/ProfileStore.h"
 #include "runtime/approach/Approach.h"
 #include "runtime/approach/Learner.h"
 #include "runtime/approach/Planner.h"
@@ -43,6 +44,10 @@ struct ReplConfig {
   std::function<solver::SolverOptions(const std::string& domain)> solverOptions;
   // Set while a solve runs: it stops with Interrupted (the caller's SIGINT handler sets it; execute() clears it).
   std::atomic<bool>* interrupt = nullptr;
+  // A profile store (null: none): the loaded program's model starts from `user`'s stored profile for its domain,
+  // and every learn, undo, profile load and reset stores a new version (with the learned events' provenance).
+  std::shared_ptr<profile::ProfileStore> store;
+  std::string user;
 };
 
 class ReplSession {
@@ -74,8 +79,9 @@ class ReplSession {
  private:
   struct LearnedBatch {
     std::vector<sim::FeedbackEvent> events;
-    std::string modelBefore;  // the user model's JSON before the batch
-    std::string what;         // "learn of 3 events", "profile load of p.json"
+    std::string modelBefore;   // the user model's JSON before the batch
+    std::string what;          // "learn of 3 events", "profile load of p.json"
+    std::int64_t version = 0;  // the store's version it made (0: no store)
   };
   struct PendingEvent {
     sim::FeedbackEvent event;
@@ -83,6 +89,14 @@ class ReplSession {
   };
 
   bool load(const std::string& path);
+  // The profile store's part (ReplProfileStore.cpp). The head of the user's profile for the program's domain, read
+  // into the fresh model (none yet: the prior); throws model::ProfileError when it does not fit the program.
+  void loadStoredProfile();
+  // Stores the current model as a new version and returns its number (0 without a store). Throws
+  // profile::StoreError, after which the caller puts the model back.
+  std::int64_t storeModel(const std::vector<PendingEvent>& events, const std::string& reason);
+  // " (stored as version N)", or "" for 0.
+  static std::string storedNote(std::int64_t version);
   void dropProgram();
   bool requireProgram();
   bool fail(const std::string& message);

@@ -344,6 +344,7 @@ void trainStep(Trial& tr, std::int64_t t) {
     if (!report.modelErrors.empty() && result.textModelErrors == 0)
       result.firstTextModelError = report.modelErrors.front();
     result.textModelErrors += static_cast<std::int64_t>(report.modelErrors.size());
+    if (config.recordFeedback) result.feedback.push_back({t, r.feedback});
   }
   if (r.preferencesChanged && config.nonstationary && config.adaptation == Adaptation::UserReset) tr.user.reset();
   if (r.taskDone) {
@@ -433,6 +434,8 @@ ExperimentResult runExperiment(const PreparedProgram& lp, const SimulatorFactory
   if (out.resumeFrom()) {
     restoreCheckpoint(tr, *out.resumeFrom());
     start = out.resumeFrom()->step;
+  } else if (!config.initialProfileJson.empty()) {
+    tr.user.fromJson(config.initialProfileJson, config.initialProfile);
   } else if (!config.initialProfile.empty()) {
     tr.user.load(config.initialProfile);
   }
@@ -456,7 +459,9 @@ ExperimentResult runExperiment(const PreparedProgram& lp, const SimulatorFactory
       throw std::runtime_error(s.error().describe());
     }
   }
-  out.finish(tr.user.toJson(), tr.result);
+  tr.result.finalProfile = tr.user.toJson();
+  tr.result.finalLabels = tr.user.dataCount();
+  out.finish(tr.result.finalProfile, tr.result);
   return tr.result;
 }
 

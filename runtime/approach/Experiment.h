@@ -64,6 +64,11 @@ struct ExperimentConfig {
   sim::SimulatorOptions simulator;
   solver::SolverOptions solverOptions;
   std::string initialProfile;  // a profile to start from (optional)
+  // Or the profile's JSON itself (a profile store's version), named by `initialProfile` in config.json.
+  std::string initialProfileJson;
+  // Keep every training step's learned feedback events in ExperimentResult::feedback (for a profile store's
+  // provenance). Only this process's steps: a resumed run keeps those after its checkpoint.
+  bool recordFeedback = false;
   // Makes the models of text factors (`model text(...)`); null: the offline descriptor model (no network).
   std::shared_ptr<const textpref::TextBackend> textBackend;
   RunMode runMode = RunMode::Fresh;  // what to do when outDir already holds a run
@@ -118,10 +123,19 @@ struct EvalPoint {
   std::map<std::string, MeasureTally> measures;        // by name, over this checkpoint's episodes
 };
 
+// The feedback events training step `step` learned from.
+struct StepFeedback {
+  std::int64_t step = 0;
+  std::vector<sim::FeedbackEvent> events;
+};
+
 struct ExperimentResult {
   std::vector<EvalPoint> evals;
-  std::int64_t mealsServed = 0;  // tasks completed in training
-  double trainSatisfaction = 0;  // sum over training
+  std::string finalProfile;            // the learned model at the end (UserModel::toJson)
+  std::size_t finalLabels = 0;         // its labelled examples (UserModel::dataCount)
+  std::vector<StepFeedback> feedback;  // when ExperimentConfig::recordFeedback
+  std::int64_t mealsServed = 0;        // tasks completed in training
+  double trainSatisfaction = 0;        // sum over training
   std::int64_t trainSolves = 0, trainSolveFailures = 0, trainReplans = 0;
   Competence train, eval;  // eval: over every checkpoint
   std::uint64_t solverIterations = 0;

@@ -93,5 +93,39 @@ expect 0 'learned [0-9]+ labels? from 1 event' -- "$cbtl" feedback "$feeding" --
 chosen=$("$cbtl" solve "$feeding" --format json --seed 2 --profile "$work/bob.json" | json 'd["assignment"]["acquireBite.dip"]')
 [[ $chosen == "$ideal" ]] || fail "feeding: after 'dipAnswer($food, $offered, $ideal)' the solve offers $chosen"
 
+# The profile store: feedback and run write versions with their events; profile lists, shows, exports, imports and
+# rolls back; nothing is ever deleted.
+db=$work/profiles.sqlite
+expect 0 "version 1 in .*profiles.sqlite\) holds 2 labels" -- \
+  "$cbtl" feedback "$cooking" --profile-db "$db" --user ann --event "$critique"
+expect 0 "version 2 in .*profiles.sqlite\) holds 4 labels \(was 2\)" -- \
+  "$cbtl" feedback "$cooking" --profile-db "$db" --user ann --solution "$work/sol.json" --event "${critique/salt/pepper}"
+expect 0 'stored the learned model as version 3 of ann.s cooking profile .*\(([1-9][0-9]*) feedback events\)' -- \
+  "$cbtl" run "$cooking" --profile-db "$db" --user ann --steps 150 --eval-every 150 --eval-tasks 1
+expect 0 '^ann +cooking +version 3 +\(3 versions, [1-9][0-9]* events\)' -- "$cbtl" profile list --db "$db"
+expect 0 'event 2  command  mealCritique\(seasoning, pepper, .*\(with its solution\)' -- \
+  "$cbtl" profile history --db "$db" ann cooking
+expect 0 'version 3 .*run: cbtl, seed 0, 150 steps' -- "$cbtl" profile history --db "$db" ann cooking
+expect 0 'event [0-9]+  simulator  mealCritique' -- "$cbtl" profile history --db "$db" ann cooking
+expect 0 "version 4 of ann's cooking profile holds version 1's model" -- "$cbtl" profile rollback --db "$db" ann cooking 1
+expect 0 "version 4 of 4 \(rollback to 1, .*\): 2 labels" -- "$cbtl" profile show --db "$db" ann cooking
+"$cbtl" profile export --db "$db" ann cooking --version 2 --out "$work/v2.json" 2>/dev/null
+cmp -s <(python3 -m json.tool --sort-keys "$work/v2.json") <(python3 -m json.tool --sort-keys "$profile") ||
+  fail "profile export: version 2 is not the model the JSON profile has after the same two events"
+expect 0 '"n"|"generators"' -- "$cbtl" profile export --db "$db" ann cooking
+expect 0 "imported .*v2.json as version 1 of bo's cooking profile" -- "$cbtl" profile import --db "$db" bo "$work/v2.json"
+expect 0 '^status: solved$' -- "$cbtl" solve "$cooking" --profile "$work/v2.json"
+expect 1 "'ann' has no version 9 of a cooking profile" -- "$cbtl" profile rollback --db "$db" ann cooking 9
+expect 1 "'cy' has no cooking profile" -- "$cbtl" profile show --db "$db" cy cooking
+expect 1 'no such profile store' -- "$cbtl" profile list --db "$work/none.sqlite"
+expect 1 'not a SQLite database' -- "$cbtl" profile list --db "$work/plenty.json"
+expect 1 'not a cbtl-profile' -- "$cbtl" profile import --db "$db" ann "$work/plenty.json"
+expect 1 'not a SQLite database' -- "$cbtl" feedback "$cooking" --profile-db "$work/plenty.json" --user ann --event "$critique"
+expect 2 'user' -- "$cbtl" feedback "$cooking" --profile-db "$db" --event "$critique"
+expect 2 'profile' -- "$cbtl" run "$cooking" --profile "$profile" --profile-db "$db" --user ann
+expect 2 '' -- "$cbtl" profile
+[[ $(sqlite3 "$db" 'PRAGMA integrity_check') == ok ]] || fail "profile store: integrity check"
+[[ $(sqlite3 "$db" 'PRAGMA journal_mode') == wal ]] || fail "profile store: not in WAL mode"
+
 echo "$failures failure(s)"
 [[ $failures -eq 0 ]]

@@ -1,7 +1,7 @@
 // cbtl feedback — one step of the learning loop from the command line: feedback events, typed as a person would
 // give them in the REPL, checked against their declarations, learned into a profile and saved.
 //
-//   cbtl feedback domains/cooking/cooking.cbtl --profile alice.json \
+//   cbtl feedback domains/cooking/cooking.cbtl --profile alice.json
 //       --event 'mealCritique(seasoning, salt, 3, 31, 0.9, wantHotter, wantMore)' [--solution sol.json]
 //
 // Every event is checked before anything is learned: one bad event changes nothing. A profile file that does not
@@ -15,6 +15,7 @@
 #include "app/ObservationFile.h"
 #include "app/PlanReport.h"
 #include "app/SolutionFile.h"
+#include "app/profile/ProfileStore.h"
 #include "app/repl/ValueSyntax.h"
 #include "runtime/approach/ValueBridge.h"
 #include "runtime/model/UserModel.h"
@@ -24,13 +25,14 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace {
 
 struct FeedbackArgs {
-  std::string file, profile, solution, observe, stdlibDir;
+  std::string file, profile, profileDb, user, solution, observe, stdlibDir;
   std::vector<std::string> events;
   std::uint64_t seed = 0;
   cbtl::cli::TextBackendArgs text;
@@ -83,18 +85,42 @@ int runFeedback(const FeedbackArgs& a) {
     events.push_back(std::move(*e));
   }
   model::UserModel user(lp->graph(), *textBackend);
-  const bool exists = std::filesystem::exists(a.profile);
-  if (exists) user.load(a.profile);
+  const std::string& domain = lp->graph().domain;
+  std::optional<app::profile::ProfileStore> store;
+  bool exists = false;
+  if (!a.profileDb.empty()) {
+    store.emplace(a.profileDb);
+    if (const auto head = store->head(a.user, domain)) {
+      user.fromJson(head->model,
+                    fmt::format("{} ({}'s {} profile, version {})", a.profileDb, a.user, domain, head->version));
+      exists = true;
+    }
+  } else {
+    exists = std::filesystem::exists(a.profile);
+    if (exists) user.load(a.profile);
+  }
   const std::size_t before = user.dataCount();
+  std::string solutionText;
+  if (!a.solution.empty()) solutionText = app::readSolutionFile(a.solution, lp->program()).text;
   const approach::StepWorld moment = momentOf(a, *lp);
   const approach::LearnReport report = lp->learner().learn(events, user, moment);
   for (const auto& p : report.problems) fmt::print("warning: not learned: {}\n", p);
   for (const auto& m : report.modelErrors) fmt::print("warning: {}\n", m);
   for (const auto& e : events) fmt::print("event: {}\n", app::renderEvent(e));
-  user.save(a.profile);
+  std::string where = a.profile;
+  if (store) {
+    std::vector<app::profile::NewEvent> stored;
+    for (const auto& e : events)
+      stored.push_back({app::profile::EventSource::Command, app::renderEvent(e), solutionText});
+    const std::int64_t version = store->recordLearning(a.user, domain, stored, user.toJson(),
+                                                       static_cast<std::int64_t>(user.dataCount()), "learn");
+    where = fmt::format("{}'s {} profile (version {} in {})", a.user, domain, version, a.profileDb);
+  } else {
+    user.save(a.profile);
+  }
   fmt::print("learned {} label{} from {} event{}; {} {} holds {} labels (was {})\n", report.labels,
              report.labels == 1 ? "" : "s", events.size(), events.size() == 1 ? "" : "s",
-             exists ? "the profile" : "the new profile", a.profile, user.dataCount(), before);
+             exists ? "the profile" : "the new profile", where, user.dataCount(), before);
   if (*textBackend) cli::printLlmFaults(stdout, (*textBackend)->faultReport());
   return 0;
 }
@@ -105,8 +131,14 @@ void addFeedback(CLI::App& app, int& exitCode) {
       "feedback", "learn feedback events, typed as in the REPL (name(args...)), into a user profile and save it");
   cmd->add_option("file", args->file, "the domain's .cbtl file, or its graph from `cbtlc emit --format json`")
       ->required();
-  cmd->add_option("--profile", args->profile, "the profile to update (created from the prior when missing)")
-      ->required();
+  CLI::Option* file =
+      cmd->add_option("--profile", args->profile, "the profile JSON to update (created from the prior when missing)");
+  CLI::Option* db = cmd->add_option("--profile-db", args->profileDb,
+                                    "or the profile store (SQLite) to update: a new version of --user's profile");
+  CLI::Option* user = cmd->add_option("--user", args->user, "whose profile, in --profile-db");
+  file->excludes(db);
+  db->needs(user);
+  user->needs(db);
   cmd->add_option("--event", args->events, "a feedback event, e.g. 'dipAnswer(frenchFries, ketchup, bbqSauce)'")
       ->required();
   cmd->add_option("--solution", args->solution,
@@ -118,8 +150,11 @@ void addFeedback(CLI::App& app, int& exitCode) {
   cmd->add_option("--stdlib", args->stdlibDir,
                   "standard library folder (default: embedded; not used by an emitted graph)");
   cbtl::cli::addTextBackendOptions(cmd, args->text);
-  cmd->callback(
-      [args, &exitCode]() { cbtl::cli::runCommand("feedback", exitCode, [&] { return runFeedback(*args); }); });
+  cmd->callback([args, &exitCode]() {
+    if (args->profile.empty() && args->profileDb.empty())
+      throw CLI::RequiredError("--profile or --profile-db (where the learned profile goes)");
+    cbtl::cli::runCommand("feedback", exitCode, [&] { return runFeedback(*args); });
+  });
 }
 
 const cbtl::cli::RegisterCommand registerFeedback(21, addFeedback);

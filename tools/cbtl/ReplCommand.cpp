@@ -28,7 +28,7 @@
 namespace {
 
 struct ReplArgs {
-  std::string file, profile, stdlibDir;
+  std::string file, profile, profileDb, user, stdlibDir;
   std::uint64_t seed = 0;
   bool echo = false;
   cbtl::cli::SolverArgs solver;
@@ -99,6 +99,10 @@ int runRepl(const ReplArgs& a) {
     return cli::solverOptionsFor(solverArgs, domain);
   };
   config.interrupt = &gInterrupt;
+  if (!a.profileDb.empty()) {
+    config.store = std::make_shared<app::profile::ProfileStore>(a.profileDb);
+    config.user = a.user;
+  }
   app::repl::ReplSession session(config, stdout);
   gSession = &session;
 
@@ -159,7 +163,14 @@ void addRepl(CLI::App& app, int& exitCode) {
   CLI::App* cmd = app.add_subcommand(
       "repl", "an interactive session: load a domain, set observations, solve, explain, give feedback, learn");
   cmd->add_option("file", args->file, "a .cbtl file to load first");
-  cmd->add_option("--profile", args->profile, "a profile (JSON) to load after the file");
+  cmd->add_option("--profile", args->profile,
+                  "a profile (JSON) to load after the file (with --profile-db: imported as a new version)");
+  CLI::Option* db = cmd->add_option("--profile-db", args->profileDb,
+                                    "a profile store (SQLite): start from --user's stored profile, store every "
+                                    "learn, undo, profile load and reset as a new version");
+  CLI::Option* user = cmd->add_option("--user", args->user, "whose profile, in --profile-db");
+  db->needs(user);
+  user->needs(db);
   cmd->add_option("--seed", args->seed, "seed of the simulator's world and the solver")
       ->capture_default_str()
       ->check(cbtl::cli::unsignedIn(0));

@@ -6,21 +6,41 @@
 #include "tools/cbtl/ErrorHandling.h"
 #include "tools/cbtl/RuntimeSupport.h"
 
+#include "app/PlanReport.h"
+#include "app/profile/ProfileStore.h"
 #include "runtime/approach/RunDirectory.h"
 #include "runtime/model/UserModel.h"
 
 #include <fmt/core.h>
 
 #include <chrono>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace {
 
 struct RunArgs : cbtl::cli::TrialArgs {
-  std::string approach = "cbtl", out, profile;
+  std::string approach = "cbtl", out, profile, profileDb, user;
   std::uint64_t seed = 0;
   bool quiet = false, force = false, resume = false;
 };
+
+// The run's final model as a new version of the user's profile, with every event it learned from (source
+// "simulator"; the step is in the reason's text, not in a column).
+void storeRun(cbtl::app::profile::ProfileStore& store, const RunArgs& a, const std::string& domain,
+              const cbtl::approach::ExperimentResult& r) {
+  using namespace cbtl;
+  std::vector<app::profile::NewEvent> events;
+  for (const auto& step : r.feedback)
+    for (const auto& e : step.events) events.push_back({app::profile::EventSource::Simulator, app::renderEvent(e), ""});
+  const std::int64_t version =
+      store.recordLearning(a.user, domain, events, r.finalProfile, static_cast<std::int64_t>(r.finalLabels),
+                           fmt::format("run: {}, seed {}, {} steps", a.approach, a.seed, a.steps));
+  if (!a.quiet)
+    fmt::print("stored the learned model as version {} of {}'s {} profile in {} ({} feedback events)\n", version,
+               a.user, domain, a.profileDb, events.size());
+}
 
 int runTrial(const RunArgs& a) {
   using namespace cbtl;
@@ -42,6 +62,16 @@ int runTrial(const RunArgs& a) {
   c.outDir = a.out;
   c.progress = !a.quiet;
   c.initialProfile = a.profile;
+  std::optional<app::profile::ProfileStore> store;
+  if (!a.profileDb.empty()) {
+    store.emplace(a.profileDb);
+    if (const auto head = store->head(a.user, lp->graph().domain)) {
+      c.initialProfile =
+          fmt::format("{} ({}'s {} profile, version {})", a.profileDb, a.user, lp->graph().domain, head->version);
+      c.initialProfileJson = head->model;
+    }
+    c.recordFeedback = true;
+  }
   c.runMode = a.force ? approach::RunMode::Force : a.resume ? approach::RunMode::Resume : approach::RunMode::Fresh;
   c.testHook = approach::killHookFromEnvironment();
   const auto factory = cli::domainSimulator("run", *lp, c.simulator);
@@ -49,6 +79,7 @@ int runTrial(const RunArgs& a) {
   const auto start = std::chrono::steady_clock::now();
   const approach::ExperimentResult r = approach::runExperiment(*lp, *factory, c);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (store) storeRun(*store, a, lp->graph().domain, r);
   if (!a.quiet) {
     fmt::print("{} on {} (seed {}): {} steps, {} tasks completed in training, {} solves ({} failed, {} replanned)\n",
                a.approach, lp->graph().domain, a.seed, a.steps, r.mealsServed, r.trainSolves, r.trainSolveFailures,
@@ -102,7 +133,14 @@ void addRun(CLI::App& app, int& exitCode) {
       ->capture_default_str()
       ->check(cbtl::cli::unsignedIn(0));
   cmd->add_option("--out", args->out, "write train.csv, eval.csv, models and the profile here");
-  cmd->add_option("--profile", args->profile, "start from this user profile");
+  CLI::Option* file = cmd->add_option("--profile", args->profile, "start from this user profile");
+  CLI::Option* db = cmd->add_option("--profile-db", args->profileDb,
+                                    "start from --user's profile in this store and store the learned model as its "
+                                    "next version, with the feedback events of the run");
+  CLI::Option* user = cmd->add_option("--user", args->user, "whose profile, in --profile-db");
+  file->excludes(db);
+  db->needs(user);
+  user->needs(db);
   auto* force = cmd->add_flag("--force", args->force, "replace the run already in --out (only the files a run writes)");
   cmd->add_flag("--resume", args->resume, "continue the run in --out from its last checkpoint (same options)")
       ->excludes(force);

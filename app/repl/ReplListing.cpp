@@ -68,6 +68,8 @@ const std::vector<ReplSession::CommandInfo>& ReplSession::commands() {
       {"profile", "show | save FILE | load FILE", "the user model as profile JSON"},
       {"undo", "", "drop the last queued event, or else undo the last learn or profile load"},
       {"reset", "", "the prior user model, a fresh solver and a fresh world"},
+      {":eval", "EXPR",
+       "evaluate an expression at the last solution (or the initial values): :eval distance(platePos, plateXY)"},
       {"quit", "", "end the session (also exit, Ctrl-D)"},
   };
   return list;

@@ -77,7 +77,8 @@ ReplSession::Outcome ReplSession::execute(const std::string& input) {
       {"why-not", &ReplSession::cmdWhyNot},    {"act", &ReplSession::cmdAct},
       {"feedback", &ReplSession::cmdFeedback}, {"learn", &ReplSession::cmdLearn},
       {"profile", &ReplSession::cmdProfile},   {"undo", &ReplSession::cmdUndo},
-      {"reset", &ReplSession::cmdReset}};
+      {"reset", &ReplSession::cmdReset},       {":eval", &ReplSession::cmdEval},
+      {"eval", &ReplSession::cmdEval}};
   const auto it = handlers.find(name);
   if (it == handlers.end()) {
     fail(fmt::format("unknown command '{}' (help lists the commands)", name));

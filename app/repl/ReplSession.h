@@ -121,6 +121,7 @@ class ReplSession {
   bool cmdProfile(const std::string& args);
   bool cmdUndo(const std::string& args);
   bool cmdReset(const std::string& args);
+  bool cmdEval(const std::string& expr);  // ReplEval.cpp
 
   void listVariables() const;
   void listConstraints() const;

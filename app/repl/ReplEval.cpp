@@ -1,0 +1,110 @@
+// `:eval EXPR` — an expression of the language evaluated against the session's current assignment, as a GHCi or
+// utop user expects. The expression is compiled by the real compiler in the scope of the task last solved (its
+// variables, the program's constants, observations and functions): the program's own text is compiled again with
+// one extra `require` in that task's body, `(EXPR) == (EXPR)`, which type-checks EXPR as any comparable value
+// and leaves the layout of every variable unchanged; the left side is then compiled and evaluated alone. Skill
+// variables (`acquireBite.dip`) are not names in a task's scope, so `show plan` is the way to read them.
+#include "app/PlanReport.h"
+#include "app/repl/ReplSession.h"
+#include "runtime/core/ProgramCompiler.h"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace cbtl::app::repl {
+
+namespace {
+
+constexpr const char* kEvalName = "__repl_eval";
+
+// Where the extra require goes: before the closing brace of `task`, or at the end of a file without tasks.
+std::size_t insertionPoint(const std::string& text, const ir::Task& task) {
+  if (task.implicit || task.span.endLine == 0) return text.size();
+  std::size_t lineStart = 0;
+  for (std::uint32_t line = 1; line < task.span.endLine && lineStart != std::string::npos; ++line)
+    lineStart = text.find('\n', lineStart) + 1;
+  if (lineStart == std::string::npos || lineStart > text.size()) return text.size();
+  const std::size_t end = std::min(text.size(), lineStart + task.span.endColumn + 1);
+  const std::size_t brace = text.rfind('}', end);
+  return brace != std::string::npos && brace >= lineStart ? brace : text.size();
+}
+
+// The first diagnostic of a failed compile, without the location inside the rewritten text.
+std::string firstDiagnostic(const std::string& errors) {
+  std::istringstream in(errors);
+  std::string line, message, notes;
+  while (std::getline(in, line)) {
+    if (message.empty()) {
+      const std::size_t at = line.find("error");
+      if (at == std::string::npos) continue;
+      const std::size_t colon = line.find(": ", at);
+      message = colon != std::string::npos ? line.substr(colon + 2) : line.substr(at);
+    } else if (line.rfind("  = ", 0) == 0) {
+      notes += "\n" + line;
+    } else if (line.find("error") != std::string::npos && line.find(": ") != std::string::npos) {
+      break;
+    }
+  }
+  const std::size_t at = message.find(" in the constraint");
+  if (at != std::string::npos) message.replace(at, 18, " in the expression");
+  return message.empty() ? "the expression does not compile" : message + notes;
+}
+
+}  // namespace
+
+bool ReplSession::cmdEval(const std::string& expr) {
+  if (!requireProgram()) return false;
+  if (expr.empty()) return fail(":eval EXPR: an expression over the constants, observations and task variables");
+  std::ifstream in(path_);
+  std::stringstream source;
+  source << in.rdbuf();
+  if (!in || path_.size() < 5 || path_.compare(path_.size() - 5, 5, ".cbtl") != 0)
+    return fail(fmt::format(":eval compiles the program's source; '{}' is not a readable .cbtl file", path_));
+  const ir::Task& task = plan_ ? *plan_->csp.task : lp_->graph().tasks.front();
+  std::string text = source.str();
+  text.insert(insertionPoint(text, task), fmt::format("\nrequire {}: ({}) == ({});\n", kEvalName, expr, expr));
+  auto probe = LoadedProgram::fromSource(path_, std::move(text), config_.stdlibDir);
+  if (!probe->ok()) {
+    std::string hint;
+    for (const auto& v : lp_->graph().variables)
+      if (v.name.find('.') != std::string::npos && expr.find(v.name) != std::string::npos) {
+        hint = fmt::format(
+            "\n  = note: '{}' is a skill's variable, not a name in the task's scope: show plan "
+            "shows its value",
+            v.name);
+        break;
+      }
+    return fail(firstDiagnostic(probe->errors()) + hint);
+  }
+  const auto& constraints = probe->graph().constraints;
+  const auto c =
+      std::find_if(constraints.begin(), constraints.end(), [](const ir::Constraint& k) { return k.name == kEvalName; });
+  rt::Program& program = probe->program();
+  if (c == constraints.end() || c->expr.children.size() != 2 ||
+      program.assignmentWidth() != lp_->program().assignmentWidth() ||
+      program.observationWidth() != lp_->program().observationWidth())
+    return fail("internal error: the expression changed the program's layout (this is a bug; please report it)");
+  const ir::Expr& lhs = c->expr.children[0];
+  rt::ProgramCompiler compiler(program);
+  rt::ProgramCompiler::Scope scope;
+  std::uint32_t top = 0;
+  scope.frameTop = &top;
+  const std::uint32_t root = compiler.compile(lhs, scope);
+
+  const bool solved = plan_ && plan_->ok;
+  const std::vector<double> observation = solved ? planObservation_ : observation_;
+  const std::vector<double> assignment =
+      solved ? plan_->solve.assignment : lp_->program().initialAssignment(observation_);
+  if (world_) probe->syncWorld(*world_);
+  std::vector<double> frame(program.frameSize() + 1, 0.0), value(program.pool().width(root), 0.0);
+  rt::EvalContext ctx{assignment.data(), observation.data(), frame.data(), program.callContext()};
+  program.pool().eval(root, ctx, value.data());
+  fmt::print(out_, "{} : {} = {}{}\n", expr, lhs.type.spelling,
+             renderObserved(program, program.typeOf(lhs.type), value.data()),
+             solved ? "" : "   (no solution yet: variables at their initial values)");
+  return true;
+}
+
+}  // namespace cbtl::app::repl

@@ -223,6 +223,14 @@ std::vector<std::string> ReplSession::namesOf(const std::string& kind) const {
     for (const auto& [name, slot] : lp_->program().observationSlots()) names.push_back(name);
     names.push_back("simulator");
     names.push_back("file");
+  } else if (kind == "eval") {
+    // An expression's names: variables of a task's scope, observations (by family) and members.
+    const auto base = [](const std::string& n) { return n.substr(0, n.find('[')); };
+    for (const auto& v : g.variables)
+      if (v.name.find('.') == std::string::npos) names.push_back(base(v.name));
+    for (const auto& [name, slot] : lp_->program().observationSlots()) names.push_back(base(name));
+    const auto members = namesOf("member");
+    names.insert(names.end(), members.begin(), members.end());
   } else if (kind == "why-not") {
     for (const auto& v : g.variables) names.push_back(v.name);
   } else if (kind == "feedback") {
@@ -250,6 +258,8 @@ std::vector<std::string> ReplSession::completions(const std::string& line) const
     const bool inValue = line.find_first_of("(=", line.find(command) + command.size()) < start;
     if (command == "load" || (command == "profile" && w.size() >= 2 && w[1] != "show")) {
       return pathsStartingWith(word);
+    } else if (command == "eval") {
+      candidates = namesOf("eval");
     } else if (inValue) {
       candidates = namesOf("member");
     } else if (command == "profile" && w.size() == 1) {

@@ -124,6 +124,9 @@ TEST(ReplSession, CompletionOffersCommandsAndTheProgramsNames) {
   EXPECT_EQ((*s).completions("feedback mealCritique(seasoning, salt, 3, 31, 0.9, wantH"),
             std::vector<std::string>{"wantHotter"});
   EXPECT_EQ((*s).completions("solve h"), std::vector<std::string>{"hard"});
+  EXPECT_EQ((*s).completions(":eval quantity[salt] + qu"), std::vector<std::string>{"quantity"});
+  EXPECT_EQ((*s).completions(":eval st"), (std::vector<std::string>{"startTick", "stock"}));
+  EXPECT_EQ((*s).completions(":ev"), std::vector<std::string>{":eval"});
 }
 
 TEST(ReplSession, UnfinishedInputContinues) {

@@ -27,7 +27,7 @@ struct RunArgs : cbtl::cli::TrialArgs {
 };
 
 // The run's final model as a new version of the user's profile, with every event it learned from (source
-// "simulator"; the step is in the reason's text, not in a column).
+// "simulator", in the order of the training steps; the step numbers themselves are not stored).
 void storeRun(cbtl::app::profile::ProfileStore& store, const RunArgs& a, const std::string& domain,
               const cbtl::approach::ExperimentResult& r) {
   using namespace cbtl;

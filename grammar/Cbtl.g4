@@ -24,6 +24,7 @@ topDecl
     : domainDecl
     | importDecl
     | worldDecl
+    | simulatorDecl
     | robotDecl
     | constDecl
     | enumDecl
@@ -45,6 +46,9 @@ importDecl  : IMPORT (qualifiedName | STRING) SEMI ;
 
 // world "feeding.xml";
 worldDecl   : WORLD STRING SEMI ;
+
+// simulator "python3 coffee_sim.py";   (an external simulator: docs/simulator-protocol.md)
+simulatorDecl : SIMULATOR STRING SEMI ;
 
 // robot gen3 { dof: 7; }
 robotDecl   : ROBOT ident LBRACE (fieldInit SEMI)* RBRACE ;
@@ -216,6 +220,7 @@ ident       : ID ;
 DOMAIN   : 'domain' ;
 IMPORT   : 'import' ;
 WORLD    : 'world' ;
+SIMULATOR : 'simulator' ;
 ROBOT    : 'robot' ;
 CONST    : 'const' ;
 ENUM     : 'enum' ;

@@ -334,6 +334,9 @@ struct Robot {
 struct ConstraintGraph {
   std::string domain;
   std::string world;  // as written, relative to the root file
+  // An external simulator's command, as written (run in the root file's folder); empty: none.
+  std::string simulator;
+  Span simulatorSpan;
   std::vector<Robot> robots;
   std::vector<Enum> enums;
   std::vector<ItemType> itemTypes;

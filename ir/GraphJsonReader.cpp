@@ -224,6 +224,11 @@ class GraphReader {
     ConstraintGraph g;
     g.domain = root_.text("domain");
     g.world = root_.text("world");
+    if (root_.has("simulator")) {
+      const Node s = root_.object("simulator");
+      g.simulator = s.text("command");
+      g.simulatorSpan = span(s);
+    }
     each("robots", [&](const Node& n) {
       g.robots.push_back({n.text("name"), static_cast<int>(n.integer("dof", 0, 1000))});
     });

@@ -149,6 +149,7 @@ std::string toText(const ConstraintGraph& g) {
   std::ostringstream o;
   o << "domain " << (g.domain.empty() ? "<unnamed>" : g.domain) << "\n";
   if (!g.world.empty()) o << "world " << nlohmann::json(g.world).dump() << "\n";
+  if (!g.simulator.empty()) o << "simulator " << nlohmann::json(g.simulator).dump() << "\n";
   o << fmt::format("summary: {} tasks, {} variables, {} constraints, {} samplers, {} generators\n", g.tasks.size(),
                    g.variables.size(), g.constraints.size(), g.samplers.size(), g.generators.size());
   for (const auto& v : g.variables) {
@@ -249,6 +250,7 @@ std::string toJson(const ConstraintGraph& g) {
   j["version"] = kGraphJsonVersion;
   j["domain"] = g.domain;
   j["world"] = g.world;
+  if (!g.simulator.empty()) j["simulator"] = {{"command", g.simulator}, {"span", spanJson(g.simulatorSpan)}};
   j["robots"] = json::array();
   for (const auto& r : g.robots) j["robots"].push_back({{"name", r.name}, {"dof", r.dof}});
   j["enums"] = json::array();

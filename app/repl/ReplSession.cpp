@@ -3,6 +3,7 @@
 #include "app/ObservationFile.h"
 #include "app/PlanReport.h"
 #include "app/SimulatorFacts.h"
+#include "app/SimulatorSource.h"
 #include "app/SolutionJson.h"
 #include "app/repl/ValueSyntax.h"
 #include "domains/DomainRegistry.h"
@@ -168,7 +169,8 @@ void ReplSession::dropProgram() {
 void ReplSession::resetWorld(std::uint64_t seed) {
   worldSeed_ = seed;
   typedObservations_.clear();
-  world_ = domains::createSimulator(lp_->graph().domain, simulatorFacts(*lp_), {}, seed);
+  world_ =
+      createSimulator(*lp_, externalSimulator(*lp_, config_.simulatorCommand, config_.simulatorTimeoutMs), {}, seed);
   observation_ = world_ ? approach::observationVector(lp_->program(), world_->observe())
                         : std::vector<double>(lp_->program().observationWidth(), 0.0);
 }

@@ -48,6 +48,10 @@ struct ReplConfig {
   // and every learn, undo, profile load and reset stores a new version (with the learned events' provenance).
   std::shared_ptr<profile::ProfileStore> store;
   std::string user;
+  // An external simulator (app/SimulatorSource.h): this command instead of the program's `simulator` line or its
+  // in-process domain; every answer awaited at most simulatorTimeoutMs.
+  std::string simulatorCommand;
+  int simulatorTimeoutMs = 30000;
 };
 
 class ReplSession {

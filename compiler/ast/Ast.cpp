@@ -50,6 +50,8 @@ const char* toString(DeclKind kind) {
       return "import";
     case DeclKind::World:
       return "world";
+    case DeclKind::Simulator:
+      return "simulator";
     case DeclKind::Robot:
       return "robot";
     case DeclKind::Const:

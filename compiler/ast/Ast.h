@@ -148,6 +148,7 @@ enum class DeclKind {
   Domain,
   Import,
   World,
+  Simulator,
   Robot,
   Const,
   Enum,
@@ -209,6 +210,11 @@ struct ImportDecl : Decl {
 struct WorldDecl : Decl {
   WorldDecl() : Decl(DeclKind::World) {}
   std::string path;
+};
+
+struct SimulatorDecl : Decl {
+  SimulatorDecl() : Decl(DeclKind::Simulator) {}
+  std::string command;  // run with /bin/sh -c in the folder of the root file
 };
 
 struct RobotDecl : Decl {
@@ -407,6 +413,7 @@ struct TaskDecl : Decl {
 struct Module {
   FileId file = kNoFile;
   std::string domainName;  // from `domain NAME;`, may be empty
+  bool isStd = false;      // a standard-library module (std.NAME), embedded or read from --stdlib
   std::vector<std::unique_ptr<Decl>> decls;
 };
 

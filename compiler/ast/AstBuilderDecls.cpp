@@ -18,6 +18,11 @@ std::unique_ptr<Decl> AstBuilder::topDecl(P::TopDeclContext* ctx) {
     if (c->STRING() != nullptr) d->path = unquote(c->STRING()->getText());
     return d;
   }
+  if (auto* c = ctx->simulatorDecl()) {
+    auto d = start<SimulatorDecl>(c);
+    if (c->STRING() != nullptr) d->command = unquote(c->STRING()->getText());
+    return d;
+  }
   if (auto* c = ctx->robotDecl()) {
     auto d = start<RobotDecl>(c);
     d->name = ident(c->ident());

@@ -105,11 +105,15 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
        "Example:  vec<0>, Conf<ur5> without 'robot ur5 { dof: 6; }'\nFix: correct the arguments."},
       {"E0310", "invalid sample statement",
        "A sample statement's targets are not variables of the scope, or the sampler's result type does not\n"
-       "match them, or the sampler is not a sampler (use 'uniform' or an 'extern sampler').\n"
-       "Fix: sample variables with a sampler of matching type."},
+       "match them, or the sampler is not a sampler (use 'uniform' or an 'extern sampler'), or 'uniform' is\n"
+       "asked to draw a number-valued variable that has no lower or upper bound.\n"
+       "Example:  var speed : real;  sample speed ~ uniform;\n"
+       "Fix:      var speed : real in 0 .. 2;  sample speed ~ uniform;"},
       {"E0311", "empty or inverted range",
-       "A constant range has its lower bound above its upper bound, so the domain is empty.\n"
-       "Example:  var x : real in 1 .. 0;\nFix: swap the bounds."},
+       "A constant range has its lower bound above its upper bound, so the domain is empty; or a model's\n"
+       "prior is inverted or a single point, so there is nothing to learn.\n"
+       "Example:  var x : real in 1 .. 0;      model interval(t, 85 .. 40);\n"
+       "Fix:      var x : real in 0 .. 1;      model interval(t, 40 .. 85);"},
       {"E0312", "wrong number of values",
        "An indexed constant or item list gives a different number of values from the size of its index set.\n"
        "Example:  const r[Pot] : real = [0.5, 1.0];  with four pots.\nFix: give one value per index."},
@@ -134,6 +138,12 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
        "Example:  var slot[0 .. 1000000] : bool;\nFix: use smaller sets, or a quantified constraint over an "
        "observation."},
       // --- E04xx: personalized constraint generators -------------------------------------------------
+      {"E0318", "extern without an implementation",
+       "A program uses an 'extern fn' or 'extern sampler' that it declares itself. cbtl's runtime implements\n"
+       "exactly the externs of the standard library (std.prelude, std.geometry, ...), so the program could\n"
+       "be checked but never run.\n"
+       "Example:  extern fn warmth(t: real) -> real;   require warmth(temperature) > 0.5;\n"
+       "Fix:      fn warmth(t: real) -> real = clamp((t - 50) / 30, 0, 1);   (written in the language)"},
       {"E0401", "malformed initiation pattern",
        "A glob or regular expression in a 'when' clause is not well formed: an unclosed '{' capture, an empty\n"
        "capture name, or a regex syntax error.\nFix: correct the pattern. Globs: * any run, ? one character,\n"
@@ -184,6 +194,12 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
       {"E0416", "unknown exploration mode",
        "A generator's 'explore' clause names a mode other than 'accepted' (CBTL explores only where the\n"
        "model accepts) or 'anywhere' (the default).\nFix: write one of the two."},
+      {"E0417", "parameter without a pattern",
+       "A generator parameter has no pattern in the 'when' clause. It would match every variable of its type,\n"
+       "so the generator would judge variables nobody meant it to (and silently multiply its instances).\n"
+       "Example:  personal comfy(s: real, t: real) { when s ~ \"speed\"; ... }   (no pattern for t)\n"
+       "Fix:      personal comfy(s: real, t: real) { when s ~ \"speed\", t ~ \"turnRate\"; ... }\n"
+       "          (write t ~ \"*\" if every real variable is really meant)"},
       // --- E05xx: skills and tasks ---------------------------------------------------------------
       {"E0501", "skill used twice",
        "A task runs the same skill twice without naming the instances, so their variables would clash.\n"
@@ -212,6 +228,12 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
       {"W0402", "generator never learns",
        "A personalized constraint generator has no learning rule, so its parameter stays at the prior.\n"
        "Fix: add 'learn EVENT(...) => label;'."},
+      {"W0403", "patterns never match together",
+       "Each parameter's pattern matches some variable, but no task holds a tuple of them that agrees on the\n"
+       "patterns' captures (or a variable for every parameter), so the generator creates no constraint.\n"
+       "Example:  var used[Ingredient] : bool;  var amount[Pot] : real;\n"
+       "          when u ~ \"used[{i}]\", q ~ \"amount[{i}]\";   ({i} is an ingredient in one, a pot in the other)\n"
+       "Fix:      var amount[Ingredient] : real;   (index both families by the same set)"},
       {"W0501", "skill never used", "A skill is declared but no task runs it.\nFix: run it in a task or remove it."},
       {"W0502", "variable has no sampler",
        "A variable that is used but has an unbounded domain (a real, int, vec, SE2, SE3 or text without 'in')\n"

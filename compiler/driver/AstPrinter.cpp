@@ -126,6 +126,9 @@ class Printer {
       case DeclKind::World:
         line(depth + 1, "path " + static_cast<const WorldDecl&>(d).path);
         break;
+      case DeclKind::Simulator:
+        line(depth + 1, "command " + static_cast<const SimulatorDecl&>(d).command);
+        break;
       case DeclKind::Const:
         expr(static_cast<const ConstDecl&>(d).value.get(), depth + 1);
         break;

@@ -101,6 +101,7 @@ class Loader {
       return;
     }
     const std::size_t index = addModule(path, std::move(text), tu_.options.stdlibDir.empty(), name);
+    tu_.modules[index]->isStd = true;
     loadImports(index, stack);
   }
 

@@ -14,6 +14,10 @@ namespace detail {
 void Lowerer::run(const std::vector<std::unique_ptr<Module>>& modules) {
   g_.domain = symbols_.domainName;
   if (symbols_.world) g_.world = symbols_.world->path;
+  if (symbols_.simulator) {
+    g_.simulator = symbols_.simulator->command;
+    g_.simulatorSpan = span(symbols_.simulator->range);
+  }
   for (const auto& m : modules) {
     for (const auto& d : m->decls) declareTop(*d);
   }

@@ -227,12 +227,43 @@ void Lowerer::lowerSampleInstance(const SampleDecl& s, Ctx& inner, std::vector<s
     units += nodeCount(smp.args.back());
   }
   if (!grow(units, s.range)) return;
+  if (smp.sampler == "uniform") checkUniformBounds(s, writes);
   smp.writes.assign(writes.begin(), writes.end());
   smp.reads.assign(reads.begin(), reads.end());
   smp.scope = inner.scope;
   smp.span = span(s.range);
   out.push_back(smp.id);
   g_.samplers.push_back(std::move(smp));
+}
+
+// `uniform` draws a number between its variable's bounds, so a number-valued variable needs both bounds on every
+// component (Conf takes its robot's joint limits). The runtime refuses it too, but only at load and without a
+// caret; here it is reported once per declaration, where the sample statement is.
+void Lowerer::checkUniformBounds(const SampleDecl& s, const std::set<ir::VarId>& writes) {
+  std::set<const VarDecl*> reported;
+  for (ir::VarId id : writes) {
+    const ir::Variable& v = g_.variables[id];
+    const ir::TypeKind k = v.type.kind;
+    if (k != ir::TypeKind::Real && k != ir::TypeKind::Int && k != ir::TypeKind::Vec && k != ir::TypeKind::SE2 &&
+        k != ir::TypeKind::SE3)
+      continue;
+    if (v.domain.set) continue;
+    bool bounded = !v.domain.bounds.empty();
+    for (const auto& b : v.domain.bounds) bounded = bounded && b.lo && b.hi;
+    const VarDecl* decl = id < declOf_.size() ? declOf_[id] : nullptr;
+    if (bounded || !reported.insert(decl).second) continue;
+    const bool scalar = k == ir::TypeKind::Real || k == ir::TypeKind::Int;
+    const std::string name = v.family.empty() ? v.name : v.family;
+    Diagnostic& d = diags_.error(
+        "E0310", s.sampler.range,
+        scalar ? fmt::format("'uniform' cannot draw '{}': it has no lower or no upper bound", name)
+               : fmt::format("'uniform' cannot draw '{}': a component of its {} has no lower or no upper bound", name,
+                             v.type.spelling));
+    if (decl != nullptr) d.note("declared here", decl->name.range);
+    d.help(scalar ? "bound it where it is declared, e.g. `in 0 .. 10`, or draw it with a sampler that takes bounds"
+           : k == ir::TypeKind::Vec ? "bound every component where it is declared, e.g. `in [0 .. 1, 0 .. 1]`"
+                                    : "bound its position where it is declared, e.g. `in box(x: 0 .. 1, ...)`");
+  }
 }
 
 void Lowerer::lowerCost(const CostDecl& c, Ctx& ctx, std::vector<std::uint32_t>& out) {

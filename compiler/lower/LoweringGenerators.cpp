@@ -10,6 +10,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <functional>
+#include <map>
+#include <regex>
 
 namespace cbtl::detail {
 namespace {
@@ -56,6 +59,7 @@ void Lowerer::lowerGenerator(const PersonalDecl& p) {
   g.exploreAccepted = !p.explores.empty() && p.explores[0].name == "accepted";
   for (const auto& rule : p.learnRules) g.learnRules.push_back(lowerLearnRule(p, rule, none));
   warnIfUnmatched(p, g);
+  warnIfNeverTogether(p, g);
   g_.generators.push_back(std::move(g));
 }
 
@@ -155,6 +159,75 @@ void Lowerer::warnIfUnmatched(const PersonalDecl& p, const ir::Generator& g) {
       d.help("`cbtlc emit FILE` lists every variable's name and type");
     }
   }
+}
+
+// W0403: every parameter matches some variable (else W0401 says so), but no task has a tuple of them that agrees on
+// the patterns' captures, so the generator makes no constraint at all. Searched per task with a step budget; a
+// search that runs out of steps warns about nothing.
+void Lowerer::warnIfNeverTogether(const PersonalDecl& p, const ir::Generator& g) {
+  const std::size_t arity = p.params.size();
+  std::vector<std::optional<GlobPattern>> globs(arity);
+  std::vector<std::optional<std::regex>> regexes(arity);
+  for (const auto& pc : p.patterns) {
+    if (pc.paramIndex < 0 || static_cast<std::size_t>(pc.paramIndex) >= arity) return;
+    std::string error;
+    std::size_t at = 0;
+    if (pc.kind == PatternKind::Glob)
+      globs[pc.paramIndex] = parseGlob(pc.pattern, error, at);
+    else
+      regexes[pc.paramIndex] = compileRegex(pc.pattern, error);
+  }
+  for (std::size_t i = 0; i < arity; ++i)
+    if (!globs[i] && !regexes[i]) return;  // no pattern or a malformed one: reported elsewhere
+  // Per task, per parameter: the variables that match it alone.
+  std::vector<bool> matchedSomewhere(arity, false);
+  std::size_t budget = 1000000;
+  for (const auto& task : g_.tasks) {
+    std::vector<std::vector<const ir::Variable*>> candidates(arity);
+    for (ir::VarId id : task.vars) {
+      const ir::Variable& v = g_.variables[id];
+      for (std::size_t i = 0; i < arity; ++i) {
+        if (v.type.spelling != g.params[i].type.spelling) continue;
+        std::map<std::string, std::string> b;
+        if ((globs[i] && matchGlob(*globs[i], v.name, b)) || (regexes[i] && std::regex_match(v.name, *regexes[i])))
+          candidates[i].push_back(&v);
+      }
+    }
+    bool complete = true;
+    for (std::size_t i = 0; i < arity; ++i) {
+      matchedSomewhere[i] = matchedSomewhere[i] || !candidates[i].empty();
+      complete = complete && !candidates[i].empty();
+    }
+    if (!complete) continue;
+    // Depth-first over the parameters, keeping the captures bound so far.
+    std::function<bool(std::size_t, std::map<std::string, std::string>&)> extend =
+        [&](std::size_t i, std::map<std::string, std::string>& bindings) -> bool {
+      if (i == arity) return true;
+      for (const ir::Variable* v : candidates[i]) {
+        if (budget == 0) return true;  // undecided: assume it matches
+        --budget;
+        std::map<std::string, std::string> next = bindings;
+        if (globs[i] && !matchGlob(*globs[i], v->name, next)) continue;
+        if (extend(i + 1, next)) return true;
+      }
+      return false;
+    };
+    std::map<std::string, std::string> none;
+    if (extend(0, none)) return;
+  }
+  for (std::size_t i = 0; i < arity; ++i)
+    if (!matchedSomewhere[i]) return;  // W0401 covers a parameter that matches nothing
+  std::string captures;
+  for (const auto& c : p.captures) captures += (captures.empty() ? "{" : ", {") + c.name + "}";
+  Diagnostic& d = diags_.warning(
+      "W0403", p.name.range,
+      captures.empty()
+          ? fmt::format("generator '{}' creates no constraint: no task has a variable for every parameter", p.name.name)
+          : fmt::format("generator '{}' creates no constraint: its patterns match variables, but never ones that "
+                        "agree on {} in one task",
+                        p.name.name, captures));
+  for (const auto& pc : p.patterns) d.note(fmt::format("'{}' matches on its own", pc.param.name), pc.patternRange);
+  d.help("`cbtlc emit FILE` lists every task's variables; a capture must bind the same text in every pattern");
 }
 
 }  // namespace cbtl::detail

@@ -137,6 +137,7 @@ class Lowerer {
   void lowerFunctionBodies();
   // Adds one graph variable per member of `v` (one for a scalar) to the graph, ctx.vars and `out`.
   void lowerVar(const VarDecl& v, Ctx& ctx, std::vector<ir::VarId>& out);
+  void checkUniformBounds(const SampleDecl& s, const std::set<ir::VarId>& writes);
   // The members of `v` (member text, its value); false after reporting a family that cannot be expanded.
   bool familyMembers(const VarDecl& v, const Ctx& ctx,
                      std::vector<std::pair<std::string, std::optional<CVal>>>& members);
@@ -177,6 +178,7 @@ class Lowerer {
   ir::LearnRule lowerLearnRule(const PersonalDecl& p, const LearnRule& rule, Ctx& none);
   // W0401: some parameter's pattern (with its type) matches no variable of any task.
   void warnIfUnmatched(const PersonalDecl& p, const ir::Generator& g);
+  void warnIfNeverTogether(const PersonalDecl& p, const ir::Generator& g);
 
   const GlobalSymbols& symbols_;
   const SourceManager& sources_;

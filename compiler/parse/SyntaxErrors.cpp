@@ -21,6 +21,7 @@ const std::map<std::string, std::string>& ruleDescriptions() {
       {"domainDecl", "the domain header"},
       {"importDecl", "the import"},
       {"worldDecl", "the world declaration"},
+      {"simulatorDecl", "the simulator declaration"},
       {"robotDecl", "the robot declaration"},
       {"constDecl", "the constant declaration"},
       {"enumDecl", "the enum declaration"},

@@ -71,6 +71,7 @@ class GenChecker {
                    "a generator has one 'when' clause; list all patterns in it, separated by ','");
     }
     std::set<int> seen;
+    bool namedUnknown = false;  // a pattern for a misspelt parameter: its help names the one meant
     for (auto& p : g.patterns) {
       p.paramIndex = paramIndex(g, p.param.name);
       // Patterns of a second 'when' clause (E0414 above) are not also reported as second patterns.
@@ -83,6 +84,7 @@ class GenChecker {
                          fmt::format("'{}' is not a parameter of generator '{}'", p.param.name, g.name.name));
         const std::string guess = closestMatch(p.param.name, names);
         if (!guess.empty()) d.help(fmt::format("did you mean '{}'?", guess));
+        namedUnknown = true;
         continue;
       }
       if (!seen.insert(p.paramIndex).second) {
@@ -109,6 +111,20 @@ class GenChecker {
         diags_.error("E0401", p.patternRange, fmt::format("malformed regular expression: {}", error));
       }
     }
+    // Without a pattern a parameter would match every variable of its type: almost never what is meant, and
+    // silent (the constraint then judges variables nobody asked it to).
+    if (g.whenRanges.empty() || namedUnknown) return;
+    for (std::size_t i = 0; i < g.params.size(); ++i) {
+      if (seen.count(static_cast<int>(i)) > 0 || g.params[i].name.name.empty()) continue;
+      const std::string type = g.params[i].type.resolved ? g.params[i].type.resolved->spelling : "its type's";
+      diags_
+          .error("E0417", g.params[i].name.range,
+                 fmt::format("parameter '{}' of generator '{}' has no pattern in its 'when' clause, so it would match "
+                             "every {} variable",
+                             g.params[i].name.name, g.name.name, type))
+          .help(fmt::format("add `{} ~ \"NAME\"` to the 'when' clause (\"*\" matches every name, if that is meant)",
+                            g.params[i].name.name));
+    }
   }
 
   void needArgs(const ModelFactor& f, std::size_t positional, const std::string& form) {
@@ -129,6 +145,26 @@ class GenChecker {
       return x->kind == ExprKind::Unary && x->unaryOp == UnaryOp::Neg && x->operands[0]->kind == ExprKind::Number;
     };
     return isNum(e->operands[0].get()) && isNum(e->operands[1].get());
+  }
+
+  static double literal(const Expr* x) { return x->kind == ExprKind::Number ? x->number : -x->operands[0]->number; }
+
+  // A model's prior `lo .. hi` (a constant range, checked above) must not be inverted: `interval(t, 85 .. 40)`
+  // would learn in an empty set, and every candidate would be rejected once something is liked.
+  void priorInOrder(const Arg& prior, const char* kind) {
+    const Expr* e = prior.value.get();
+    const double lo = literal(e->operands[0].get()), hi = literal(e->operands[1].get());
+    if (lo > hi) {
+      diags_
+          .error("E0311", prior.range,
+                 fmt::format("the prior of {} {} model is empty: {} > {}", std::string(kind) == "interval" ? "an" : "a",
+                             kind, fmt::format("{}", lo), fmt::format("{}", hi)))
+          .help(fmt::format("write the smaller bound first: {} .. {}", hi, lo));
+    } else if (lo == hi) {
+      diags_.error(
+          "E0311", prior.range,
+          fmt::format("the prior of a {} model is a single point ({} .. {}): there is nothing to learn", kind, lo, hi));
+    }
   }
 
   void realFeature(const ModelFactor& f, const Expr* feature) {
@@ -170,6 +206,8 @@ class GenChecker {
         if (f.args.size() >= 2 && !constantRange(f.args[1].value.get())) {
           diags_.error("E0406", f.args[1].range,
                        "the prior bounds of an interval model are a range of literal numbers, lo .. hi");
+        } else if (f.args.size() >= 2) {
+          priorInOrder(f.args[1], "interval");
         }
       } else if (k == "threshold") {
         needArgs(f, 3, "threshold(feature, lo .. hi, above|below)");
@@ -177,6 +215,8 @@ class GenChecker {
         if (f.args.size() >= 2 && !constantRange(f.args[1].value.get())) {
           diags_.error("E0406", f.args[1].range,
                        "the prior bounds of a threshold model are a range of literal numbers, lo .. hi");
+        } else if (f.args.size() >= 2) {
+          priorInOrder(f.args[1], "threshold");
         }
         if (f.args.size() >= 3) {
           const Expr* dir = f.args[2].value.get();

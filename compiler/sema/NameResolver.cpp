@@ -84,6 +84,9 @@ void NameResolver::declare(Module& module, bool isRoot) {
       case DeclKind::World:
         if (isRoot) symbols_.world = static_cast<const WorldDecl*>(&d);
         break;
+      case DeclKind::Simulator:
+        if (isRoot) symbols_.simulator = static_cast<const SimulatorDecl*>(&d);
+        break;
       case DeclKind::Import:
         break;
       case DeclKind::Robot:

@@ -29,6 +29,7 @@ struct GlobalSymbols {
   std::map<std::string, std::vector<Symbol>> enumMembers;  // bare member name -> every enum that has it
   std::vector<const Decl*> globalScope;                    // top-level var/require/sample/cost, in order
   const WorldDecl* world = nullptr;
+  const SimulatorDecl* simulator = nullptr;
   std::string domainName;
 
   // Every value name, for did-you-mean suggestions.

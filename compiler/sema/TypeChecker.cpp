@@ -97,6 +97,8 @@ const IndexSpec* indexOf(const Decl* d) {
 }
 
 void TypeChecker::run(const std::vector<std::unique_ptr<Module>>& modules) {
+  for (const auto& m : modules)
+    if (m->isStd) stdFiles_.insert(m->file);
   // Index sets and constants first: other declarations read their element types.
   for (const auto& m : modules) {
     for (auto& d : m->decls) {

@@ -68,6 +68,20 @@ bool TypeChecker::matchArgs(const std::string& what, const std::string& name, co
 }
 
 const Type* TypeChecker::checkCallable(const CallableDecl& c, std::vector<Arg>& args, SourceRange at) {
+  // cbtl's runtime implements exactly the standard library's extern functions and samplers; any other extern
+  // would be refused when the program is loaded for running, so it is refused here, at its first use.
+  if (c.isExtern && (c.kind == DeclKind::Function || c.kind == DeclKind::Sampler) &&
+      stdFiles_.count(c.name.range.file) == 0 && unprovidedReported_.insert(&c).second) {
+    diags_
+        .error("E0318", at,
+               fmt::format("cbtl's runtime provides no extern {} '{}': only the standard library's externs have "
+                           "implementations",
+                           c.kind == DeclKind::Function ? "function" : "sampler", c.name.name))
+        .note("declared here", c.name.range)
+        .help(c.kind == DeclKind::Function
+                  ? "write it in the language, `fn name(x: real) -> real = ...;`, or use a std module's function"
+                  : "draw with 'uniform' or a std sampler (uniformReal, uniformInt, bernoulli, ...)");
+  }
   std::vector<Arg*> order;
   for (auto& a : args) check(a.value.get());
   if (!matchArgs(toString(c.kind), c.name.name, c.params, args, at, c.name.range, order)) return err();

@@ -104,7 +104,9 @@ class TypeChecker {
   TypeContext& types_;
   const GlobalSymbols& symbols_;
   DiagnosticEngine& diags_;
-  bool inDomain_ = false;  // while typing a variable's domain, where box(...) is allowed
+  bool inDomain_ = false;                             // while typing a variable's domain, where box(...) is allowed
+  std::set<FileId> stdFiles_;                         // the standard library's modules (their externs are provided)
+  std::set<const CallableDecl*> unprovidedReported_;  // E0318 once per declaration
   std::set<const ConstDecl*> constsInProgress_;
   std::set<const ConstDecl*> constCyclesReported_;
 };

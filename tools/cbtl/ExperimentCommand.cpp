@@ -203,7 +203,7 @@ int runExperiments(const ExperimentArgs& a) {
   auto lp = cli::loadForRun("experiment", a.file, a.stdlibDir);
   if (!lp) return 1;
   base.solverOptions = cli::solverOptionsFor(a.solver, lp->graph().domain);
-  if (!cli::domainSimulator("experiment", *lp, base.simulator)) return 1;  // says which domains exist
+  if (!cli::domainSimulator("experiment", *lp, base.simulator, a.external)) return 1;  // says which domains exist
   base.runMode = a.force ? approach::RunMode::Force : a.resume ? approach::RunMode::Resume : approach::RunMode::Fresh;
   base.testHook = approach::killHookFromEnvironment();
   const auto lock = prepareOut(a.out, kinds, seeds, base.runMode);
@@ -233,8 +233,8 @@ int runExperiments(const ExperimentArgs& a) {
       labels.emplace_back(kind, seed);
     }
   }
-  const auto outcomes =
-      cli::runTrials(*lp, a.file, a.stdlibDir, a.text, trials, a.jobs, [&](std::size_t i, const cli::TrialOutcome& o) {
+  const auto outcomes = cli::runTrials(
+      *lp, a.file, a.stdlibDir, a.text, a.external, trials, a.jobs, [&](std::size_t i, const cli::TrialOutcome& o) {
         if (a.quiet || o.error) return;
         fmt::print(stderr, "{} seed {}: mean eval {:+.3f}, final {:+.2f} ({:.2f} s)\n",
                    approach::toString(labels[i].first), labels[i].second, o.result.meanEval(),

@@ -36,6 +36,7 @@ struct FeedbackArgs {
   std::vector<std::string> events;
   std::uint64_t seed = 0;
   cbtl::cli::TextBackendArgs text;
+  cbtl::cli::ExternalSimulatorArgs external;
 };
 
 // The moment the events are about: the solution's when given, else the simulator's world (or zeros).
@@ -47,7 +48,7 @@ cbtl::approach::StepWorld momentOf(const FeedbackArgs& a, cbtl::app::LoadedProgr
     app::SolutionMoment s = app::readSolutionFile(a.solution, lp.program());
     moment.assignment = std::move(s.assignment);
     moment.observation = std::move(s.observation);
-  } else if (auto world = domains::createSimulator(lp.graph().domain, app::simulatorFacts(lp), {}, a.seed)) {
+  } else if (auto world = cli::simulatorFactory(lp, a.external)({}, a.seed)) {
     lp.syncWorld(*world);
     observed = world->observe();
   }
@@ -150,6 +151,7 @@ void addFeedback(CLI::App& app, int& exitCode) {
   cmd->add_option("--stdlib", args->stdlibDir,
                   "standard library folder (default: embedded; not used by an emitted graph)");
   cbtl::cli::addTextBackendOptions(cmd, args->text);
+  cbtl::cli::addExternalSimulatorOptions(cmd, args->external);
   cmd->callback([args, &exitCode]() {
     if (args->profile.empty() && args->profileDb.empty())
       throw CLI::RequiredError("--profile or --profile-db (where the learned profile goes)");

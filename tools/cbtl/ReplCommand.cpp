@@ -33,6 +33,7 @@ struct ReplArgs {
   bool echo = false;
   cbtl::cli::SolverArgs solver;
   cbtl::cli::TextBackendArgs text;
+  cbtl::cli::ExternalSimulatorArgs external;
 };
 
 std::atomic<bool> gInterrupt{false};
@@ -99,6 +100,8 @@ int runRepl(const ReplArgs& a) {
     return cli::solverOptionsFor(solverArgs, domain);
   };
   config.interrupt = &gInterrupt;
+  config.simulatorCommand = a.external.command;
+  config.simulatorTimeoutMs = a.external.timeoutMs;
   if (!a.profileDb.empty()) {
     config.store = std::make_shared<app::profile::ProfileStore>(a.profileDb);
     config.user = a.user;
@@ -176,6 +179,7 @@ void addRepl(CLI::App& app, int& exitCode) {
       ->check(cbtl::cli::unsignedIn(0));
   cmd->add_flag("--echo", args->echo, "piped: print each command after \"cbtl> \" before its output (transcripts)");
   cmd->add_option("--stdlib", args->stdlibDir, "standard library folder (default: embedded)");
+  cbtl::cli::addExternalSimulatorOptions(cmd, args->external);
   cbtl::cli::addSolverOptions(cmd, args->solver);
   cbtl::cli::addTextBackendOptions(cmd, args->text);
   cmd->callback([args, &exitCode]() { cbtl::cli::runCommand("repl", exitCode, [&] { return runRepl(*args); }); });

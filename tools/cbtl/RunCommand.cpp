@@ -74,7 +74,7 @@ int runTrial(const RunArgs& a) {
   }
   c.runMode = a.force ? approach::RunMode::Force : a.resume ? approach::RunMode::Resume : approach::RunMode::Fresh;
   c.testHook = approach::killHookFromEnvironment();
-  const auto factory = cli::domainSimulator("run", *lp, c.simulator);
+  const auto factory = cli::domainSimulator("run", *lp, c.simulator, a.external);
   if (!factory) return 1;
   const auto start = std::chrono::steady_clock::now();
   const approach::ExperimentResult r = approach::runExperiment(*lp, *factory, c);

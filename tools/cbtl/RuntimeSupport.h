@@ -6,6 +6,7 @@
 #include "app/DomainSolverOptions.h"
 #include "app/LoadedProgram.h"
 #include "app/SimulatorFacts.h"
+#include "app/SimulatorSource.h"
 #include "domains/DomainRegistry.h"
 #include "runtime/approach/Experiment.h"
 #include "runtime/solver/Solver.h"
@@ -37,13 +38,26 @@ inline std::unique_ptr<app::LoadedProgram> loadForRun(const std::string& command
   return lp;
 }
 
-// Simulators of `domain` over the program's facts (its scene, loaded once, and item sets), shared by every
-// simulator the factory makes.
-inline approach::SimulatorFactory simulatorFactory(const std::string& domain, domains::ProgramFacts program) {
-  auto facts = std::make_shared<const domains::ProgramFacts>(std::move(program));
-  return [domain, facts](const sim::SimulatorOptions& options, std::uint64_t seed) {
-    return domains::createSimulator(domain, *facts, options, seed);
-  };
+// `--simulator CMD` and `--simulator-timeout-ms MS`: run against an external simulator program
+// (docs/simulator-protocol.md) instead of the program's `simulator` line or the in-process domain.
+struct ExternalSimulatorArgs {
+  std::string command;
+  int timeoutMs = 30000;
+};
+
+inline void addExternalSimulatorOptions(CLI::App* cmd, ExternalSimulatorArgs& a) {
+  cmd->add_option("--simulator", a.command,
+                  "run against this simulator program (a shell command speaking the external simulator protocol; "
+                  "overrides the program's `simulator` line)");
+  cmd->add_option("--simulator-timeout-ms", a.timeoutMs,
+                  "the longest wait for one answer of an external simulator, in ms (1..3600000)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 3600000));
+}
+
+// The simulators of the program: the external one the options or the program name, else its in-process domain.
+inline approach::SimulatorFactory simulatorFactory(const app::LoadedProgram& lp, const ExternalSimulatorArgs& a) {
+  return app::simulatorFactory(lp, app::externalSimulator(lp, a.command, a.timeoutMs));
 }
 
 // The competence lines of a run's or an experiment's summary (approach/Experiment.h Competence).
@@ -180,6 +194,7 @@ struct TrialArgs {
   bool replan = false;
   SolverArgs solver;
   TextBackendArgs text;
+  ExternalSimulatorArgs external;
 };
 
 // Ranges: --steps >= 0; --eval-every, --eval-tasks, --max-eval-steps, --shift-every, --periodic-reset-every >= 1;
@@ -220,6 +235,7 @@ inline void addTrialOptions(CLI::App* cmd, TrialArgs& a) {
   cmd->add_option("--stdlib", a.stdlibDir, "standard library folder (default: embedded; not used by an emitted graph)");
   addSolverOptions(cmd, a.solver);
   addTextBackendOptions(cmd, a.text);
+  addExternalSimulatorOptions(cmd, a.external);
 }
 
 // Fills everything but the approach, seed and outputs; false after printing a usage error.
@@ -253,16 +269,23 @@ inline bool configureTrial(const std::string& command, const TrialArgs& a, appro
   return true;
 }
 
-// A factory for the program's domain, or nullopt after printing which domains exist.
+// A factory for the program's simulator, or nullopt after printing which domains exist. An external simulator is
+// started once here, so that a program it does not fit is refused before any trial (every mismatch listed: a
+// sim::ExternalSimulatorError), and its warnings are printed once.
 inline std::optional<approach::SimulatorFactory> domainSimulator(const std::string& command,
                                                                  const app::LoadedProgram& lp,
-                                                                 const sim::SimulatorOptions& options) {
+                                                                 const sim::SimulatorOptions& options,
+                                                                 const ExternalSimulatorArgs& external) {
   const std::string& domain = lp.graph().domain;
-  domains::ProgramFacts facts = app::simulatorFacts(lp);
-  if (domains::createSimulator(domain, facts, options, 0) != nullptr) return simulatorFactory(domain, std::move(facts));
-  fmt::print(stderr, "cbtl {}: error: {}: no simulator for domain '{}' (known:", command, lp.path(), domain);
+  approach::SimulatorFactory factory = simulatorFactory(lp, external);
+  if (const auto probe = factory(options, 0)) {
+    if (const auto* ext = dynamic_cast<const sim::ExternalSimulator*>(probe.get()))
+      for (const auto& w : ext->manifestWarnings()) fmt::print(stderr, "cbtl {}: warning: {}\n", command, w);
+    return factory;
+  }
+  fmt::print(stderr, "cbtl {}: error: {}: no simulator for domain '{}' (built in:", command, lp.path(), domain);
   for (const auto& d : domains::knownDomains()) fmt::print(stderr, " {}", d);
-  fmt::print(stderr, ")\n");
+  fmt::print(stderr, "); give one with --simulator CMD or a `simulator \"CMD\";` line (docs/simulator-protocol.md)\n");
   return std::nullopt;
 }
 

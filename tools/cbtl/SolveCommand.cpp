@@ -25,6 +25,7 @@ struct SolveArgs {
   bool explain = false, replan = false;
   cbtl::cli::SolverArgs solver;
   cbtl::cli::TextBackendArgs text;
+  cbtl::cli::ExternalSimulatorArgs external;
 };
 
 int runSolve(const SolveArgs& a, bool& statusPrinted) {
@@ -46,7 +47,7 @@ int runSolve(const SolveArgs& a, bool& statusPrinted) {
   model::UserModel user(lp->graph(), *textBackend);
   if (!a.profile.empty()) user.load(a.profile);
   sim::Observation observed;
-  if (auto world = domains::createSimulator(lp->graph().domain, app::simulatorFacts(*lp), {}, a.seed)) {
+  if (auto world = cli::simulatorFactory(*lp, a.external)({}, a.seed)) {
     lp->syncWorld(*world);
     if (a.task.empty()) task = static_cast<int>(lp->taskFor(*world, static_cast<std::size_t>(task)));
     observed = world->observe();
@@ -111,6 +112,7 @@ void addSolve(CLI::App& app, int& exitCode) {
                   "standard library folder (default: embedded; not used by an emitted graph)");
   cbtl::cli::addSolverOptions(cmd, args->solver);
   cbtl::cli::addTextBackendOptions(cmd, args->text);
+  cbtl::cli::addExternalSimulatorOptions(cmd, args->external);
   cmd->callback([args, &exitCode]() {
     bool statusPrinted = false;
     cbtl::cli::runCommand("solve", exitCode, [&] { return runSolve(*args, statusPrinted); });

@@ -26,6 +26,7 @@ TrialOutcome runOne(const app::LoadedProgram& lp, const approach::SimulatorFacto
 
 std::vector<TrialOutcome> runTrials(const app::LoadedProgram& program, const std::string& file,
                                     const std::string& stdlibDir, const TextBackendArgs& text,
+                                    const ExternalSimulatorArgs& external,
                                     std::vector<approach::ExperimentConfig> trials, int jobs,
                                     const std::function<void(std::size_t, const TrialOutcome&)>& onDone) {
   std::vector<TrialOutcome> outcomes(trials.size());
@@ -37,7 +38,7 @@ std::vector<TrialOutcome> runTrials(const app::LoadedProgram& program, const std
   };
   jobs = std::max(1, std::min<int>(jobs, static_cast<int>(trials.size())));
   if (jobs == 1) {
-    const approach::SimulatorFactory factory = simulatorFactory(program.graph().domain, app::simulatorFacts(program));
+    const approach::SimulatorFactory factory = simulatorFactory(program, external);
     for (std::size_t i = 0; i < trials.size(); ++i) finish(i, runOne(program, factory, trials[i]));
     return outcomes;
   }
@@ -54,7 +55,7 @@ std::vector<TrialOutcome> runTrials(const app::LoadedProgram& program, const std
     }
     const auto backend = makeTextBackend("experiment", text);
     const approach::SimulatorFactory factory =
-        lp && lp->ok() ? simulatorFactory(lp->graph().domain, app::simulatorFacts(*lp)) : approach::SimulatorFactory{};
+        lp && lp->ok() ? simulatorFactory(*lp, external) : approach::SimulatorFactory{};
     for (std::size_t i = next++; i < trials.size(); i = next++) {
       if (loadError || !backend) {
         TrialOutcome failed;

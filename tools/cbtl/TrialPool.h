@@ -4,7 +4,8 @@
 // program itself (compiling the .cbtl file again, or reading the emitted graph) and makes its own simulators and
 // text backend. A trial's result depends only on its configuration (its seed, approach and options), so the
 // results are those of a serial run, whatever order the trials finish in; they are returned in the order given.
-// Run folders are per trial, so workers never write the same file.
+// Run folders are per trial, so workers never write the same file. An external simulator is started per trial (its
+// own process), so trials share nothing there either.
 #pragma once
 
 #include "runtime/approach/Experiment.h"
@@ -27,6 +28,7 @@ struct TrialOutcome {
 // counts its own faults); trials' own textBackend fields are replaced.
 std::vector<TrialOutcome> runTrials(const app::LoadedProgram& program, const std::string& file,
                                     const std::string& stdlibDir, const TextBackendArgs& text,
+                                    const ExternalSimulatorArgs& external,
                                     std::vector<approach::ExperimentConfig> trials, int jobs,
                                     const std::function<void(std::size_t, const TrialOutcome&)>& onDone);
 

@@ -2,10 +2,13 @@
 #include "tools/cbtl/CommandRegistry.h"
 #include "tools/cbtl/ErrorHandling.h"
 
+#include "compiler/util/Suggest.h"
+
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <string>
+#include <vector>
 
 int main(int argc, char** argv) {
   CLI::App app{"cbtl: run CBTL constraint graphs: solve, personalize, learn, render"};
@@ -17,6 +20,18 @@ int main(int argc, char** argv) {
   std::stable_sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.order < b.order; });
   for (const auto& command : commands) command.factory(app, exitCode);
 
+  // An unknown command is named, with the nearest known one, before CLI11 calls it an unexpected argument.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+      names.push_back(sub->get_name());
+    if (std::find(names.begin(), names.end(), argv[1]) == names.end()) {
+      const std::string nearest = cbtl::closestMatch(argv[1], names);
+      fmt::print(stderr, "cbtl: error: '{}' is not a cbtl command{}\nRun 'cbtl --help' for the commands.\n", argv[1],
+                 nearest.empty() ? "" : fmt::format("; did you mean '{}'?", nearest));
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

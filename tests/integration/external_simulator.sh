@@ -1,0 +1,122 @@
+#!/usr/bin/env bash
+# External simulators (docs/simulator-protocol.md) end to end:
+#  - the coffee domain (a .cbtl file and a Python simulator, no C++) fits its program, runs, learns the hidden
+#    drinker's tastes, and gives the same results for the same seed, serially and on two jobs;
+#  - Cooking served over the protocol by `cbtl simulator serve` gives byte-identical results to Cooking in process;
+#  - a simulator that goes wrong (crashes, prints noise, hangs, sends an undeclared event, an ill-typed value, a
+#    manifest that does not fit, a newer protocol) is a clear error (exit 1) naming the request and the line, and
+#    never hangs the run.
+# usage: external_simulator.sh CBTL DOMAINS_DIR
+set -u
+cbtl=$(realpath "$1")
+domains=$(realpath "$2")
+source "$(dirname "$0")/expect.sh"
+coffee=$domains/coffee/coffee.cbtl
+faulty="python3 $(cd "$(dirname "$0")" && pwd)/simulators/faulty_sim.py $domains/coffee"
+# Every run below is bounded: a hang would fail the test instead of stalling it.
+limit="timeout 120"
+
+# --- the coffee domain ------------------------------------------------------------------------------------
+expect 0 "simulator 'coffee_sim.py' fits .*: protocol 1; 2 observations, 1 action, 1 feedback event, 1 task" -- \
+  $limit "$cbtl" simulator check "$coffee"
+expect 0 '"waterLeft"' -- $limit "$cbtl" simulator check "$coffee" --seed 4
+
+# From another folder: the `simulator` line runs in the program's folder.
+(cd "$work" && expect 0 "fits" -- $limit "$cbtl" simulator check "$coffee")
+
+expect 0 "eval satisfaction" -- $limit "$cbtl" run "$coffee" --steps 150 --eval-every 50 --eval-tasks 20 --seed 0 \
+  --out "$work/coffee0"
+# CBTL learns the hidden tastes: the last checkpoint's cups are liked.
+last=$(tail -n 1 "$work/coffee0/eval.csv")
+python3 - "$work/coffee0/eval.csv" <<'PY' || fail "coffee: CBTL did not learn the drinker's tastes"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+first, last = float(rows[0]["eval_mean_user_satisfaction"]), float(rows[-1]["eval_mean_user_satisfaction"])
+met = {k: float(rows[-1]["eval_%s_met_rate" % k]) for k in ("temperature", "strength")}
+print("coffee: eval satisfaction %+.2f at step 0, %+.2f at step %s; met at the end: %s"
+      % (first, last, rows[-1]["training_step"], met))
+sys.exit(0 if last >= 0.8 and last > first and min(met.values()) >= 0.9 else 1)
+PY
+# Same seed, same results.
+expect 0 "" -- $limit "$cbtl" run "$coffee" --steps 150 --eval-every 50 --eval-tasks 20 --seed 0 \
+  --out "$work/coffee0b" -q
+cmp -s "$work/coffee0/eval.csv" "$work/coffee0b/eval.csv" || fail "coffee: the same seed gave another eval.csv"
+cmp -s "$work/coffee0/train.csv" "$work/coffee0b/train.csv" || fail "coffee: the same seed gave another train.csv"
+# A run killed (-9) mid-way and resumed gives the bytes of the uninterrupted one: the resumed run replays the
+# training world's requests to a new simulator process, which must answer as the first did.
+CBTL_TEST_KILL_AT=step:70 $limit "$cbtl" run "$coffee" --steps 150 --eval-every 50 --eval-tasks 20 --seed 0 \
+  --out "$work/killed" -q >/dev/null 2>&1
+rc=$?
+[[ $rc -eq 137 ]] || fail "coffee: CBTL_TEST_KILL_AT=step:70 exited $rc, wanted 137 (killed)"
+expect 0 "" -- $limit "$cbtl" run "$coffee" --steps 150 --eval-every 50 --eval-tasks 20 --seed 0 \
+  --out "$work/killed" --resume -q
+for f in train.csv eval.csv profile.json; do
+  cmp -s "$work/coffee0/$f" "$work/killed/$f" || fail "coffee: the resumed run's $f differs from the uninterrupted one's"
+done
+# Serial and parallel experiments agree (each trial has its own simulator process).
+expect 0 "" -- $limit "$cbtl" experiment "$coffee" --approaches cbtl,no-personalization --seeds 0..1 --steps 60 \
+  --eval-every 30 --eval-tasks 5 --jobs 1 --out "$work/serial" -q
+expect 0 "" -- $limit "$cbtl" experiment "$coffee" --approaches cbtl,no-personalization --seeds 0..1 --steps 60 \
+  --eval-every 30 --eval-tasks 5 --jobs 2 --out "$work/parallel" -q
+for f in summary.csv cbtl/seed0/eval.csv cbtl/seed1/train.csv no-personalization/seed1/eval.csv; do
+  if [[ ! -f "$work/serial/$f" ]]; then fail "experiment wrote no $f"; continue; fi
+  cmp -s "$work/serial/$f" "$work/parallel/$f" || fail "coffee: --jobs 2 differs from --jobs 1 in $f"
+done
+# Nonstationary options reach the simulator: the drinker's tastes shift, and User Reset hears of it.
+expect 0 "eval satisfaction" -- $limit "$cbtl" run "$coffee" --steps 60 --eval-every 30 --eval-tasks 5 \
+  --nonstationary user-reset --shift-every 20 --out "$work/shift"
+# The REPL and solve use the external simulator too.
+expect 0 "status: solved" -- $limit "$cbtl" solve "$coffee" --seed 2
+printf 'solve\nact\nquit\n' >"$work/session.repl"
+expect 0 "tasteCritique" -- $limit "$cbtl" repl "$coffee" --echo <"$work/session.repl"
+
+# --- the protocol reproduces an in-process domain exactly ------------------------------------------------
+serve="$cbtl simulator serve $cooking"
+expect 0 "" -- $limit "$cbtl" run "$cooking" --steps 200 --eval-every 100 --eval-tasks 3 --seed 1 --out "$work/inproc" -q
+expect 0 "" -- $limit "$cbtl" run "$cooking" --steps 200 --eval-every 100 --eval-tasks 3 --seed 1 --out "$work/proto" -q \
+  --simulator "$serve"
+for f in train.csv eval.csv profile.json; do
+  cmp -s "$work/inproc/$f" "$work/proto/$f" || fail "cooking over the protocol: $f differs from in process"
+done
+
+# --- what goes wrong on the other side --------------------------------------------------------------------
+run_with() { $limit "$cbtl" run "$coffee" --steps 40 --eval-every 20 --eval-tasks 3 -q --simulator "$@"; }
+expect 1 "exited with status 3 before answering request [0-9]+ \(act brew\)" -- run_with "$faulty crash"
+expect 1 "the boiler burst at request" -- run_with "$faulty crash"
+expect 1 "its output line [0-9]+ is not JSON: 'brewing a .* cup' \(stdout carries the protocol only" -- \
+  run_with "$faulty noise"
+expect 1 "did not answer request [0-9]+ \(act brew\) within 3000 ms; it was stopped" -- \
+  run_with "$faulty hang" --simulator-timeout-ms 3000
+expect 1 "output line [0-9]+: feedback event 'spilled' is not declared by the program" -- \
+  run_with "$faulty undeclared-event"
+expect 1 "tasteCritique argument 'heat': 'lukewarm' is not a Heat \(expected heatGood, tooCold, or tooHot\)" -- \
+  run_with "$faulty wrong-type"
+expect 1 "a step result has no field \"satisfation\"" -- run_with "$faulty unknown-field"
+expect 1 "'waterLeft': expected a finite number \(real\), got \"plenty\"" -- run_with "$faulty bad-observation"
+expect 1 "it refused request [0-9]+ \(act brew\) \(its output line [0-9]+\): the grinder jammed" -- \
+  run_with "$faulty refuse"
+expect 1 "speaks protocol 2, cbtl speaks protocol 1" -- run_with "$faulty protocol2"
+# Every mismatch of a manifest at once.
+out=$(run_with "$faulty manifest" 2>&1)
+for pattern in "does not fit the program \(5 problems\)" \
+  "the program observes 'beansLeft' \(.*coffee.cbtl:[0-9]+:[0-9]+\); the simulator does not provide it" \
+  "provides the observation 'outsideTemperature', which the program does not declare" \
+  "the program calls the action 'brew' \(.*coffee.cbtl:[0-9]+:[0-9]+\); the simulator does not perform it" \
+  "sends the feedback event 'spilled', which the program does not declare" \
+  "may ask for the task 'makeTea', which the program does not define"; do
+  grep -qE -- "$pattern" <<<"$out" || { fail "manifest check lacks /$pattern/"; echo "$out"; }
+done
+expect 1 "exited with status 127 before answering request 1 \(hello\)" -- run_with "no-such-simulator-program"
+expect 1 "no-such-simulator-program: not found" -- run_with "no-such-simulator-program"
+expect 1 "exited with status 0 before answering request 1 \(hello\)" -- run_with "true"
+expect 2 "--simulator-timeout-ms" -- "$cbtl" run "$coffee" --simulator-timeout-ms 0
+# A domain with neither a built-in simulator nor a simulator line says how to give one.
+sed '/^simulator /d' "$coffee" >"$work/nosim.cbtl"
+expect 1 "no simulator for domain 'coffee' .*--simulator CMD" -- "$cbtl" run "$work/nosim.cbtl" --steps 1 -q
+expect 1 "has no .simulator" -- "$cbtl" simulator check "$work/nosim.cbtl"
+# ... and runs when given one on the command line, from the folder it names.
+expect 0 "eval satisfaction" -- $limit "$cbtl" run "$work/nosim.cbtl" --steps 10 --eval-every 10 --eval-tasks 2 \
+  --simulator "python3 $domains/coffee/coffee_sim.py"
+
+if [[ $failures -gt 0 ]]; then echo "$failures failure(s)"; exit 1; fi
+echo "external simulator: all checks passed"

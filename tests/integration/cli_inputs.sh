@@ -82,5 +82,22 @@ expect 1 "^cbtl solve: error: .*missing.json" -- "$cbtl" solve "$cooking" --prof
 expect 1 "^cbtl experiment: error: .*plainfile" -- "$cbtl" experiment "$cooking" --seeds 0 --steps 1 --eval-tasks 1 -q \
   --out "$work/plainfile/sub"
 
+# Commands: an unknown one is named with the nearest; `--seeds 0-9` is not seed 0 alone.
+expect 2 "^cbtl: error: 'repll' is not a cbtl command; did you mean 'repl'\?" -- "$cbtl" repll
+expect 2 "^cbtl: error: 'frobnicate' is not a cbtl command$" -- "$cbtl" frobnicate
+expect 2 "--seeds wants 'LO..HI' or a comma-separated list, not '0-9'" -- "$cbtl" experiment "$cooking" --seeds 0-9
+# Help: options grouped by topic, examples at the end, for every command that runs a program.
+for command in run experiment solve repl feedback "simulator check"; do
+  # shellcheck disable=SC2086
+  out=$("$cbtl" $command --help 2>&1)
+  for part in "Examples:" "World and simulator:"; do
+    grep -q "$part" <<<"$out" || fail "cbtl $command --help has no '$part'"
+  done
+done
+for command in run experiment solve repl; do
+  out=$("$cbtl" $command --help 2>&1)
+  grep -q "^Solver:" <<<"$out" || fail "cbtl $command --help groups no Solver options"
+done
+
 echo "$failures failed"
 [[ $failures -eq 0 ]]

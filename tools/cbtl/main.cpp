@@ -1,6 +1,7 @@
 // cbtl — run, solve and inspect CBTL constraint graphs. Subcommands register themselves (CommandRegistry.h).
 #include "tools/cbtl/CommandRegistry.h"
 #include "tools/cbtl/ErrorHandling.h"
+#include "tools/cbtl/HelpLayout.h"
 
 #include "compiler/util/Suggest.h"
 
@@ -19,6 +20,11 @@ int main(int argc, char** argv) {
   auto& commands = cbtl::cli::registeredCommands();
   std::stable_sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.order < b.order; });
   for (const auto& command : commands) command.factory(app, exitCode);
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) cbtl::cli::arrangeHelp(sub, sub->get_name());
+  app.footer(
+      "\nExamples:\n  cbtl run domains/cooking/cooking.cbtl --steps 2000 --out out/cooking-0\n"
+      "  cbtl solve domains/coffee/coffee.cbtl --explain\n  cbtl repl domains/feeding/feeding.cbtl\n"
+      "Every command has --help; docs/tutorial.md writes a domain from scratch.\n");
 
   // An unknown command is named, with the nearest known one, before CLI11 calls it an unexpected argument.
   if (argc > 1 && argv[1][0] != '-') {

@@ -3,12 +3,14 @@
 #include "compiler/diag/DiagnosticCodes.h"
 #include "compiler/diag/DiagnosticRenderer.h"
 #include "compiler/driver/Pipeline.h"
+#include "compiler/util/Suggest.h"
 #include "ir/GraphPrinter.h"
 
 #include <fmt/core.h>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -149,6 +151,17 @@ int main(int argc, char** argv) {
     fmt::print("{}: {}\n\n{}\n", info->code, info->summary, info->explanation);
   });
 
+  // An unknown command is named, with the nearest known one, before CLI11 calls it an unexpected argument.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
+    if (std::find(names.begin(), names.end(), argv[1]) == names.end()) {
+      const std::string nearest = cbtl::closestMatch(argv[1], names);
+      fmt::print(stderr, "cbtlc: error: '{}' is not a cbtlc command{}\nRun 'cbtlc --help' for the commands.\n", argv[1],
+                 nearest.empty() ? "" : fmt::format("; did you mean '{}'?", nearest));
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

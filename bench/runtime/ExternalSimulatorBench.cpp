@@ -63,8 +63,9 @@ void BM_CookingCalls(benchmark::State& state) {
   state.SetLabel(state.range(0) != 0 ? "over the protocol" : "in process");
   state.counters["calls"] = static_cast<double>(calls.size() + 2);
   // Wall-clock seconds per call (the server's time is not this process's CPU time).
-  state.counters["per_call"] = benchmark::Counter(
-      static_cast<double>(calls.size() + 2), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["per_call"] =
+      benchmark::Counter(static_cast<double>(calls.size() + 2),
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_CookingCalls)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)->UseRealTime();
 

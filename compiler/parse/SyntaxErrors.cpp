@@ -150,6 +150,49 @@ bool isDeclarationKeyword(std::size_t type) {
   }
 }
 
+// The keywords among `expected`, for "did you mean the keyword ...?".
+std::vector<std::string> expectedKeywords(antlr4::Parser* parser, const antlr4::misc::IntervalSet& expected) {
+  std::vector<std::string> keywords;
+  for (std::size_t t : expected.toList()) {
+    std::string name = parser->getVocabulary().getLiteralName(t);
+    if (name.size() > 2 && name.front() == '\'' && std::isalpha(static_cast<unsigned char>(name[1])))
+      keywords.push_back(name.substr(1, name.size() - 2));
+  }
+  return keywords;
+}
+
+// Hints for the mistakes people bring from other languages and for a block left open; added to the error about
+// `offending`, the token the parser could not use.
+void addHints(Diagnostic& d, antlr4::Parser* parser, antlr4::Token* offending,
+              const antlr4::misc::IntervalSet& expected, const SyntaxErrorStrategy::TokenRange& tokenRange) {
+  auto* stream = parser->getTokenStream();
+  const std::size_t type = offending->getType();
+  if (type == CbtlParser::ID) {
+    const std::string guess = closestMatch(offending->getText(), expectedKeywords(parser, expected));
+    if (!guess.empty()) d.help(fmt::format("did you mean the keyword '{}'?", guess));
+  }
+  if (type == CbtlParser::ASSIGN && !expected.contains(static_cast<std::size_t>(CbtlParser::ASSIGN)))
+    d.help("'=' only gives a declaration its value (`var x : real = 1;`); to compare, write '=='");
+  if (type == CbtlParser::DOT) {
+    antlr4::Token* next = stream->LT(2);
+    if (next != nullptr && next->getType() == CbtlParser::NUMBER &&
+        next->getStartIndex() == offending->getStopIndex() + 1)
+      d.help(fmt::format("a number starts with a digit: write 0{}", offending->getText() + next->getText()));
+  }
+  // A declaration keyword, a '}' or the end of the file inside a block: the block's '{' was never closed.
+  if (isDeclarationKeyword(type) && type != CbtlParser::RBRACE) {
+    std::vector<antlr4::Token*> open;
+    const std::size_t end = offending->getTokenIndex();
+    for (std::size_t i = 0; i < end; ++i) {
+      antlr4::Token* t = stream->get(i);
+      if (t->getType() == CbtlParser::LBRACE) open.push_back(t);
+      if (t->getType() == CbtlParser::RBRACE && !open.empty()) open.pop_back();
+    }
+    if (!open.empty() && expected.contains(static_cast<std::size_t>(CbtlParser::RBRACE)))
+      d.note(fmt::format("this '{{' is never closed before {}", foundDisplay(offending)), tokenRange(open.back()));
+  }
+}
+
 }  // namespace
 
 bool SyntaxErrorStrategy::reportLexicalError(antlr4::Token* offending) {
@@ -165,7 +208,12 @@ bool SyntaxErrorStrategy::reportLexicalError(antlr4::Token* offending) {
       return true;
     case CbtlParser::ERROR_CHAR: {
       std::string text = offending->getText();
-      diags_.error("E0105", range, fmt::format("invalid character '{}' in the source", text));
+      Diagnostic& d = diags_.error("E0105", range, fmt::format("invalid character '{}' in the source", text));
+      const std::string_view source = sources_.file(range.file).text;
+      const char next = range.end < source.size() ? source[range.end] : '\0';
+      if (text == "&") d.help(next == '&' ? "'&&' is written 'and' in .cbtl" : "conjunction is written 'and' in .cbtl");
+      if (text == "|") d.help(next == '|' ? "'||' is written 'or' in .cbtl" : "disjunction is written 'or' in .cbtl");
+      if (text == "!") d.help("negation is written 'not' in .cbtl ('!=' compares)");
       return true;
     }
     default:
@@ -194,18 +242,7 @@ void SyntaxErrorStrategy::reportUnexpected(antlr4::Parser* parser, antlr4::Token
       fmt::format("expected {}, found {}", describeExpected(parser, expected), foundDisplay(offending));
   if (!where.empty()) message += " in " + where;
   Diagnostic& d = diags_.error("E0101", tokenRange_(offending), message);
-
-  if (offending->getType() == CbtlParser::ID) {
-    std::vector<std::string> keywords;
-    for (std::size_t t : expected.toList()) {
-      std::string name = parser->getVocabulary().getLiteralName(t);
-      if (name.size() > 2 && name.front() == '\'' && std::isalpha(static_cast<unsigned char>(name[1]))) {
-        keywords.push_back(name.substr(1, name.size() - 2));
-      }
-    }
-    const std::string guess = closestMatch(offending->getText(), keywords);
-    if (!guess.empty()) d.help(fmt::format("did you mean the keyword '{}'?", guess));
-  }
+  addHints(d, parser, offending, expected, tokenRange_);
 }
 
 void SyntaxErrorStrategy::reportNoViableAlternative(antlr4::Parser* parser, const antlr4::NoViableAltException& e) {
@@ -229,8 +266,10 @@ void SyntaxErrorStrategy::reportUnwantedToken(antlr4::Parser* parser) {
   const std::string where = describeContext(parser);
   std::string message = fmt::format("unexpected {}", foundDisplay(t));
   if (!where.empty()) message += " in " + where;
-  diags_.error("E0106", tokenRange_(t), message)
-      .help(fmt::format("expected {} here", describeExpected(parser, getExpectedTokens(parser))));
+  const antlr4::misc::IntervalSet expected = getExpectedTokens(parser);
+  Diagnostic& d = diags_.error("E0106", tokenRange_(t), message);
+  d.help(fmt::format("expected {} here", describeExpected(parser, expected)));
+  addHints(d, parser, t, expected, tokenRange_);
 }
 
 void SyntaxErrorStrategy::reportMissingToken(antlr4::Parser* parser) {

@@ -20,7 +20,8 @@ int main(int argc, char** argv) {
   auto& commands = cbtl::cli::registeredCommands();
   std::stable_sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.order < b.order; });
   for (const auto& command : commands) command.factory(app, exitCode);
-  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) cbtl::cli::arrangeHelp(sub, sub->get_name());
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    cbtl::cli::arrangeHelp(sub, sub->get_name());
   app.footer(
       "\nExamples:\n  cbtl run domains/cooking/cooking.cbtl --steps 2000 --out out/cooking-0\n"
       "  cbtl solve domains/coffee/coffee.cbtl --explain\n  cbtl repl domains/feeding/feeding.cbtl\n"

@@ -154,7 +154,8 @@ int main(int argc, char** argv) {
   // An unknown command is named, with the nearest known one, before CLI11 calls it an unexpected argument.
   if (argc > 1 && argv[1][0] != '-') {
     std::vector<std::string> names;
-    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+      names.push_back(sub->get_name());
     if (std::find(names.begin(), names.end(), argv[1]) == names.end()) {
       const std::string nearest = cbtl::closestMatch(argv[1], names);
       fmt::print(stderr, "cbtlc: error: '{}' is not a cbtlc command{}\nRun 'cbtlc --help' for the commands.\n", argv[1],

@@ -3,7 +3,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdlib>
 
 namespace cbtl {
 namespace {
@@ -23,7 +26,20 @@ std::string untab(std::string_view s) {
   return out;
 }
 
-void appendExcerpt(std::string& out, const SourceRange& range, const SourceManager& sources) {
+// ANSI escapes, or nothing when colour is off.
+struct Palette {
+  bool on = false;
+  std::string paint(std::string_view text, const char* code) const {
+    return on ? fmt::format("\x1b[{}m{}\x1b[0m", code, text) : std::string(text);
+  }
+};
+const char* kBold = "1";
+const char* kGutter = "1;34";
+const char* severityColor(Severity s) { return s == Severity::Error ? "1;31" : "1;33"; }
+const char* childColor(ChildKind k) { return k == ChildKind::Note ? "1;36" : "1;32"; }
+
+void appendExcerpt(std::string& out, const SourceRange& range, const SourceManager& sources, const Palette& p,
+                   const char* caretColor) {
   const LineCol start = sources.position(range.file, range.begin);
   const LineCol stop = sources.position(range.file, range.end);
   const std::string_view line = sources.lineText(range.file, start.line);
@@ -36,9 +52,10 @@ void appendExcerpt(std::string& out, const SourceRange& range, const SourceManag
   } else if (stop.line > start.line) {
     width = lineWidth >= start.column ? lineWidth - start.column + 1 : 1;
   }
-  out += fmt::format(" {} |\n", gutter);
-  out += fmt::format(" {} | {}\n", number, untab(line));
-  out += fmt::format(" {} | {}^{}\n", gutter, std::string(start.column - 1, ' '), std::string(width - 1, '~'));
+  out += p.paint(fmt::format(" {} |", gutter), kGutter) + "\n";
+  out += p.paint(fmt::format(" {} |", number), kGutter) + fmt::format(" {}\n", untab(line));
+  out += p.paint(fmt::format(" {} |", gutter), kGutter) + " " + std::string(start.column - 1, ' ') +
+         p.paint("^" + std::string(width - 1, '~'), caretColor) + "\n";
 }
 
 std::string location(const SourceRange& range, const SourceManager& sources) {
@@ -60,19 +77,32 @@ nlohmann::json spanJson(const SourceRange& range, const SourceManager& sources) 
 
 }  // namespace
 
-std::string renderDiagnosticText(const Diagnostic& d, const SourceManager& sources) {
+std::string renderDiagnosticText(const Diagnostic& d, const SourceManager& sources, bool color) {
+  const Palette p{color};
+  const char* severity = severityColor(d.severity);
   std::string out;
-  out += fmt::format("{}: {}[{}]: {}\n", location(d.range, sources), severityName(d.severity), d.code, d.message);
-  appendExcerpt(out, d.range, sources);
+  out += p.paint(location(d.range, sources) + ":", kBold) + " " +
+         p.paint(fmt::format("{}[{}]", severityName(d.severity), d.code), severity) + p.paint(": " + d.message, kBold) +
+         "\n";
+  appendExcerpt(out, d.range, sources, p, severity);
   for (const auto& child : d.children) {
+    const char* kind = childColor(child.kind);
     if (child.range.valid()) {
-      out += fmt::format("{}: {}: {}\n", location(child.range, sources), childName(child.kind), child.message);
-      appendExcerpt(out, child.range, sources);
+      out += p.paint(location(child.range, sources) + ":", kBold) + " " + p.paint(childName(child.kind), kind) + ": " +
+             child.message + "\n";
+      appendExcerpt(out, child.range, sources, p, kind);
     } else {
-      out += fmt::format("  = {}: {}\n", childName(child.kind), child.message);
+      out += "  " + p.paint("=", kGutter) + " " + p.paint(childName(child.kind), kind) + ": " + child.message + "\n";
     }
   }
   return out;
+}
+
+bool useColor(const std::string& mode, int fd) {
+  if (mode == "always") return true;
+  if (mode == "never") return false;
+  const char* noColor = std::getenv("NO_COLOR");
+  return ::isatty(fd) != 0 && (noColor == nullptr || *noColor == '\0');
 }
 
 std::string renderDiagnosticJson(const Diagnostic& d, const SourceManager& sources) {

@@ -17,7 +17,13 @@ namespace cbtl {
 
 enum class DiagnosticFormat { Text, Json };
 
-std::string renderDiagnosticText(const Diagnostic& d, const SourceManager& sources);
+// `color`: ANSI colours as rustc and clang use them (severity in red or yellow, notes and help in cyan and green,
+// locations in bold, the gutter in blue). Callers enable them only for a terminal (useColor()).
+std::string renderDiagnosticText(const Diagnostic& d, const SourceManager& sources, bool color = false);
+
+// Whether text for `fd` should be coloured: `mode` "always" or "never", or "auto": `fd` is a terminal and the
+// NO_COLOR environment variable is unset or empty (no-color.org).
+bool useColor(const std::string& mode, int fd);
 std::string renderDiagnosticJson(const Diagnostic& d, const SourceManager& sources);
 
 }  // namespace cbtl

@@ -22,6 +22,7 @@ struct CommonOptions {
   std::size_t errorLimit = 50;
   bool warningsAsErrors = false;
   std::string stdlibDir;
+  std::string color = "auto";
 };
 
 void addCommon(CLI::App* cmd, CommonOptions& o) {
@@ -30,6 +31,10 @@ void addCommon(CLI::App* cmd, CommonOptions& o) {
   cmd->add_option("--error-limit", o.errorLimit, "stop showing errors after this many (default 50)");
   cmd->add_flag("--warnings-as-errors,-W", o.warningsAsErrors, "treat warnings as errors");
   cmd->add_option("--stdlib", o.stdlibDir, "read std.* modules from DIR/std/ instead of the embedded standard library");
+  cmd->add_option("--color", o.color,
+                  "colour text diagnostics: auto (on a terminal, unless NO_COLOR is set), always or never")
+      ->check(CLI::IsMember({"auto", "always", "never"}))
+      ->capture_default_str();
 }
 
 // Prints the diagnostics of one translation unit; returns the exit code for its outcome.
@@ -45,11 +50,12 @@ int report(const cbtl::TranslationUnit& tu, const cbtl::PipelineResult& result, 
     }
     return 1;
   }
+  const bool color = o.format == "text" && cbtl::useColor(o.color, 2);
   for (const auto& d : tu.diags.sorted()) {
     if (o.format == "json")
       fmt::print(stderr, "{}\n", cbtl::renderDiagnosticJson(d, tu.sources));
     else
-      fmt::print(stderr, "{}", cbtl::renderDiagnosticText(d, tu.sources));
+      fmt::print(stderr, "{}", cbtl::renderDiagnosticText(d, tu.sources, color));
   }
   if (o.format == "text" && (tu.diags.errorCount() > 0 || tu.diags.warningCount() > 0)) {
     fmt::print(stderr, "{}: {} error{}, {} warning{}{}\n", path, tu.diags.errorCount(),

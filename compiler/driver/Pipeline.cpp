@@ -232,13 +232,20 @@ PipelineResult compileSource(TranslationUnit& tu, const std::string& path, std::
        },
        [](const TranslationUnit& t) { return ir::toText(t.graph); }},
   };
+  // The semantic checks (names, types, generators) report everything they find in one run: each one tolerates
+  // what an earlier one could not resolve (error types do not cascade), so after a semantic error the next check
+  // still runs. A syntax error stops everything (the tree is a guess), and so does any error before lowering.
+  auto tolerant = [](const std::string& name) { return name == "check-types" || name == "check-generators"; };
+  bool failed = false;
   for (auto& pass : passes) {
+    if (failed && !tolerant(pass.name)) break;
     result.lastPass = pass.name;
     const bool ok = pass.run(tu);
-    if (ok && pass.name == dumpAfter) result.dump = pass.dump(tu);
+    if (ok && !failed && pass.name == dumpAfter) result.dump = pass.dump(tu);
     if (!ok || tu.diags.hasErrors()) {
       if (result.outcome == PipelineOutcome::Ok) result.outcome = PipelineOutcome::InputErrors;
-      return result;
+      if (pass.name == "parse" || pass.name == "validate-ir") return result;
+      failed = true;
     }
     if (pass.name == stopAfter) break;
   }

@@ -228,6 +228,9 @@ const Type* TypeChecker::nameType(Expr& e, bool allowFamily) {
 
 const Type* TypeChecker::memberType(Expr& e) {
   if (e.ref.kind == RefKind::EnumMember || e.ref.kind == RefKind::ItemEntry) return nameType(e, false);
+  // `Enum.unknown` was reported by name resolution (E0208 with a did-you-mean); it is not a field access.
+  const Expr* object = e.operands[0].get();
+  if (object->kind == ExprKind::Name && object->ref.kind == RefKind::EnumType) return err();
   const Type* t = check(e.operands[0].get());
   if (t->isError()) return t;
   const std::string& m = e.text;

@@ -1,6 +1,7 @@
 // cbtlc — the .cbtl compiler: check files, emit the constraint graph, dump any pass, explain codes.
 // Exit codes: 0 ok, 1 errors in the input, 2 usage, 70 internal error.
 #include "compiler/diag/DiagnosticCodes.h"
+#include "compiler/diag/DiagnosticExamples.h"
 #include "compiler/diag/DiagnosticRenderer.h"
 #include "compiler/driver/Pipeline.h"
 #include "compiler/util/Suggest.h"
@@ -14,6 +15,8 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <string_view>
+#include <tuple>
 
 namespace {
 
@@ -72,6 +75,29 @@ cbtl::CompileOptions compileOptions(const CommonOptions& o) {
   c.errorLimit = o.errorLimit;
   c.warningsAsErrors = o.warningsAsErrors;
   return c;
+}
+
+// "Wrong:" and "Right:", each a whole file (and the file it imports, where the code needs one), indented.
+void printExample(const cbtl::DiagnosticExample& e) {
+  auto indented = [](std::string_view text) {
+    std::string out;
+    std::size_t start = 0;
+    while (start < text.size()) {
+      const std::size_t end = text.find('\n', start);
+      const std::string_view line =
+          text.substr(start, end == std::string_view::npos ? text.size() - start : end - start);
+      out += line.empty() ? "\n" : "    " + std::string(line) + "\n";
+      if (end == std::string_view::npos) break;
+      start = end + 1;
+    }
+    return out;
+  };
+  for (const auto& [title, text, imported] :
+       {std::tuple{"Wrong", e.wrong, e.importedWrong}, std::tuple{"Right", e.right, e.importedRight}}) {
+    fmt::print("\n{}:   (example.cbtl)\n{}", title, indented(text));
+    if (!e.imported.empty())
+      fmt::print("  {}:\n{}", e.imported, imported.empty() ? "    (no such file)\n" : indented(imported));
+  }
 }
 
 bool readable(const std::string& path) {
@@ -155,6 +181,7 @@ int main(int argc, char** argv) {
       return;
     }
     fmt::print("{}: {}\n\n{}\n", info->code, info->summary, info->explanation);
+    if (const auto* example = cbtl::exampleFor(info->code)) printExample(*example);
   });
 
   // An unknown command is named, with the nearest known one, before CLI11 calls it an unexpected argument.

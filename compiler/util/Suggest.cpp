@@ -38,4 +38,14 @@ std::string closestMatch(std::string_view word, const std::vector<std::string>& 
   return bestName;
 }
 
+std::string unknownCommandMessage(std::string_view program, std::string_view word,
+                                  const std::vector<std::string>& commands) {
+  for (const auto& c : commands)
+    if (c == word) return {};
+  const std::string nearest = closestMatch(word, commands);
+  std::string message = "error: '" + std::string(word) + "' is not a " + std::string(program) + " command";
+  if (!nearest.empty()) message += "; did you mean '" + nearest + "'?";
+  return std::string(program) + ": " + message + "\nRun '" + std::string(program) + " --help' for the commands.\n";
+}
+
 }  // namespace cbtl

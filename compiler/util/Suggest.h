@@ -15,4 +15,9 @@ std::size_t editDistance(std::string_view a, std::string_view b);
 // Ties go to the candidate that comes first in `candidates`, so callers control determinism.
 std::string closestMatch(std::string_view word, const std::vector<std::string>& candidates);
 
+// The error for a command-line word that is none of `commands` ("cbtl: error: 'repll' is not a cbtl command; did
+// you mean 'repl'?" and where to look), or empty when it is one of them.
+std::string unknownCommandMessage(std::string_view program, std::string_view word,
+                                  const std::vector<std::string>& commands);
+
 }  // namespace cbtl

@@ -32,10 +32,8 @@ int main(int argc, char** argv) {
     std::vector<std::string> names;
     for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
       names.push_back(sub->get_name());
-    if (std::find(names.begin(), names.end(), argv[1]) == names.end()) {
-      const std::string nearest = cbtl::closestMatch(argv[1], names);
-      fmt::print(stderr, "cbtl: error: '{}' is not a cbtl command{}\nRun 'cbtl --help' for the commands.\n", argv[1],
-                 nearest.empty() ? "" : fmt::format("; did you mean '{}'?", nearest));
+    if (const std::string message = cbtl::unknownCommandMessage("cbtl", argv[1], names); !message.empty()) {
+      fmt::print(stderr, "{}", message);
       return 2;
     }
   }

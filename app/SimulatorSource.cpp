@@ -37,6 +37,22 @@ std::optional<sim::ExternalSimulatorConfig> externalSimulator(const LoadedProgra
   return c;
 }
 
+namespace {
+
+// A robot program's CSP is checked against the robot world the runtime keeps in step with the simulator's scene
+// (plans are dry-run in it before they are accepted). That state does not cross the protocol, so an external
+// simulator would leave every check reading a world that never moves: refused, whatever the simulator says.
+void refuseRobotScene(const LoadedProgram& program, const sim::ExternalSimulatorConfig& external) {
+  if (program.graph().world.empty()) return;
+  throw sim::ExternalSimulatorError(
+      external.origin,
+      "the program has a robot scene (world \"" + program.graph().world +
+          "\"): its state is what every plan is checked against before it is accepted, and it does not cross the "
+          "external simulator protocol; a robot domain runs with its built-in simulator");
+}
+
+}  // namespace
+
 std::unique_ptr<sim::DomainSimulator> createSimulator(const LoadedProgram& program,
                                                       const std::optional<sim::ExternalSimulatorConfig>& external,
                                                       const sim::SimulatorOptions& options, std::uint64_t seed) {
@@ -46,6 +62,7 @@ std::unique_ptr<sim::DomainSimulator> createSimulator(const LoadedProgram& progr
 approach::SimulatorFactory simulatorFactory(const LoadedProgram& program,
                                             const std::optional<sim::ExternalSimulatorConfig>& external) {
   if (external) {
+    refuseRobotScene(program, *external);
     auto schema = schemaOf(program);
     return [config = *external, schema](const sim::SimulatorOptions& options,
                                         std::uint64_t seed) -> std::unique_ptr<sim::DomainSimulator> {

@@ -25,8 +25,9 @@ std::optional<sim::ExternalSimulatorConfig> externalSimulator(const LoadedProgra
                                                               const std::string& commandLine, int timeoutMs);
 
 // A new simulator for `program`, reset with `seed`: the external one when `external` is set (throws
-// sim::ExternalSimulatorError when it cannot be started or does not fit the program), else the in-process domain
-// of the program's name; nullptr when there is no such domain.
+// sim::ExternalSimulatorError when it cannot be started or does not fit the program, and for a program with a
+// robot scene, whose state the protocol cannot carry), else the in-process domain of the program's name; nullptr
+// when there is no such domain.
 std::unique_ptr<sim::DomainSimulator> createSimulator(const LoadedProgram& program,
                                                       const std::optional<sim::ExternalSimulatorConfig>& external,
                                                       const sim::SimulatorOptions& options, std::uint64_t seed);

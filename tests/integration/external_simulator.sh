@@ -110,6 +110,9 @@ expect 1 "exited with status 127 before answering request 1 \(hello\)" -- run_wi
 expect 1 "no-such-simulator-program: not found" -- run_with "no-such-simulator-program"
 expect 1 "exited with status 0 before answering request 1 \(hello\)" -- run_with "true"
 expect 2 "--simulator-timeout-ms" -- "$cbtl" run "$coffee" --simulator-timeout-ms 0
+# A robot domain's scene state is what its plans are checked against, and it does not cross the protocol: refused.
+expect 1 "has a robot scene \(world \"feeding.xml\"\).*runs with its built-in simulator" -- \
+  "$cbtl" run "$domains/feeding/feeding.cbtl" --steps 1 -q --simulator "python3 $domains/coffee/coffee_sim.py"
 # A domain with neither a built-in simulator nor a simulator line says how to give one.
 sed '/^simulator /d' "$coffee" >"$work/nosim.cbtl"
 expect 1 "no simulator for domain 'coffee' .*--simulator CMD" -- "$cbtl" run "$work/nosim.cbtl" --steps 1 -q

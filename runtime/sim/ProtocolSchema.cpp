@@ -1,5 +1,7 @@
 #include "runtime/sim/ProtocolSchema.h"
 
+#include "runtime/core/Values.h"  // rt::RuntimeError
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -94,7 +96,7 @@ WireType wireType(const ir::ConstraintGraph& g, const ir::TypeDesc& t) {
       w.members = membersOf(g, innerOf(t.spelling));
       return w;
     default:
-      throw std::invalid_argument(fmt::format("values of type '{}' cannot cross the simulator protocol", t.spelling));
+      throw rt::RuntimeError("", fmt::format("values of type '{}' cannot cross the simulator protocol", t.spelling));
   }
 }
 
@@ -146,7 +148,8 @@ ProtocolSchema ProtocolSchema::fromProgram(const ir::ConstraintGraph& g, const s
   for (const std::string& key : keys) {
     const std::string base = key.substr(0, key.find('['));
     const auto it = declared.find(base);
-    if (it == declared.end()) throw std::invalid_argument(fmt::format("the program reads no observation '{}'", key));
+    if (it == declared.end())
+      throw rt::RuntimeError("", fmt::format("the program reads no observation '{}'", key));
     s.observations[key] = wireType(g, it->second->type);
   }
   std::set<std::string> called;

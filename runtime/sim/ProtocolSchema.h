@@ -55,8 +55,8 @@ struct ProtocolSchema {
   std::set<std::string> learnedEvents;                  // the events some `learn` rule reads
   std::vector<std::string> tasks;                       // in declaration order
 
-  // `observationKeys`: the keys the runtime reads (rt::Program::observationSlots()). Throws std::invalid_argument
-  // for a type the protocol cannot carry (none of the language's declarable types).
+  // `observationKeys`: the keys the runtime reads (rt::Program::observationSlots()). Throws rt::RuntimeError (bad
+  // input) for a type the protocol cannot carry (none of the language's declarable types).
   static ProtocolSchema fromProgram(const ir::ConstraintGraph& graph, const std::vector<std::string>& observationKeys);
 };
 

@@ -42,6 +42,13 @@ LearnReport Learner::learn(const std::vector<sim::FeedbackEvent>& events, model:
   observation.resize(std::max<std::size_t>(program_.observationWidth(), 1), 0.0);
   std::vector<double> frame;
   for (const auto& ev : events) {
+    // An event the program does not declare is a simulator that does not fit the program: said, never dropped.
+    const auto& declared = program_.graph().feedback;
+    if (std::none_of(declared.begin(), declared.end(), [&](const ir::Function& f) { return f.name == ev.name; })) {
+      report.problems.push_back(
+          fmt::format("event '{}' is not declared by the program (no `feedback {}(...)`)", ev.name, ev.name));
+      continue;
+    }
     for (std::size_t gi = 0; gi < program_.generators().size(); ++gi) {
       const auto& g = program_.generators()[gi];
       for (std::size_t ri = 0; ri < g.rules.size(); ++ri) {

@@ -79,6 +79,30 @@ for f in train.csv eval.csv profile.json; do
   cmp -s "$work/inproc/$f" "$work/proto/$f" || fail "cooking over the protocol: $f differs from in process"
 done
 
+# The reference server answers bad requests with "ok": false and carries on.
+served=$(printf '%s\n' 'not json' '{"id":1,"op":"reset","world":0,"seed":1}' \
+  '{"id":2,"op":"hello","protocol":1,"domain":"cooking","options":{}}' \
+  '{"id":3,"op":"act","world":0,"action":"serve","args":{"mealName":"soup"}}' \
+  '{"id":4,"op":"act","world":0,"action":"fly","args":{}}' '{"id":5,"op":"observe","world":7}' \
+  '{"id":6,"op":"teleport"}' '{"id":7,"op":"bye"}' | $limit "$cbtl" simulator serve "$cooking" 2>&1)
+rc=$?
+[[ $rc -eq 0 ]] || fail "simulator serve exited $rc on bad requests"
+# answer ID OK [PATTERN]: the answer with that id says "ok": OK (and matches PATTERN).
+answer() {
+  local line
+  line=$(grep -E "\"id\":$1[,}]" <<<"$served")
+  grep -q "\"ok\":$2" <<<"$line" || fail "simulator serve: request $1 should be ok:$2: ${line:-no answer}"
+  [[ -z ${3:-} ]] || grep -qE -- "$3" <<<"$line" || fail "simulator serve: request $1's answer lacks /$3/: $line"
+}
+grep -q '^{"error":"[^"]*","ok":false}$' <<<"$served" || fail "simulator serve: no answer to the line that is not JSON"
+answer 1 false "say hello first"
+answer 2 true '"protocol":1'
+answer 3 true '"step":'
+answer 4 false "the program calls no action 'fly'"
+answer 5 false "there is no world 7"
+answer 6 false "no request .{1,2}teleport"
+answer 7 true
+
 # --- what goes wrong on the other side --------------------------------------------------------------------
 run_with() { $limit "$cbtl" run "$coffee" --steps 40 --eval-every 20 --eval-tasks 3 -q --simulator "$@"; }
 expect 1 "exited with status 3 before answering request [0-9]+ \(act brew\)" -- run_with "$faulty crash"

@@ -39,6 +39,27 @@ class RejectingSimulator : public sim::DomainSimulator {
   std::unique_ptr<sim::DomainSimulator> inner_;
 };
 
+// Cooking, except that every step's feedback also carries an event the program does not declare.
+class ChattySimulator : public sim::DomainSimulator {
+ public:
+  explicit ChattySimulator(std::unique_ptr<sim::DomainSimulator> inner) : inner_(std::move(inner)) {}
+  void reset(std::uint64_t seed) override { inner_->reset(seed); }
+  sim::Observation observe() const override { return inner_->observe(); }
+  sim::StepResult act(const sim::ActionCall& call) override { return chat(inner_->act(call)); }
+  sim::StepResult idle() override { return chat(inner_->idle()); }
+  std::string requestedTask() const override { return inner_->requestedTask(); }
+  std::unique_ptr<sim::DomainSimulator> makeEvaluationTwin() const override {
+    return std::make_unique<ChattySimulator>(inner_->makeEvaluationTwin());
+  }
+
+ private:
+  static sim::StepResult chat(sim::StepResult r) {
+    if (r.consumedStep) r.feedback.push_back({"spilled", {}});
+    return r;
+  }
+  std::unique_ptr<sim::DomainSimulator> inner_;
+};
+
 approach::ExperimentConfig tinyRun() {
   approach::ExperimentConfig c;
   c.steps = 20;
@@ -63,6 +84,24 @@ TEST(ErrorPaths, UnknownActionIsAnInternalError) {
     return std::make_unique<RejectingSimulator>(domains::createSimulator("cooking", {}, o, seed));
   };
   EXPECT_THROW(approach::runExperiment(*lp, factory, tinyRun()), rt::InternalError);
+}
+
+// Before, an undeclared event was dropped: the run exited 0 and nothing was learned from it.
+TEST(ErrorPaths, AnUndeclaredFeedbackEventIsBadInputNamingIt) {
+  auto lp = app::LoadedProgram::load(test::cookingPath());
+  ASSERT_TRUE(lp->ok()) << lp->errors();
+  const approach::SimulatorFactory factory = [](const sim::SimulatorOptions& o, std::uint64_t seed) {
+    return std::make_unique<ChattySimulator>(domains::createSimulator("cooking", {}, o, seed));
+  };
+  try {
+    approach::runExperiment(*lp, factory, tinyRun());
+    ADD_FAILURE() << "an undeclared event was accepted";
+  } catch (const std::logic_error& e) {
+    ADD_FAILURE() << "bad input reported as a bug: " << e.what();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("event 'spilled' is not declared by the program"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(ErrorPaths, PeriodicResetEveryMustBePositive) {

@@ -148,8 +148,7 @@ ProtocolSchema ProtocolSchema::fromProgram(const ir::ConstraintGraph& g, const s
   for (const std::string& key : keys) {
     const std::string base = key.substr(0, key.find('['));
     const auto it = declared.find(base);
-    if (it == declared.end())
-      throw rt::RuntimeError("", fmt::format("the program reads no observation '{}'", key));
+    if (it == declared.end()) throw rt::RuntimeError("", fmt::format("the program reads no observation '{}'", key));
     s.observations[key] = wireType(g, it->second->type);
   }
   std::set<std::string> called;

@@ -37,27 +37,23 @@ BooksSimulator::BooksSimulator(const ProgramFacts& program, const sim::Simulator
 
 BooksSimulator::BooksSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options, std::uint64_t seed,
                                BooksUser user)
-    : BooksSimulator(options,
-                     Shared{home::programScene(program, "books"),
-                            std::make_shared<const BookCatalog>(BookCatalog::fromProgram(program)),
-                            std::make_shared<const BooksUser>(std::move(user))},
-                     seed, false) {}
+    // BooksShared's braces evaluate in order, so a program without a scene is told so before its catalogue is read.
+    : BooksSimulator(std::make_shared<const BooksShared>(BooksShared{
+                         home::programScene(program, "books"), BookCatalog::fromProgram(program), std::move(user)}),
+                     options, sim::WorldRole::Training, seed) {}
 
-BooksSimulator::BooksSimulator(const sim::SimulatorOptions& options, Shared shared, std::uint64_t seed, bool evaluation)
-    : options_(options),
-      scene_(std::move(shared.scene)),
-      catalog_(std::move(shared.catalog)),
-      user_(std::move(shared.user)),
-      world_(std::make_unique<world::World>(scene_)),
-      evaluation_(evaluation) {
-  scenePoses_ = world_->workspace().state().objects;
-  for (const Book& b : catalog_->books()) {
-    if (!scenePoses_.count(b.body)) {
+BooksSimulator::BooksSimulator(std::shared_ptr<const BooksShared> shared, const sim::SimulatorOptions& options,
+                               sim::WorldRole role, std::uint64_t seed)
+    : SimulatorBase(
+          shared, options, role,
+          actions::RobotSimulator::Setup{"books", shared->scene, actions::RobotActions(), home::kCaregiverPatience}) {
+  for (const Book& b : catalog().books()) {
+    if (!scenePoses().count(b.body)) {
       throw std::invalid_argument("books: the body '" + b.body + "' of Book entry '" + b.entry +
                                   "' is not a movable object of the scene");
     }
   }
-  const auto hand = home::userHandFrame(world_->workspace());
+  const auto hand = home::userHandFrame(world().workspace());
   if (!hand) throw std::runtime_error("books: the home scene lacks the sites user_hand and handover_center");
   hand_ = *hand;
   reset(seed);
@@ -75,57 +71,53 @@ void BooksSimulator::stockShelves(world::WorldState& state, bool mayHold) {
   }
   const std::size_t count = 3 + rng_.index(books.size() - 3 + 1);
   for (std::size_t i = 0; i < count; ++i) {
-    state.objects[home::bookBody(books[i])] = scenePoses_.at(home::bookBody(slots[i]));
+    state.objects[home::bookBody(books[i])] = scenePoses().at(home::bookBody(slots[i]));
   }
 }
 
 void BooksSimulator::reset(std::uint64_t seed) {
   rng_.seed(seed);
   judged_ = false;
-  idleRun_ = 0;
-  world_->utterances().clear();
-  world::WorldState s = home::emptyRoom(*scene_, scenePoses_);
-  if (evaluation_)
+  world::WorldState s = home::emptyRoom(scene(), scenePoses());
+  if (isEvaluationTwin())
     stockForEvaluation(s);
   else
     stockShelves(s, true);
-  if (world_->workspace().setState(s) != world::StateStatus::Ok) {
-    throw std::logic_error("books: the episode's start state is invalid");  // a bug in this file
-  }
+  startEpisode(s);
 }
 
 void BooksSimulator::stockForEvaluation(world::WorldState& state) {
-  const std::vector<std::size_t> order = rng_.permutation(catalog_->books().size());
+  const std::vector<std::size_t> order = rng_.permutation(catalog().books().size());
   const std::vector<std::size_t> slots = rng_.permutation(home::kBookCount);
   std::vector<const Book*> enjoyed, others;
   for (std::size_t i : order) {
-    const Book& b = catalog_->books()[i];
-    (enjoysBook(*user_, b) ? enjoyed : others).push_back(&b);
+    const Book& b = catalog().books()[i];
+    (enjoysBook(user(), b) ? enjoyed : others).push_back(&b);
   }
   if (enjoyed.size() > kEvalEnjoyed) enjoyed.resize(kEvalEnjoyed);
   if (others.size() > kEvalOthers) others.resize(kEvalOthers);
   std::size_t slot = 0;
   for (const auto* group : {&enjoyed, &others}) {
     for (const Book* b : *group) {
-      if (slot < slots.size()) state.objects[b->body] = scenePoses_.at(home::bookBody(slots[slot++]));
+      if (slot < slots.size()) state.objects[b->body] = scenePoses().at(home::bookBody(slots[slot++]));
     }
   }
 }
 
 std::vector<std::string> BooksSimulator::pickable() const {
-  const world::Workspace& ws = world_->workspace();
+  const world::Workspace& ws = world().workspace();
   const std::vector<std::string> geoms = home::homeSurfaceGeoms();
   const std::string held = ws.state().held ? ws.state().held->object : std::string();
   std::vector<std::string> out;
-  for (const Book& b : catalog_->books()) {
+  for (const Book& b : catalog().books()) {
     if (b.body == held) continue;
-    if (actions::supportOf(*world_, b.body, geoms)) out.emplace_back(b.entry);
+    if (actions::supportOf(world(), b.body, geoms)) out.emplace_back(b.entry);
   }
   return out;
 }
 
 sim::Observation BooksSimulator::observe() const {
-  const world::WorldState& s = world_->workspace().state();
+  const world::WorldState& s = world().workspace().state();
   sim::Observation o;
   o["pickable"] = Value::names(pickable());
   o["handPose"] = Value::vec(actions::encodePose3(hand_));
@@ -134,38 +126,28 @@ sim::Observation BooksSimulator::observe() const {
 }
 
 std::string BooksSimulator::requestedTask() const {
-  return world_->workspace().state().held ? "stowThenHandOverBook" : "handOverBook";
+  return world().workspace().state().held ? "stowThenHandOverBook" : "handOverBook";
 }
 
-StepResult BooksSimulator::act(const sim::ActionCall& call) {
-  idleRun_ = 0;
-  const auto done = actions_.execute(*world_, call);
-  if (!done) {
-    StepResult r;
-    r.status = sim::ActionStatus::UnknownAction;
-    r.message = "books has no action '" + call.name + "'";
-    return r;
-  }
-  StepResult r = done->toStepResult(call.name);
-  if (!done->wellFormed) return r;
-  if (!done->done()) {
-    r.taskDone = true;  // a failure ends the task
-    r.taskFailed = true;
-    judged_ = false;
-    return r;
-  }
-  if (call.name == "handOver") return handOver(std::move(r));
+StepResult BooksSimulator::afterFailure(StepResult step) {
+  judged_ = false;
+  return step;
+}
+
+StepResult BooksSimulator::afterApplied(const sim::ActionCall& call, const actions::RobotActionResult&,
+                                        StepResult step) {
+  if (call.name == "handOver") return handOver(std::move(step));
   if (call.name == "say" && call.args[0].text == kDoneUtterance && judged_) {
-    r.taskDone = true;  // the robot has handed over, put its arm back and said so
+    step.taskDone = true;  // the robot has handed over, put its arm back and said so
     judged_ = false;
   }
-  return r;
+  return step;
 }
 
 StepResult BooksSimulator::handOver(StepResult r) {
-  world::Workspace& ws = world_->workspace();
+  world::Workspace& ws = world().workspace();
   const std::string body = ws.state().held->object;  // handOver succeeded, so something is held
-  const Book* book = catalog_->byBody(body);
+  const Book* book = catalog().byBody(body);
   if (book == nullptr) {
     r.status = sim::ActionStatus::Ignored;
     r.taskDone = true;
@@ -174,8 +156,8 @@ StepResult BooksSimulator::handOver(StepResult r) {
   }
   judged_ = true;
   const Eigen::Vector3d point = ws.toolPose().position;
-  const bool reached = user_->reaches(hand_, point);
-  const bool enjoyed = reached && enjoysBook(*user_, *book);
+  const bool reached = user().reaches(hand_, point);
+  const bool enjoyed = reached && enjoysBook(user(), *book);
   const std::string said = BooksUser::reaction(*book, reached, enjoyed);
   r.feedback.push_back(
       sim::FeedbackEvent{"handoverOutcome",
@@ -192,38 +174,23 @@ StepResult BooksSimulator::handOver(StepResult r) {
     s.objects[body] = home::parkedPose(parkingSlot(body));
     ws.setState(s);
   }
-  if (pickable().empty()) {
-    // No book is left on the furniture: the caregiver restocks it (a book the robot holds stays in its hand).
-    world::WorldState s = ws.state();
-    stockShelves(s, false);
-    ws.setState(s);
-  }
+  restockWhenEmpty();
   return r;
 }
 
-StepResult BooksSimulator::idle() {
-  StepResult r;
-  r.consumedStep = true;
-  r.message = "idle: the robot waits";
-  if (++idleRun_ >= home::kCaregiverPatience) {
-    world::WorldState s = world_->workspace().state();
-    home::caregiverReset(s, *scene_);
-    world_->workspace().setState(s);
-    if (pickable().empty()) {
-      s = world_->workspace().state();
-      stockShelves(s, false);
-      world_->workspace().setState(s);
-    }
-    idleRun_ = 0;
-    judged_ = false;
-    r.caregiverReset = true;
-    r.message = "the robot was stuck: the caregiver put it back at its start";
-  }
-  return r;
+void BooksSimulator::restockWhenEmpty() {
+  if (!pickable().empty()) return;
+  world::WorldState s = world().workspace().state();
+  stockShelves(s, false);
+  world().workspace().setState(s);
 }
 
-std::unique_ptr<sim::DomainSimulator> BooksSimulator::makeEvaluationTwin() const {
-  return std::unique_ptr<sim::DomainSimulator>(new BooksSimulator(options_, Shared{scene_, catalog_, user_}, 0, true));
+void BooksSimulator::caregiverReset() {
+  world::WorldState s = world().workspace().state();
+  home::caregiverReset(s, scene());
+  world().workspace().setState(s);
+  restockWhenEmpty();
+  judged_ = false;
 }
 
 }  // namespace cbtl::domains::books

@@ -45,13 +45,10 @@
 #include "domains/ProgramFacts.h"
 #include "domains/books/BookCatalog.h"
 #include "domains/books/BooksUser.h"
-#include "robot/actions/RobotActions.h"
-#include "runtime/sim/DomainSimulator.h"
-
-#include "robot/world/WorldOperations.h"
+#include "robot/actions/RobotSimulator.h"
+#include "runtime/sim/SimulatorBase.h"
 
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -65,7 +62,15 @@ inline constexpr const char* kDoneUtterance = "Done";  // what the robot says wh
 inline constexpr std::size_t kEvalEnjoyed = 1;
 inline constexpr std::size_t kEvalOthers = 4;
 
-class BooksSimulator final : public sim::DomainSimulator {
+// What a training world shares with its evaluation twins.
+struct BooksShared {
+  std::shared_ptr<const world::Scene> scene;
+  BookCatalog catalog;
+  BooksUser user;
+};
+
+// The step loop, idling and the caregiver are actions::RobotSimulator's; the evaluation twin is sim::SimulatorBase's.
+class BooksSimulator final : public sim::SimulatorBase<BooksSimulator, const BooksShared, actions::RobotSimulator> {
  public:
   // The paper's user (BooksUser::paperDefault). Throws std::invalid_argument when `program` names no scene,
   // has no Book catalogue, or a book's body is not a movable object of the scene; std::runtime_error when the
@@ -75,50 +80,37 @@ class BooksSimulator final : public sim::DomainSimulator {
 
   void reset(std::uint64_t seed) override;
   sim::Observation observe() const override;
-  sim::StepResult act(const sim::ActionCall& call) override;
-  sim::StepResult idle() override;
-  const world::WorldState* worldState() const override { return &world_->workspace().state(); }
   std::string requestedTask() const override;
-  // Shares the user; its own world and RNG, reset with seed 0 until the caller resets it. Its tasks are evaluation
-  // tasks: the robot holds nothing, and the furniture holds kEvalEnjoyed books the user enjoys and kEvalOthers
-  // others (fewer when the catalogue has fewer), in shuffled slots.
-  std::unique_ptr<sim::DomainSimulator> makeEvaluationTwin() const override;
+  // makeEvaluationTwin(): shares the user; its own world and RNG, reset with seed 0 until the caller resets it. Its
+  // tasks are evaluation tasks: the robot holds nothing, and the furniture holds kEvalEnjoyed books the user enjoys
+  // and kEvalOthers others (fewer when the catalogue has fewer), in shuffled slots.
 
-  const BooksUser& user() const { return *user_; }
-  const BookCatalog& catalog() const { return *catalog_; }
-  world::World& world() { return *world_; }
-  const world::World& world() const { return *world_; }
+  const BooksUser& user() const { return shared().user; }
+  const BookCatalog& catalog() const { return shared().catalog; }
   // The Book entries on the furniture now (the "pickable" observation), in catalogue order.
   std::vector<std::string> pickable() const;
   // The user's hand frame (the "handPose" observation).
   const world::Pose3& handFrame() const { return hand_; }
 
  private:
-  struct Shared {  // what evaluation twins share with their training world
-    std::shared_ptr<const world::Scene> scene;
-    std::shared_ptr<const BookCatalog> catalog;
-    std::shared_ptr<const BooksUser> user;
-  };
-  BooksSimulator(const sim::SimulatorOptions& options, Shared shared, std::uint64_t seed, bool evaluation);
+  friend class sim::SimulatorBase<BooksSimulator, const BooksShared, actions::RobotSimulator>;
+  BooksSimulator(std::shared_ptr<const BooksShared> shared, const sim::SimulatorOptions& options, sim::WorldRole role,
+                 std::uint64_t seed);
 
+  sim::StepResult afterApplied(const sim::ActionCall& call, const actions::RobotActionResult& result,
+                               sim::StepResult step) override;
+  sim::StepResult afterFailure(sim::StepResult step) override;
+  void caregiverReset() override;
   // Steps 2 and 4 of the episode start on `state` (step 3 too when `mayHold`).
   void stockShelves(world::WorldState& state, bool mayHold);
   // An evaluation task's furniture: kEvalEnjoyed books the user enjoys and kEvalOthers others, in shuffled slots.
   void stockForEvaluation(world::WorldState& state);
+  // The caregiver restocks the furniture when no book is left on it (a book the robot holds stays in its hand).
+  void restockWhenEmpty();
   sim::StepResult handOver(sim::StepResult r);
 
-  sim::SimulatorOptions options_;
-  std::shared_ptr<const world::Scene> scene_;
-  std::shared_ptr<const BookCatalog> catalog_;
-  std::shared_ptr<const BooksUser> user_;
-  std::unique_ptr<world::World> world_;
-  std::map<std::string, world::Pose3> scenePoses_;  // home.xml's object poses (the book slots among them)
   world::Pose3 hand_;
-  actions::RobotActions actions_;
-  world::Rng rng_;
-  bool evaluation_ = false;  // an evaluation twin: tasks drawn as stockForEvaluation says
-  bool judged_ = false;      // the user has answered this task's handover; the robot's "Done" ends the task
-  int idleRun_ = 0;          // steps idle in a row (home::kCaregiverPatience)
+  bool judged_ = false;  // the user has answered this task's handover; the robot's "Done" ends the task
 };
 
 }  // namespace cbtl::domains::books

@@ -18,25 +18,22 @@ CleaningSimulator::CleaningSimulator(const ProgramFacts& program, const sim::Sim
 
 CleaningSimulator::CleaningSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options,
                                      std::uint64_t seed, CleaningUser user)
-    : CleaningSimulator(home::programScene(program, "cleaning"), options,
-                        std::make_shared<const CleaningUser>(std::move(user)), seed) {}
+    : CleaningSimulator(std::make_shared<const CleaningShared>(
+                            CleaningShared{home::programScene(program, "cleaning"), std::move(user)}),
+                        options, sim::WorldRole::Training, seed) {}
 
-CleaningSimulator::CleaningSimulator(std::shared_ptr<const world::Scene> scene, const sim::SimulatorOptions& options,
-                                     std::shared_ptr<const CleaningUser> user, std::uint64_t seed)
-    : options_(options),
-      scene_(std::move(scene)),
-      user_(std::move(user)),
-      world_(std::make_unique<world::World>(scene_)) {
-  scenePoses_ = world_->workspace().state().objects;
+CleaningSimulator::CleaningSimulator(std::shared_ptr<const CleaningShared> shared, const sim::SimulatorOptions& options,
+                                     sim::WorldRole role, std::uint64_t seed)
+    : SimulatorBase(shared, options, role,
+                    actions::RobotSimulator::Setup{"cleaning", shared->scene, actions::RobotActions(),
+                                                   home::kCaregiverPatience}) {
   reset(seed);
 }
 
 void CleaningSimulator::reset(std::uint64_t seed) {
   rng_.seed(seed);
   judged_ = false;
-  idleRun_ = 0;
-  world_->utterances().clear();
-  world::WorldState s = home::emptyRoom(*scene_, scenePoses_);
+  world::WorldState s = home::emptyRoom(scene(), scenePoses());
   const std::vector<std::size_t> books = rng_.permutation(home::kBookCount);
   const double held = rng_.uniform();
   if (held >= 2.0 / 3.0) {
@@ -44,15 +41,13 @@ void CleaningSimulator::reset(std::uint64_t seed) {
   } else if (held >= 1.0 / 3.0) {
     home::holdCarried(s, "duster");
   }
-  if (world_->workspace().setState(s) != world::StateStatus::Ok) {
-    throw std::logic_error("cleaning: the episode's start state is invalid");  // a bug in this file
-  }
+  startEpisode(s);
   obstacle_ = home::bookBody(books[0]);
   coverOneSurface();
 }
 
 void CleaningSimulator::coverOneSurface() {
-  world::Workspace& ws = world_->workspace();
+  world::Workspace& ws = world().workspace();
   // The books lying around (a book the robot put away) are tidied up first.
   const std::string held = ws.state().held ? ws.state().held->object : std::string();
   for (std::size_t k = 0; k < home::kBookCount; ++k) {
@@ -65,7 +60,7 @@ void CleaningSimulator::coverOneSurface() {
   // none while the duster lies on it).
   for (std::size_t i : rng_.permutation(home::kHomeSurfaces.size())) {
     const std::string covered(home::kHomeSurfaces[i].geom);
-    if (const auto pose = world::builtins::samplePlacement(*world_, obstacle_, covered, kObstacleClearance, rng_)) {
+    if (const auto pose = world::builtins::samplePlacement(world(), obstacle_, covered, kObstacleClearance, rng_)) {
       ws.setObjectPose(obstacle_, *pose);
       break;
     }
@@ -73,13 +68,13 @@ void CleaningSimulator::coverOneSurface() {
 }
 
 std::vector<std::string> CleaningSimulator::clearSurfaces() const {
-  const world::Workspace& ws = world_->workspace();
+  const world::Workspace& ws = world().workspace();
   const std::vector<std::string> geoms = home::homeSurfaceGeoms();
   std::vector<bool> clear(geoms.size(), true);
   const std::string held = ws.state().held ? ws.state().held->object : std::string();
   for (const world::ObjectInfo& o : ws.scene().objects()) {
     if (o.name == "duster" || o.name == held) continue;
-    if (const auto support = actions::supportOf(*world_, o.name, geoms)) {
+    if (const auto support = actions::supportOf(world(), o.name, geoms)) {
       for (std::size_t i = 0; i < geoms.size(); ++i)
         if (geoms[i] == *support) clear[i] = false;
     }
@@ -91,7 +86,7 @@ std::vector<std::string> CleaningSimulator::clearSurfaces() const {
 }
 
 sim::Observation CleaningSimulator::observe() const {
-  const world::WorldState& s = world_->workspace().state();
+  const world::WorldState& s = world().workspace().state();
   sim::Observation o;
   o["clearSurfaces"] = Value::names(clearSurfaces());
   o["heldBody"] = Value::name(s.held ? s.held->object : std::string());
@@ -100,68 +95,45 @@ sim::Observation CleaningSimulator::observe() const {
 }
 
 std::string CleaningSimulator::requestedTask() const {
-  const auto& held = world_->workspace().state().held;
+  const auto& held = world().workspace().state().held;
   if (!held) return "cleanSurface";
   return held->object == "duster" ? "cleanWithDusterInHand" : "stowThenClean";
 }
 
-StepResult CleaningSimulator::act(const sim::ActionCall& call) {
-  idleRun_ = 0;
-  const auto done = actions_.execute(*world_, call);
-  if (!done) {
-    StepResult r;
-    r.status = sim::ActionStatus::UnknownAction;
-    r.message = "cleaning has no action '" + call.name + "'";
-    return r;
-  }
-  StepResult r = done->toStepResult(call.name);
-  if (!done->wellFormed) return r;
-  if (!done->done()) {
-    r.taskDone = true;  // a failure ends the task
-    r.taskFailed = true;
-    judged_ = false;
-    coverOneSurface();  // the next task
-    return r;
-  }
+StepResult CleaningSimulator::afterFailure(StepResult step) {
+  judged_ = false;
+  coverOneSurface();  // the next task
+  return step;
+}
+
+StepResult CleaningSimulator::afterApplied(const sim::ActionCall& call, const actions::RobotActionResult&,
+                                           StepResult step) {
   if (call.name == "say" && call.args[0].text == kDoneUtterance && judged_) {
-    r.taskDone = true;  // the robot has cleaned, put its arm back and said so
+    step.taskDone = true;  // the robot has cleaned, put its arm back and said so
     judged_ = false;
     coverOneSurface();  // the next task
-    return r;
+    return step;
   }
   if (call.name == "wipe") {
     if (const auto surface = home::surfaceMemberOfGeom(call.args[0].text)) {
-      const bool welcome = user_->welcomes(*surface);
-      r.feedback.push_back(
+      const bool welcome = user().welcomes(*surface);
+      step.feedback.push_back(
           sim::FeedbackEvent{"cleaningReaction", {Value::name(*surface), Value::num(welcome ? 1 : 0)}});
-      r.hasSatisfaction = true;
-      r.satisfaction = welcome ? 1.0 : -1.0;
-      r.message = welcome ? "Thanks for cleaning there." : "Don't clean there -- I can do it myself.";
+      step.hasSatisfaction = true;
+      step.satisfaction = welcome ? 1.0 : -1.0;
+      step.message = welcome ? "Thanks for cleaning there." : "Don't clean there -- I can do it myself.";
       judged_ = true;
     }
   }
-  return r;
+  return step;
 }
 
-StepResult CleaningSimulator::idle() {
-  StepResult r;
-  r.consumedStep = true;
-  r.message = "idle: the robot waits";
-  if (++idleRun_ >= home::kCaregiverPatience) {
-    world::WorldState s = world_->workspace().state();
-    home::caregiverReset(s, *scene_);
-    world_->workspace().setState(s);
-    idleRun_ = 0;
-    judged_ = false;
-    coverOneSurface();
-    r.caregiverReset = true;
-    r.message = "the robot was stuck: the caregiver put it back at its start";
-  }
-  return r;
-}
-
-std::unique_ptr<sim::DomainSimulator> CleaningSimulator::makeEvaluationTwin() const {
-  return std::unique_ptr<sim::DomainSimulator>(new CleaningSimulator(scene_, options_, user_, 0));
+void CleaningSimulator::caregiverReset() {
+  world::WorldState s = world().workspace().state();
+  home::caregiverReset(s, scene());
+  world().workspace().setState(s);
+  judged_ = false;
+  coverOneSurface();
 }
 
 }  // namespace cbtl::domains::cleaning

@@ -40,13 +40,10 @@
 
 #include "domains/ProgramFacts.h"
 #include "domains/cleaning/CleaningUser.h"
-#include "robot/actions/RobotActions.h"
-#include "runtime/sim/DomainSimulator.h"
-
-#include "robot/world/WorldOperations.h"
+#include "robot/actions/RobotSimulator.h"
+#include "runtime/sim/SimulatorBase.h"
 
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -56,7 +53,16 @@ namespace cbtl::domains::cleaning {
 inline constexpr double kObstacleClearance = 0.02;     // metres between an obstacle book and other objects
 inline constexpr const char* kDoneUtterance = "Done";  // what the robot says when it has finished a task
 
-class CleaningSimulator final : public sim::DomainSimulator {
+// What a training world shares with its evaluation twins.
+struct CleaningShared {
+  std::shared_ptr<const world::Scene> scene;
+  CleaningUser user;
+};
+
+// The step loop, idling and the caregiver are actions::RobotSimulator's; the evaluation twin is sim::SimulatorBase's
+// (it shares the user; its own world and RNG, reset with seed 0 until the caller resets it).
+class CleaningSimulator final
+    : public sim::SimulatorBase<CleaningSimulator, const CleaningShared, actions::RobotSimulator> {
  public:
   // The paper's user (CleaningUser::paperDefault) in the program's scene (home.xml). Throws
   // std::invalid_argument when `program` names no scene, std::runtime_error when it cannot be loaded.
@@ -66,37 +72,26 @@ class CleaningSimulator final : public sim::DomainSimulator {
 
   void reset(std::uint64_t seed) override;
   sim::Observation observe() const override;
-  sim::StepResult act(const sim::ActionCall& call) override;
-  sim::StepResult idle() override;
-  const world::WorldState* worldState() const override { return &world_->workspace().state(); }
   std::string requestedTask() const override;
-  // Shares the user; its own world and RNG, reset with seed 0 until the caller resets it.
-  std::unique_ptr<sim::DomainSimulator> makeEvaluationTwin() const override;
 
-  const CleaningUser& user() const { return *user_; }
-  // The robot world (tests and tools may inspect or arrange it).
-  world::World& world() { return *world_; }
-  const world::World& world() const { return *world_; }
+  const CleaningUser& user() const { return shared().user; }
   // The Surface members that are clear now (the "clearSurfaces" observation).
   std::vector<std::string> clearSurfaces() const;
 
  private:
-  CleaningSimulator(std::shared_ptr<const world::Scene> scene, const sim::SimulatorOptions& options,
-                    std::shared_ptr<const CleaningUser> user, std::uint64_t seed);
+  friend class sim::SimulatorBase<CleaningSimulator, const CleaningShared, actions::RobotSimulator>;
+  CleaningSimulator(std::shared_ptr<const CleaningShared> shared, const sim::SimulatorOptions& options,
+                    sim::WorldRole role, std::uint64_t seed);
 
+  sim::StepResult afterApplied(const sim::ActionCall& call, const actions::RobotActionResult& result,
+                               sim::StepResult step) override;
+  sim::StepResult afterFailure(sim::StepResult step) override;
+  void caregiverReset() override;
   // Tidies the furniture and covers one surface with the obstacle book (the header's "Every task").
   void coverOneSurface();
 
-  sim::SimulatorOptions options_;
-  std::shared_ptr<const world::Scene> scene_;  // shared with evaluation twins
-  std::shared_ptr<const CleaningUser> user_;
-  std::unique_ptr<world::World> world_;
-  std::map<std::string, world::Pose3> scenePoses_;  // home.xml's object poses
-  actions::RobotActions actions_;
-  world::Rng rng_;
   std::string obstacle_;  // the book that covers a surface
   bool judged_ = false;   // the user has judged this task's wipe; the robot's "Done" ends the task
-  int idleRun_ = 0;       // steps idle in a row (home::kCaregiverPatience)
 };
 
 }  // namespace cbtl::domains::cleaning

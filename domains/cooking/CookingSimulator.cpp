@@ -19,13 +19,6 @@ using sim::Value;
 constexpr double kStockLo = 10, kStockHi = 20;  // a restock draws U(10, 20) per ingredient ("more than enough")
 constexpr double kSpecQuantityMin = 0.9;        // cooking.cbtl's specQtyMin: unsatisfiable stock stays above it
 
-StepResult unknown(std::string message) {
-  StepResult r;
-  r.status = ActionStatus::UnknownAction;
-  r.message = std::move(message);
-  return r;
-}
-
 const char* kindName(Value::Kind kind) {
   switch (kind) {
     case Value::Kind::Number:
@@ -89,12 +82,12 @@ CookingSimulator::CookingSimulator(const sim::SimulatorOptions& options, std::ui
     : CookingSimulator(options, seed, CookingUser::paperDefault()) {}
 
 CookingSimulator::CookingSimulator(const sim::SimulatorOptions& options, std::uint64_t seed, CookingUser user)
-    : CookingSimulator(options, std::make_shared<CookingUser>(std::move(user)), true, seed) {}
+    : CookingSimulator(std::make_shared<CookingUser>(std::move(user)), options, sim::WorldRole::Training, seed) {}
 
-CookingSimulator::CookingSimulator(const sim::SimulatorOptions& options, std::shared_ptr<CookingUser> user,
-                                   bool shiftsUser, std::uint64_t seed)
-    : options_(options), user_(std::move(user)), shiftsUser_(shiftsUser), shiftRng_(rt::splitMix64(seed)) {
-  validate(options_);
+CookingSimulator::CookingSimulator(std::shared_ptr<CookingUser> user, const sim::SimulatorOptions& options,
+                                   sim::WorldRole role, std::uint64_t seed)
+    : SimulatorBase(std::move(user), options, role), shiftRng_(rt::splitMix64(seed)) {
+  validate(options);
   reset(seed);
 }
 
@@ -106,13 +99,13 @@ void CookingSimulator::reset(std::uint64_t seed) {
 void CookingSimulator::restock() {
   Stock stock{};
   for (Ingredient ingredient : kAllIngredients) stock[indexOf(ingredient)] = rng_.uniform(kStockLo, kStockHi);
-  const double p = options_.unsatisfiableStockProbability;
+  const double p = options().unsatisfiableStockProbability;
   // No draw at all when the option is off, so the default stream is the same as without the feature.
   if (p > 0 && rng_.uniform() < p) {
-    const std::vector<Ingredient> required = user_->requiredIngredients();
+    const std::vector<Ingredient> required = user().requiredIngredients();
     if (!required.empty()) {
       const Ingredient scarce = required[rng_.index(required.size())];
-      const double userMin = user_->quantityMin(scarce).value_or(kSpecQuantityMin);
+      const double userMin = user().quantityMin(scarce).value_or(kSpecQuantityMin);
       double q = kSpecQuantityMin;
       if (userMin > kSpecQuantityMin) {
         q = rng_.uniform(kSpecQuantityMin, userMin);
@@ -143,7 +136,7 @@ StepResult CookingSimulator::act(const ActionCall& call) {
   } else if (call.name == "serve") {
     result = serve(call);
   } else {
-    return unknown("cooking has no action '" + call.name + "'");
+    return sim::unknownActionStep("cooking has no action '" + call.name + "'");
   }
   finishStep(result);
   if (result.taskDone) restock();  // after the shift, so the new kitchen is drawn against the current user
@@ -156,26 +149,25 @@ StepResult CookingSimulator::idle() {
   return result;
 }
 
-std::unique_ptr<sim::DomainSimulator> CookingSimulator::makeEvaluationTwin() const {
-  return std::unique_ptr<sim::DomainSimulator>(new CookingSimulator(options_, user_, false, 0));
-}
-
 void CookingSimulator::finishStep(StepResult& result) {
   if (!result.consumedStep) return;
   ++steps_;
-  if (shiftsUser_ && options_.shiftEvery > 0 && steps_ % options_.shiftEvery == 0) {
-    user_->shift(shiftRng_, options_.shiftLo, options_.shiftHi);
-    result.preferencesChanged = options_.announceShifts;
+  if (shiftsUser() && options().shiftEvery > 0 && steps_ % options().shiftEvery == 0) {
+    sharedPointer()->shift(shiftRng_, options().shiftLo, options().shiftHi);
+    result.preferencesChanged = options().announceShifts;
   }
 }
 
 StepResult CookingSimulator::movePot(const ActionCall& call) {
-  if (std::string e = checkArgs(call, {Value::Kind::Name, Value::Kind::Vector}); !e.empty()) return unknown(e);
+  if (std::string e = checkArgs(call, {Value::Kind::Name, Value::Kind::Vector}); !e.empty())
+    return sim::unknownActionStep(e);
   std::optional<std::size_t> pot;
-  if (!potFromName(call.args[0].text, pot)) return unknown("movePot: '" + call.args[0].text + "' is not a Pot");
+  if (!potFromName(call.args[0].text, pot))
+    return sim::unknownActionStep("movePot: '" + call.args[0].text + "' is not a Pot");
   const std::vector<double>& position = call.args[1].vector;
   if (position.size() != 2) {
-    return unknown("movePot: position must be a vec<2>, got " + std::to_string(position.size()) + " components");
+    return sim::unknownActionStep("movePot: position must be a vec<2>, got " + std::to_string(position.size()) +
+                                  " components");
   }
   StepResult r;
   r.consumedStep = true;
@@ -207,13 +199,13 @@ StepResult CookingSimulator::movePot(const ActionCall& call) {
 
 StepResult CookingSimulator::addIngredient(const ActionCall& call) {
   if (std::string e = checkArgs(call, {Value::Kind::Name, Value::Kind::Name, Value::Kind::Number}); !e.empty()) {
-    return unknown(e);
+    return sim::unknownActionStep(e);
   }
   const std::optional<Ingredient> ingredient = ingredientFromName(call.args[0].text);
-  if (!ingredient) return unknown("addIngredient: '" + call.args[0].text + "' is not an Ingredient");
+  if (!ingredient) return sim::unknownActionStep("addIngredient: '" + call.args[0].text + "' is not an Ingredient");
   std::optional<std::size_t> pot;
   if (!potFromName(call.args[1].text, pot)) {
-    return unknown("addIngredient: '" + call.args[1].text + "' is not a Pot");
+    return sim::unknownActionStep("addIngredient: '" + call.args[1].text + "' is not a Pot");
   }
   StepResult r;  // no step: the addition waits for the next cooking tick
   if (!pot) {
@@ -244,7 +236,7 @@ StepResult CookingSimulator::addIngredient(const ActionCall& call) {
 }
 
 StepResult CookingSimulator::endTick(const ActionCall& call) {
-  if (std::string e = checkArgs(call, {}); !e.empty()) return unknown(e);
+  if (std::string e = checkArgs(call, {}); !e.empty()) return sim::unknownActionStep(e);
   return cookingTick({});
 }
 
@@ -257,14 +249,14 @@ StepResult CookingSimulator::cookingTick(std::string message) {
 }
 
 StepResult CookingSimulator::serve(const ActionCall& call) {
-  if (std::string e = checkArgs(call, {Value::Kind::Name}); !e.empty()) return unknown(e);
+  if (std::string e = checkArgs(call, {Value::Kind::Name}); !e.empty()) return sim::unknownActionStep(e);
   const std::string& mealName = call.args[0].text;
   const std::vector<PotContent> contents = world_.contents();
   std::vector<Tasted> tasted;
   for (const PotContent& c : contents) {
     tasted.push_back(Tasted{c.ingredient, ticksToTemperature(c.temperatureTicks), c.quantity});
   }
-  const MealVerdict verdict = user_->judge(mealName, tasted);
+  const MealVerdict verdict = user().judge(mealName, tasted);
 
   StepResult r;
   r.consumedStep = true;

@@ -39,7 +39,7 @@
 #include "domains/cooking/CookingUser.h"
 #include "domains/cooking/CookingWorld.h"
 #include "runtime/core/Rng.h"
-#include "runtime/sim/DomainSimulator.h"
+#include "runtime/sim/SimulatorBase.h"
 
 #include <cstdint>
 #include <memory>
@@ -55,7 +55,8 @@ std::string potName(std::size_t pot);  // "pot0" .. "pot3"
 // Parses a Pot member: pot index for "pot0".."pot3", nullopt for "noPot"; false when the name is not a member.
 bool potFromName(std::string_view name, std::optional<std::size_t>& pot);
 
-class CookingSimulator final : public sim::DomainSimulator {
+// The evaluation twin is sim::SimulatorBase's: it shares the (mutable) user, which only the training world shifts.
+class CookingSimulator final : public sim::SimulatorBase<CookingSimulator, CookingUser> {
  public:
   // A training world with the paper's user (CookingUser::paperDefault). Throws std::invalid_argument for
   // options out of range (shiftEvery < 0, shiftLo > shiftHi, a non-finite bound, p outside [0, 1]).
@@ -67,19 +68,19 @@ class CookingSimulator final : public sim::DomainSimulator {
   sim::Observation observe() const override;
   sim::StepResult act(const sim::ActionCall& call) override;
   sim::StepResult idle() override;
-  // Shares the user; its own world and RNG, reset with seed 0 until the caller resets it. Never shifts the user.
-  std::unique_ptr<sim::DomainSimulator> makeEvaluationTwin() const override;
+  // makeEvaluationTwin(): shares the user; its own world and RNG, reset with seed 0 until the caller resets it.
+  // Never shifts the user.
 
   const CookingWorld& world() const { return world_; }
-  const CookingUser& user() const { return *user_; }
-  const sim::SimulatorOptions& options() const { return options_; }
+  const CookingUser& user() const { return shared(); }
   // Steps this simulator consumed since construction (reset does not clear it).
   std::int64_t stepCount() const { return steps_; }
   // True for a training world, false for an evaluation twin.
-  bool shiftsUser() const { return shiftsUser_; }
+  bool shiftsUser() const { return role() == sim::WorldRole::Training; }
 
  private:
-  CookingSimulator(const sim::SimulatorOptions& options, std::shared_ptr<CookingUser> user, bool shiftsUser,
+  friend class sim::SimulatorBase<CookingSimulator, CookingUser>;
+  CookingSimulator(std::shared_ptr<CookingUser> user, const sim::SimulatorOptions& options, sim::WorldRole role,
                    std::uint64_t seed);
 
   sim::StepResult movePot(const sim::ActionCall& call);
@@ -91,10 +92,7 @@ class CookingSimulator final : public sim::DomainSimulator {
   void finishStep(sim::StepResult& result);
   void restock();
 
-  sim::SimulatorOptions options_;
-  std::shared_ptr<CookingUser> user_;
-  bool shiftsUser_ = true;
-  rt::Rng rng_;       // the world: stock, unsatisfiable picks; reseeded by reset
+  // rng_ (SimulatorBase): the world's stock and unsatisfiable picks; reseeded by reset.
   rt::Rng shiftRng_;  // the user's shifts; seeded once at construction
   CookingWorld world_;
   std::int64_t steps_ = 0;

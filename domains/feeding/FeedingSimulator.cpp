@@ -38,13 +38,6 @@ const std::vector<std::string> kSettings = {"alone", "withFriend", "withTv", "wi
 
 sim::Value foodValue(const std::string& food) { return sim::Value::name(foodEntry(food)); }
 
-sim::StepResult unknownAction(std::string message) {
-  sim::StepResult r;
-  r.status = sim::ActionStatus::UnknownAction;
-  r.message = std::move(message);
-  return r;
-}
-
 // One answer about a choice: `answer`(leading..., offered, ideal), then `turnedDown`(leading..., choice) for every
 // other choice the user neither got nor named (naming the ideal among them turns the rest down).
 void answerAmong(std::vector<sim::FeedbackEvent>& out, const std::vector<sim::Value>& leading, const char* answer,
@@ -94,11 +87,12 @@ FeedingSimulator::FeedingSimulator(const ProgramFacts& program, const sim::Simul
                            ? FeedingUser::participant(static_cast<std::uint64_t>(options.participant))
                            : FeedingUser::paperDefault()) {}
 
-FeedingSimulator::FeedingSimulator(const ProgramFacts& program, const sim::SimulatorOptions&, std::uint64_t seed,
-                                   FeedingUser user)
-    // Braces: the arguments are evaluated in order, so a program without a scene is told so first.
-    : FeedingSimulator{home::programScene(program, "feeding"), std::make_shared<const FeedingUser>(std::move(user)),
-                       TableAreas::of(program), seed} {}
+FeedingSimulator::FeedingSimulator(const ProgramFacts& program, const sim::SimulatorOptions& options,
+                                   std::uint64_t seed, FeedingUser user)
+    // FeedingShared's braces evaluate in order, so a program without a scene is told so before its constants are read.
+    : FeedingSimulator{std::make_shared<const FeedingShared>(FeedingShared{home::programScene(program, "feeding"),
+                                                                           std::move(user), TableAreas::of(program)}),
+                       options, sim::WorldRole::Training, seed} {}
 
 TableAreas TableAreas::of(const ProgramFacts& program) {
   static constexpr const char* kNames[2][4] = {{"plateX0", "plateX1", "plateY0", "plateY1"},
@@ -121,17 +115,14 @@ TableAreas TableAreas::of(const ProgramFacts& program) {
   return areas;
 }
 
-FeedingSimulator::FeedingSimulator(std::shared_ptr<const world::Scene> scene, std::shared_ptr<const FeedingUser> user,
-                                   TableAreas areas, std::uint64_t seed)
-    : scene_(std::move(scene)),
-      user_(std::move(user)),
-      areas_(areas),
-      world_(std::make_unique<world::World>(scene_)),
-      actions_(FeedingActions::forScene(*scene_)) {
-  scenePoses_ = world_->workspace().state().objects;
-  tablePoses_ = world_->workspace().state().fixtures;
+FeedingSimulator::FeedingSimulator(std::shared_ptr<const FeedingShared> shared, const sim::SimulatorOptions& options,
+                                   sim::WorldRole role, std::uint64_t seed)
+    : SimulatorBase(shared, options, role,
+                    actions::RobotSimulator::Setup{
+                        "feeding", shared->scene, actions::RobotActions(FeedingActions::forScene(*shared->scene)), 0}) {
+  tablePoses_ = world().workspace().state().fixtures;
   for (const char* body : {"user", "user_head"})
-    if (const int id = scene_->bodyId(body); id >= 0) userBodies_.push_back(id);
+    if (const int id = scene().bodyId(body); id >= 0) userBodies_.push_back(id);
   reset(seed);
 }
 
@@ -145,12 +136,11 @@ void FeedingSimulator::reset(std::uint64_t seed) {
   world::WorldState s;
   s.arm = world::configs::kRetract;
   s.gripper = 1.0;
-  s.objects = scenePoses_;
-  const world::Pose2 plate = randomXY(areas_.plate);
+  s.objects = scenePoses();
+  const world::Pose2 plate = randomXY(shared().areas.plate);
   s.objects["plate"].position.x() = plate.x;
   s.objects["plate"].position.y() = plate.y;
-  world_->workspace().setState(s);
-  world_->utterances().clear();
+  startEpisode(s);
   cycle_ = rng_.index(4);
   serveMeal();
   startRequest(cycle_ == 2 ? Request::Prepare : cycle_ == 3 ? Request::Drink : Request::Food);
@@ -171,7 +161,7 @@ void FeedingSimulator::serveMeal() {
 
 void FeedingSimulator::setTable(const std::string& shape) {
   table_ = shape;
-  world::Workspace& ws = world_->workspace();
+  world::Workspace& ws = world().workspace();
   const auto inUse = tablePoses_.find(kRectangularTable), parked = tablePoses_.find(kRoundTable);
   if (inUse == tablePoses_.end() || parked == tablePoses_.end()) return;  // a scene with one table: recorded only
   const bool round = shape == "circular";
@@ -181,7 +171,7 @@ void FeedingSimulator::setTable(const std::string& shape) {
   Pose3 plate = *ws.objectPose("plate");
   if (world::supportAt(ws, "plate", plate).supported()) return;
   for (int i = 0; i < kSpotAttempts; ++i) {
-    const world::Pose2 xy = randomXY(areas_.plate);
+    const world::Pose2 xy = randomXY(shared().areas.plate);
     plate.position.x() = xy.x;
     plate.position.y() = xy.y;
     if (world::supportAt(ws, "plate", plate).supported()) break;
@@ -201,29 +191,29 @@ void FeedingSimulator::serveMealNow(const Meal& meal) {
 
 bool FeedingSimulator::placeOnTable(const std::string& body, double x, double y) {
   if (body != "plate" && body != "drink") return false;
-  world::Workspace& ws = world_->workspace();
+  world::Workspace& ws = world().workspace();
   Pose3 pose = *ws.objectPose(body);
-  pose.position = Eigen::Vector3d(x, y, scenePoses_.at(body).position.z());
-  pose.orientation = scenePoses_.at(body).orientation;
+  pose.position = Eigen::Vector3d(x, y, scenePoses().at(body).position.z());
+  pose.orientation = scenePoses().at(body).orientation;
   if (!world::supportAt(ws, body, pose).supported()) return false;
   ws.setObjectPose(body, pose);
   return true;
 }
 
-double FeedingSimulator::occlusionAt(const world::ArmConfig& q) { return world::builtins::occlusion(*world_, q); }
+double FeedingSimulator::occlusionAt(const world::ArmConfig& q) { return world::builtins::occlusion(world(), q); }
 
 sim::FeedbackEvent FeedingSimulator::viewAnswer(const world::ArmConfig& q, double* score) {
   const double s = occlusionAt(q);
   if (score != nullptr) *score = s;
-  return sim::FeedbackEvent{user_->viewBlocked(s) ? "viewBlocked" : "viewClear",
+  return sim::FeedbackEvent{user().viewBlocked(s) ? "viewBlocked" : "viewClear",
                             {sim::Value::vec(std::vector<double>(q.begin(), q.end()))}};
 }
 
 void FeedingSimulator::startRequest(Request r) {
   request_ = r;
   progress_ = Progress{};
-  progress_.utterancesAtStart = static_cast<int>(world_->utterances().size());
-  world::Workspace& ws = world_->workspace();
+  progress_.utterancesAtStart = static_cast<int>(world().utterances().size());
+  world::Workspace& ws = world().workspace();
   if (r == Request::Food) {
     Pose3 drink = *ws.objectPose("drink");
     drink.position.x() = kDrinkParkedX;
@@ -234,14 +224,14 @@ void FeedingSimulator::startRequest(Request r) {
     // upright at the table's height: a drink the user held comes back in whatever pose the hand-over left it,
     // and tilted into the table top it could not be moved again).
     Pose3 drink = *ws.objectPose("drink");
-    drink.position.z() = scenePoses_.at("drink").position.z();
-    drink.orientation = scenePoses_.at("drink").orientation;
+    drink.position.z() = scenePoses().at("drink").position.z();
+    drink.orientation = scenePoses().at("drink").orientation;
     const Pose3 plate = *ws.objectPose("plate");
     for (int i = 0; i < kSpotAttempts; ++i) {
-      const world::Pose2 xy = randomXY(areas_.drink);
+      const world::Pose2 xy = randomXY(shared().areas.drink);
       drink.position.x() = xy.x;
       drink.position.y() = xy.y;
-      if (world_->clearance().objectDistance("drink", drink, "plate", plate) > 0.01 &&
+      if (world().clearance().objectDistance("drink", drink, "plate", plate) > 0.01 &&
           world::supportAt(ws, "drink", drink).supported())
         break;
     }
@@ -256,13 +246,13 @@ void FeedingSimulator::nextRequest() {
 }
 
 void FeedingSimulator::restoreHome() {
-  world::WorldState s = world_->workspace().state();
+  world::WorldState s = world().workspace().state();
   s.arm = world::configs::kRetract;
   s.gripper = 1.0;
   s.held.reset();
-  s.objects["utensil"] = scenePoses_.at("utensil");
-  if (s.objects.count("drink") != 0) s.objects["drink"].orientation = scenePoses_.at("drink").orientation;
-  world_->workspace().setState(s);
+  s.objects["utensil"] = scenePoses().at("utensil");
+  if (s.objects.count("drink") != 0) s.objects["drink"].orientation = scenePoses().at("drink").orientation;
+  world().workspace().setState(s);
 }
 
 std::string FeedingSimulator::requestedTask() const {
@@ -282,7 +272,7 @@ std::vector<std::string> FeedingSimulator::judgedPreferences() const {
 }
 
 sim::Observation FeedingSimulator::observe() const {
-  const world::Workspace& ws = world_->workspace();
+  const world::Workspace& ws = world().workspace();
   const Pose3 plate = *ws.objectPose("plate");
   const Pose3 drink = *ws.objectPose("drink");
   sim::Observation o;
@@ -299,7 +289,7 @@ sim::Observation FeedingSimulator::observe() const {
 
 void FeedingSimulator::trackClearance(const std::vector<world::ArmConfig>& path) {
   if (path.empty() || userBodies_.empty()) return;
-  world::Workspace& ws = world_->workspace();
+  world::Workspace& ws = world().workspace();
   const world::ArmConfig reached = ws.state().arm;
   for (const auto& q : path) {
     ws.setArm(q);
@@ -313,12 +303,10 @@ void FeedingSimulator::trackClearance(const std::vector<world::ArmConfig>& path)
   ws.setArm(reached);
 }
 
-sim::StepResult FeedingSimulator::fail(sim::StepResult r) {
-  r.status = sim::ActionStatus::Ignored;
-  r.consumedStep = true;
-  r.taskFailed = true;
+sim::StepResult FeedingSimulator::afterFailure(sim::StepResult step) {
+  step.consumedStep = true;
   restoreHome();
-  return complete(std::move(r), false);
+  return complete(std::move(step), false);
 }
 
 sim::StepResult FeedingSimulator::complete(sim::StepResult r, bool satisfied) {
@@ -329,32 +317,27 @@ sim::StepResult FeedingSimulator::complete(sim::StepResult r, bool satisfied) {
   return r;
 }
 
-sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
-  world::Workspace& ws = world_->workspace();
-  if (call.name == "dipInto") {
-    // The world does nothing (FeedingActions.h); the sauce must be one of this meal's.
-    if (const std::string e = actions::checkArguments(call, {actions::kNameArg}); !e.empty()) {
-      return unknownAction(e);
-    }
-    sim::StepResult step;
-    step.consumedStep = true;
-    const std::string entry = dipEntryOfSauce(call.args[0].text);
-    if (entry.empty() || std::find(dips_.begin(), dips_.end(), entry) == dips_.end()) {
-      step.message = fmt::format("dipInto({}): no such sauce on the table", call.args[0].text);
-      return fail(std::move(step));
-    }
-    progress_.dip = entry;
-    return step;
+std::optional<sim::StepResult> FeedingSimulator::actOnSimulatorState(const sim::ActionCall& call) {
+  if (call.name != "dipInto") return std::nullopt;
+  // The world does nothing (FeedingActions.h); the sauce must be one of this meal's.
+  if (const std::string e = actions::checkArguments(call, {actions::kNameArg}); !e.empty()) {
+    return sim::unknownActionStep(e);
   }
-  const auto result = actions_.execute(*world_, call);
-  if (!result) {
-    return unknownAction(fmt::format("Feeding has no action '{}'", call.name));
+  sim::StepResult step;
+  step.consumedStep = true;
+  const std::string entry = dipEntryOfSauce(call.args[0].text);
+  if (entry.empty() || std::find(dips_.begin(), dips_.end(), entry) == dips_.end()) {
+    step.message = fmt::format("dipInto({}): no such sauce on the table", call.args[0].text);
+    return failTask(std::move(step));
   }
-  sim::StepResult step = result->toStepResult(call.name);
-  if (step.status == sim::ActionStatus::UnknownAction) return step;
-  if (step.status == sim::ActionStatus::Ignored) return fail(std::move(step));
-  trackClearance(result->armPath);
+  progress_.dip = entry;
+  return step;
+}
 
+sim::StepResult FeedingSimulator::afterApplied(const sim::ActionCall& call, const actions::RobotActionResult& result,
+                                               sim::StepResult step) {
+  world::Workspace& ws = world().workspace();
+  trackClearance(result.armPath);
   if (call.name == "waitForReady") {
     progress_.signal = call.args[0].text;
     return step;
@@ -362,49 +345,14 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
   if (call.name == "moveDrink" && request_ == Request::Prepare) return complete(std::move(step), true);
   if (call.name == "moveArm") {
     const world::ArmConfig q = ws.state().arm;
-    const double score = world::builtins::occlusion(*world_, q);
-    const bool blocked = user_->viewBlocked(score);
+    const double score = world::builtins::occlusion(world(), q);
+    const bool blocked = user().viewBlocked(score);
     progress_.viewBlocked = progress_.viewBlocked || blocked;
     step.feedback.push_back(sim::FeedbackEvent{blocked ? "viewBlocked" : "viewClear",
                                                {sim::Value::vec(std::vector<double>(q.begin(), q.end()))}});
     return step;
   }
-  if (call.name == "waitForUser") {
-    const std::string signal = call.args[0].text;
-    if (request_ == Request::Food && signal == "biteTaken") progress_.biteTaken = true;
-    if (request_ == Request::Drink && signal == "done") progress_.drinkOffered = true;
-    if (request_ == Request::Food && signal == "done") {
-      if (!progress_.biteTaken) {
-        step.message = "the user was never fed";
-        return complete(std::move(step), false);
-      }
-      const std::string idealDip = user_->idealDip(food_, setting_, dips_);
-      const std::string idealSignal = user_->idealSignal(setting_);
-      const std::string idealVerbosity = user_->idealVerbosity(setting_);
-      const int spoke = static_cast<int>(world_->utterances().size()) - progress_.utterancesAtStart;
-      const std::string verbosity = FeedingUser::perceivedVerbosity(spoke);
-      const std::string signalGiven = progress_.signal.empty() ? "autoContinue" : progress_.signal;
-      std::vector<std::string> choices = dips_;
-      choices.push_back("noDip");
-      answerAmong(step.feedback, {foodValue(food_)}, "dipAnswer", "dipNotWanted", choices, progress_.dip, idealDip);
-      answerAmong(step.feedback, {}, "signalAnswer", "signalNotWanted", FeedingUser::readySignals(), signalGiven,
-                  idealSignal);
-      answerAmong(step.feedback, {}, "verbosityAnswer", "verbosityNotWanted", FeedingUser::verbosities(), verbosity,
-                  idealVerbosity);
-      step.preferences = {{"view", !progress_.viewBlocked},
-                          {"dip", progress_.dip == idealDip},
-                          {"signal", signalGiven == idealSignal},
-                          {"verbosity", verbosity == idealVerbosity}};
-      const bool satisfied =
-          std::all_of(step.preferences.begin(), step.preferences.end(), [](const auto& p) { return p.second; });
-      step.preferences.insert(step.preferences.begin(), {"bite", satisfied});
-      step.measures = {{"userClearance", progress_.userClearance}, {"userKeepOutSlack", progress_.userKeepOutSlack}};
-      if (!progress_.nearest.empty())
-        step.message = fmt::format("closest to the user: {:.3f} m ({})", progress_.userClearance, progress_.nearest);
-      return complete(std::move(step), satisfied);
-    }
-    return step;
-  }
+  if (call.name == "waitForUser") return waitedForUser(call.args[0].text, std::move(step));
   if (call.name == "moveArmToNamed" && request_ == Request::Drink && progress_.drinkOffered && ws.heldObject() < 0) {
     Pose3 drink = *ws.objectPose("drink");
     drink.position.x() = kDrinkParkedX;  // the user keeps the drink by them; the table is clear again
@@ -417,14 +365,40 @@ sim::StepResult FeedingSimulator::act(const sim::ActionCall& call) {
   return step;
 }
 
-sim::StepResult FeedingSimulator::idle() {
-  sim::StepResult r;
-  r.consumedStep = true;
-  return r;
-}
-
-std::unique_ptr<sim::DomainSimulator> FeedingSimulator::makeEvaluationTwin() const {
-  return std::unique_ptr<sim::DomainSimulator>(new FeedingSimulator(scene_, user_, areas_, 0));
+sim::StepResult FeedingSimulator::waitedForUser(const std::string& signal, sim::StepResult step) {
+  if (request_ == Request::Food && signal == "biteTaken") progress_.biteTaken = true;
+  if (request_ == Request::Drink && signal == "done") progress_.drinkOffered = true;
+  if (request_ == Request::Food && signal == "done") {
+    if (!progress_.biteTaken) {
+      step.message = "the user was never fed";
+      return complete(std::move(step), false);
+    }
+    const std::string idealDip = user().idealDip(food_, setting_, dips_);
+    const std::string idealSignal = user().idealSignal(setting_);
+    const std::string idealVerbosity = user().idealVerbosity(setting_);
+    const int spoke = static_cast<int>(world().utterances().size()) - progress_.utterancesAtStart;
+    const std::string verbosity = FeedingUser::perceivedVerbosity(spoke);
+    const std::string signalGiven = progress_.signal.empty() ? "autoContinue" : progress_.signal;
+    std::vector<std::string> choices = dips_;
+    choices.push_back("noDip");
+    answerAmong(step.feedback, {foodValue(food_)}, "dipAnswer", "dipNotWanted", choices, progress_.dip, idealDip);
+    answerAmong(step.feedback, {}, "signalAnswer", "signalNotWanted", FeedingUser::readySignals(), signalGiven,
+                idealSignal);
+    answerAmong(step.feedback, {}, "verbosityAnswer", "verbosityNotWanted", FeedingUser::verbosities(), verbosity,
+                idealVerbosity);
+    step.preferences = {{"view", !progress_.viewBlocked},
+                        {"dip", progress_.dip == idealDip},
+                        {"signal", signalGiven == idealSignal},
+                        {"verbosity", verbosity == idealVerbosity}};
+    const bool satisfied =
+        std::all_of(step.preferences.begin(), step.preferences.end(), [](const auto& p) { return p.second; });
+    step.preferences.insert(step.preferences.begin(), {"bite", satisfied});
+    step.measures = {{"userClearance", progress_.userClearance}, {"userKeepOutSlack", progress_.userKeepOutSlack}};
+    if (!progress_.nearest.empty())
+      step.message = fmt::format("closest to the user: {:.3f} m ({})", progress_.userClearance, progress_.nearest);
+    return complete(std::move(step), satisfied);
+  }
+  return step;
 }
 
 }  // namespace cbtl::domains::feeding

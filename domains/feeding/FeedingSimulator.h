@@ -48,13 +48,13 @@
 
 #include "domains/ProgramFacts.h"
 #include "domains/feeding/FeedingUser.h"
-#include "robot/actions/RobotActions.h"
-#include "runtime/sim/DomainSimulator.h"
-
-#include "robot/world/WorldOperations.h"
+#include "robot/actions/RobotSimulator.h"
+#include "runtime/sim/SimulatorBase.h"
 
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -92,7 +92,18 @@ struct TableAreas {
   static TableAreas of(const ProgramFacts& program);
 };
 
-class FeedingSimulator final : public sim::DomainSimulator {
+// What a training world shares with its evaluation twins.
+struct FeedingShared {
+  std::shared_ptr<const world::Scene> scene;
+  FeedingUser user;
+  TableAreas areas;
+};
+
+// The step loop is actions::RobotSimulator's (no caregiver steps in when the robot idles: a request simply waits);
+// the evaluation twin is sim::SimulatorBase's (it shares the user; its own world and RNG, reset with seed 0 until the
+// caller resets it).
+class FeedingSimulator final
+    : public sim::SimulatorBase<FeedingSimulator, const FeedingShared, actions::RobotSimulator> {
  public:
   // The paper's user (FeedingUser::paperDefault), or participant `options.participant` when it is >= 0
   // (FeedingUser::participant), in the program's scene (feeding.xml). Throws
@@ -104,14 +115,9 @@ class FeedingSimulator final : public sim::DomainSimulator {
 
   void reset(std::uint64_t seed) override;
   sim::Observation observe() const override;
-  sim::StepResult act(const sim::ActionCall& call) override;
-  sim::StepResult idle() override;
-  const world::WorldState* worldState() const override { return &world_->workspace().state(); }
   std::string requestedTask() const override;
   // bite (every preference of a bite met), view, dip, signal, verbosity
   std::vector<std::string> judgedPreferences() const override;
-  // Shares the user; its own world and RNG, reset with seed 0 until the caller resets it.
-  std::unique_ptr<sim::DomainSimulator> makeEvaluationTwin() const override;
 
   Request request() const { return request_; }
   const std::string& food() const { return food_; }
@@ -133,12 +139,19 @@ class FeedingSimulator final : public sim::DomainSimulator {
   sim::FeedbackEvent viewAnswer(const world::ArmConfig& q, double* score = nullptr);
   // The occlusion score of the user's view with the arm at q (the world is left as it was).
   double occlusionAt(const world::ArmConfig& q);
-  const FeedingUser& user() const { return *user_; }
-  world::World& world() { return *world_; }
+  const FeedingUser& user() const { return shared().user; }
 
  private:
-  FeedingSimulator(std::shared_ptr<const world::Scene> scene, std::shared_ptr<const FeedingUser> user, TableAreas areas,
-                   std::uint64_t seed);
+  friend class sim::SimulatorBase<FeedingSimulator, const FeedingShared, actions::RobotSimulator>;
+  FeedingSimulator(std::shared_ptr<const FeedingShared> shared, const sim::SimulatorOptions& options,
+                   sim::WorldRole role, std::uint64_t seed);
+  std::optional<sim::StepResult> actOnSimulatorState(const sim::ActionCall& call) override;
+  sim::StepResult afterApplied(const sim::ActionCall& call, const actions::RobotActionResult& result,
+                               sim::StepResult step) override;
+  // The caregiver puts the utensil back, opens the gripper and folds the arm; the request ends unsatisfied.
+  sim::StepResult afterFailure(sim::StepResult step) override;
+  // afterApplied for waitForUser: the user's answers when a bite is done.
+  sim::StepResult waitedForUser(const std::string& signal, sim::StepResult step);
   struct Progress {
     bool biteTaken = false;
     bool drinkOffered = false;
@@ -162,17 +175,9 @@ class FeedingSimulator final : public sim::DomainSimulator {
   void startRequest(Request r);
   void nextRequest();
   void restoreHome();
-  sim::StepResult fail(sim::StepResult r);
   sim::StepResult complete(sim::StepResult r, bool satisfied);
   world::Pose2 randomXY(const TableAreas::Box& box);
 
-  std::shared_ptr<const world::Scene> scene_;  // shared with evaluation twins
-  std::shared_ptr<const FeedingUser> user_;
-  TableAreas areas_;
-  std::unique_ptr<world::World> world_;
-  actions::RobotActions actions_;
-  world::Rng rng_;
-  std::map<std::string, world::Pose3> scenePoses_;
   std::map<std::string, world::Pose3> tablePoses_;  // the scene's fixtures as loaded (table in use, other parked)
   std::size_t cycle_ = 0;
   Request request_ = Request::Food;

@@ -1,4 +1,4 @@
-// cbtlc — the .cbtl compiler: check files, emit the constraint graph, dump any pass, explain codes.
+// cbtlc — the .cbtl compiler: check files, emit the constraint graph, dump any pass, explain codes, format files.
 // Exit codes: 0 ok, 1 errors in the input, 2 usage, 70 internal error.
 #include "compiler/diag/DiagnosticCodes.h"
 #include "compiler/diag/DiagnosticExamples.h"
@@ -6,6 +6,7 @@
 #include "compiler/driver/Pipeline.h"
 #include "compiler/util/Suggest.h"
 #include "ir/GraphPrinter.h"
+#include "tools/cbtlc/FormatCommand.h"
 
 #include <fmt/core.h>
 #include <CLI/CLI.hpp>
@@ -183,6 +184,8 @@ int main(int argc, char** argv) {
     fmt::print("{}: {}\n\n{}\n", info->code, info->summary, info->explanation);
     if (const auto* example = cbtl::exampleFor(info->code)) printExample(*example);
   });
+
+  cbtl::cli::addFormatCommand(app, exitCode);
 
   // An unknown command is named, with the nearest known one, before CLI11 calls it an unexpected argument.
   if (argc > 1 && argv[1][0] != '-') {

@@ -1,5 +1,7 @@
 #include "ir/GraphPrinter.h"
 
+#include "ir/Counted.h"
+
 #include "ir/OpNames.h"
 
 #include <fmt/format.h>
@@ -150,8 +152,9 @@ std::string toText(const ConstraintGraph& g) {
   o << "domain " << (g.domain.empty() ? "<unnamed>" : g.domain) << "\n";
   if (!g.world.empty()) o << "world " << nlohmann::json(g.world).dump() << "\n";
   if (!g.simulator.empty()) o << "simulator " << nlohmann::json(g.simulator).dump() << "\n";
-  o << fmt::format("summary: {} tasks, {} variables, {} constraints, {} samplers, {} generators\n", g.tasks.size(),
-                   g.variables.size(), g.constraints.size(), g.samplers.size(), g.generators.size());
+  o << fmt::format("summary: {}, {}, {}, {}, {}\n", counted(g.tasks.size(), "task"),
+                   counted(g.variables.size(), "variable"), counted(g.constraints.size(), "constraint"),
+                   counted(g.samplers.size(), "sampler"), counted(g.generators.size(), "generator"));
   for (const auto& v : g.variables) {
     o << fmt::format("var %{} {} : {}", v.id, v.name, v.type.spelling);
     if (!v.domain.bounds.empty()) {

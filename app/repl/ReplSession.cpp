@@ -7,6 +7,7 @@
 #include "app/SolutionJson.h"
 #include "app/repl/ValueSyntax.h"
 #include "domains/DomainRegistry.h"
+#include "ir/Counted.h"
 #include "runtime/approach/Experiment.h"
 #include "runtime/approach/ValueBridge.h"
 #include "runtime/solver/Recheck.h"
@@ -148,8 +149,9 @@ bool ReplSession::load(const std::string& path) {
   makeSolver();
   resetWorld(config_.seed);
   const auto& g = lp_->graph();
-  fmt::print(out_, "loaded {}: domain {}, {} variables, {} constraints, {} personalized generators, {} tasks{}\n", path,
-             domain, g.variables.size(), g.constraints.size(), g.generators.size(), g.tasks.size(),
+  fmt::print(out_, "loaded {}: domain {}, {}, {}, {}, {}{}\n", path, domain,
+             ir::counted(g.variables.size(), "variable"), ir::counted(g.constraints.size(), "constraint"),
+             ir::counted(g.generators.size(), "personalized generator"), ir::counted(g.tasks.size(), "task"),
              world_ ? fmt::format("; the {} simulator's world (seed {})", domain, worldSeed_)
                     : "; no simulator: observations are zero until set");
   return true;

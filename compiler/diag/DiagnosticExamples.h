@@ -1,10 +1,11 @@
 // DiagnosticExamples.h — for every diagnostic code, a small program that produces it and the corrected program,
 // shown by `cbtlc explain CODE` under "Wrong:" and "Right:".
 //
-// The programs are whole files named example.cbtl, kept under compiler/diag/examples/<CODE>/wrong/ and right/. A few codes need a second file (an import): `imported` names
-// it, with its text beside the wrong program (empty: the wrong program imports a file that does not exist) and
-// beside the right one. The test compiles every pair: the wrong one must report the code, the right one must
-// compile without any diagnostic, so the examples cannot drift from the compiler.
+// The programs are whole files named example.cbtl, kept under compiler/diag/examples/<CODE>/wrong/ and right/. A few
+// codes need a second file (an import): `imported` names it, with its text beside the wrong program (empty: the wrong
+// program imports a file that does not exist) and beside the right one. The test compiles every pair: the wrong one
+// must report the code, the right one must compile without any diagnostic, so the examples cannot drift from the
+// compiler.
 #pragma once
 
 #include <string_view>

@@ -182,22 +182,6 @@ class Connection {
   std::recursive_mutex mutex_;
 };
 
-namespace {
-
-// The "task" of a reset answer.
-std::string taskOf(const Connection& c, const json& answer) {
-  const auto it = answer.find("task");
-  if (it == answer.end() || it->is_null()) return {};
-  if (!it->is_string()) throw std::runtime_error("\"task\" must be a task's name");
-  const std::string task = it->get<std::string>();
-  const auto& tasks = c.schema().tasks;
-  if (!task.empty() && std::find(tasks.begin(), tasks.end(), task) == tasks.end())
-    throw std::runtime_error(fmt::format("\"task\": the program has no task '{}'", task));
-  return task;
-}
-
-}  // namespace
-
 ExternalSimulator::ExternalSimulator(const ExternalSimulatorConfig& config,
                                      std::shared_ptr<const ProtocolSchema> schema, const SimulatorOptions& options,
                                      std::uint64_t seed)
@@ -216,7 +200,7 @@ ExternalSimulator::~ExternalSimulator() {
 void ExternalSimulator::reset(std::uint64_t seed) {
   const json answer = connection_->request({{"op", "reset"}, {"world", world_}, {"seed", seed}}, "reset");
   try {
-    task_ = taskOf(*connection_, answer);
+    task_ = protocol::requestedTaskOf(connection_->schema(), answer);
   } catch (const std::runtime_error& e) {
     connection_->failLocked(fmt::format("its answer to request {} (reset), output line {}: {}", connection_->lastId(),
                                         connection_->lastLine(), e.what()));

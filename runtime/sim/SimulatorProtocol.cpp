@@ -189,15 +189,18 @@ StepResult decodeStep(const ProtocolSchema& schema, const json& answer, std::str
     if (!it->is_string()) throw std::runtime_error("\"message\" must be a string");
     r.message = it->get<std::string>();
   }
-  requestedTask.clear();
-  if (const auto it = answer.find("task"); it != answer.end() && !it->is_null()) {
-    if (!it->is_string()) throw std::runtime_error("\"task\" must be a task's name");
-    requestedTask = it->get<std::string>();
-    if (!requestedTask.empty() &&
-        std::find(schema.tasks.begin(), schema.tasks.end(), requestedTask) == schema.tasks.end())
-      throw std::runtime_error(fmt::format("\"task\": the program has no task '{}'", requestedTask));
-  }
+  requestedTask = requestedTaskOf(schema, answer);
   return r;
+}
+
+std::string requestedTaskOf(const ProtocolSchema& schema, const json& answer) {
+  const auto it = answer.find("task");
+  if (it == answer.end() || it->is_null()) return {};
+  if (!it->is_string()) throw std::runtime_error("\"task\" must be a task's name");
+  std::string task = it->get<std::string>();
+  if (!task.empty() && std::find(schema.tasks.begin(), schema.tasks.end(), task) == schema.tasks.end())
+    throw std::runtime_error(fmt::format("\"task\": the program has no task '{}'", task));
+  return task;
 }
 
 ManifestCheck checkManifest(const ProtocolSchema& schema, const json& hello) {

@@ -46,6 +46,10 @@ nlohmann::json encodeStep(const ProtocolSchema& schema, const StepResult& step, 
 // which field is wrong. `requestedTask` receives "task" (empty when absent).
 StepResult decodeStep(const ProtocolSchema& schema, const nlohmann::json& answer, std::string& requestedTask);
 
+// The "task" field of a reset or step answer: empty when absent or null; throws std::runtime_error when it is not
+// a string or names no task of the program.
+std::string requestedTaskOf(const ProtocolSchema& schema, const nlohmann::json& answer);
+
 // What a hello answer's manifest does not agree with in the program: every error at once (an empty list: it
 // fits), and warnings that do not stop a run (an event a `learn` rule reads that the simulator never sends).
 struct ManifestCheck {

@@ -5,6 +5,7 @@
 #include "compiler/diag/DiagnosticRenderer.h"
 #include "compiler/driver/Pipeline.h"
 #include "compiler/util/Suggest.h"
+#include "ir/Counted.h"
 #include "ir/GraphPrinter.h"
 #include "tools/cbtlc/FormatCommand.h"
 
@@ -130,9 +131,13 @@ int main(int argc, char** argv) {
       const int code = report(tu, r, checkOpts, path, missing);
       if (code == 0 && summary) {
         const auto& g = tu.graph;
-        fmt::print("{}: ok — domain {}, {} tasks, {} variables, {} constraints, {} samplers, {} generators\n", path,
-                   g.domain.empty() ? "<unnamed>" : g.domain, g.tasks.size(), g.variables.size(), g.constraints.size(),
-                   g.samplers.size(), g.generators.size());
+        auto counted = [](std::size_t n, const char* noun) {
+          return fmt::format("{} {}{}", n, noun, n == 1 ? "" : "s");
+        };
+        fmt::print("{}: ok — domain {}, {}, {}, {}, {}, {}\n", path, g.domain.empty() ? "<unnamed>" : g.domain,
+                   counted(g.tasks.size(), "task"), counted(g.variables.size(), "variable"),
+                   counted(g.constraints.size(), "constraint"), counted(g.samplers.size(), "sampler"),
+                   counted(g.generators.size(), "generator"));
       }
       exitCode = std::max(exitCode, code);
     }

@@ -12,6 +12,8 @@ packages=(
   libcurl4-openssl-dev libssl-dev libsqlite3-dev sqlite3 libedit-dev libcpp-httplib-dev tmux
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev clang-format
+  libcairo2-dev fonts-dejavu-core
+  slurm-wlm munge
 )
 
 missing=()

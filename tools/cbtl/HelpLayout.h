@@ -28,6 +28,10 @@ inline const std::vector<std::pair<std::string, std::vector<std::string>>>& opti
       {"Text preferences (language model)",
        {"--text-backend", "--llm-base-url", "--llm-model", "--llm-timeout-ms", "--llm-attempts", "--llm-breaker"}},
       {"Profiles", {"--profile", "--profile-db", "--user"}},
+      {"Figure",
+       {"--kind", "--layout", "--metric", "--panel-title", "--label", "--marks", "--at-step", "--title", "--xlabel",
+        "--ylabel", "--ymin", "--ymax", "--width", "--height"}},
+      {"Sweep", {"--index", "--collect", "--emit-slurm", "--list", "--trials-per-task"}},
       {"Output", {"--out", "--force", "--resume", "--quiet", "--format", "--explain", "--echo"}},
   };
   return topics;
@@ -54,6 +58,16 @@ inline const std::map<std::string, std::vector<std::string>>& commandExamples() 
       {"simulator serve",
        {"cbtl run domains/cooking/cooking.cbtl --simulator 'cbtl simulator serve domains/cooking/cooking.cbtl'"}},
       {"render", {"cbtl render domains/feeding/feeding.xml --out feeding.png"}},
+      {"plot",
+       {"cbtl plot results/figure3 results/figure3-cleaning --panel-title Cooking --panel-title Cleaning --ymin -1 "
+        "--ymax 1 --out figure3.png",
+        "cbtl plot results/figure5-no-adapt results/figure5-user-reset --layout together --marks 3000,6000,9000 "
+        "--out figure5.svg",
+        "cbtl plot results/table1-replan results/table1-noreplan --kind bars --label 'with replanning' --label "
+        "'without replanning' --out table1.pdf"}},
+      {"sweep",
+       {"cbtl sweep bench/sweeps/paper.json --jobs 2", "cbtl sweep bench/sweeps/paper.json --emit-slurm > sweep.sbatch",
+        "cbtl sweep bench/sweeps/paper.json --collect"}},
       {"profile", {"cbtl profile history --db care.sqlite ann feeding"}},
       {"study", {"cbtl study simulate domains/feeding/feeding.cbtl --participants 60"}},
   };

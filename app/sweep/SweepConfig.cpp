@@ -82,7 +82,7 @@ void readOptions(const Reader& r, const json& v, const std::string& where, Optio
 
 ExperimentSpec readExperiment(const Reader& r, const json& v, const std::string& where, const fs::path& base,
                               const OptionList& defaults) {
-  r.onlyKeys(v, where, {"name", "program", "approaches", "seeds", "options", "grid"});
+  r.onlyKeys(v, where, {"name", "program", "approaches", "seeds", "options", "grid", "columns"});
   ExperimentSpec e;
   e.where = where;
   if (!v.contains("name")) r.fail(where, "an experiment needs a \"name\"");
@@ -102,6 +102,11 @@ ExperimentSpec readExperiment(const Reader& r, const json& v, const std::string&
     r.fail(where + "/seeds", fmt::format("'{}': use \"LO..HI\" or a comma-separated list of seeds", seeds));
   e.options = defaults;
   if (v.contains("options")) readOptions(r, v["options"], where + "/options", e.options);
+  if (v.contains("columns")) {
+    if (!v["columns"].is_array()) r.fail(where + "/columns", "must be an array of training steps");
+    for (std::size_t i = 0; i < v["columns"].size(); ++i)
+      e.columns.push_back(r.count(v["columns"][i], fmt::format("{}/columns/{}", where, i), 0));
+  }
   if (v.contains("grid")) {
     const json& g = v["grid"];
     if (!g.is_object()) r.fail(where + "/grid", "must be an object: option -> array of values");

@@ -9,7 +9,7 @@
 //       {"name": "figure3", "program": "../../domains/cooking/cooking.cbtl",
 //        "approaches": ["cbtl", "no-personalization"], "seeds": "0..9",
 //        "options": {"replan": true, "unsatisfiable-stock": 0.5},
-//        "grid": {"shift-every": [1000, 3000]}}
+//        "grid": {"shift-every": [1000, 3000]}, "columns": [0, 500, 1000]}
 //     ],
 //     "plots": [
 //       {"out": "figure3.png", "results": ["figure3"], "titles": ["Cooking"], "ymin": -1, "ymax": 1}
@@ -44,7 +44,8 @@ struct SweepError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-using OptionList = std::vector<std::pair<std::string, nlohmann::json>>;  // name (no dashes) -> value, in order
+// Option name (no dashes) -> value; a JSON object's keys come sorted by name.
+using OptionList = std::vector<std::pair<std::string, nlohmann::json>>;
 
 struct ExperimentSpec {
   std::string name;     // letters, digits, '.', '_' and '-'
@@ -53,7 +54,8 @@ struct ExperimentSpec {
   std::vector<std::uint64_t> seeds;
   OptionList options;  // defaults first, then the experiment's (a later value of a name wins)
   std::vector<std::pair<std::string, std::vector<nlohmann::json>>> grid;
-  std::string where;  // "/experiments/<i>", for messages
+  std::vector<std::int64_t> columns;  // the checkpoints its table shows (`cbtl experiment --columns`); empty: default
+  std::string where;                  // "/experiments/<i>", for messages
 };
 
 struct PlotSpec {

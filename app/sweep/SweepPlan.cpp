@@ -68,6 +68,7 @@ SweepPlan planSweep(const SweepConfig& config, const std::string& out) {
       x.approaches = e.approaches;
       x.seeds = e.seeds;
       x.arguments = argumentsOf(e, choice);
+      x.columns = e.columns;
       x.dir = (fs::path(out) / x.name).string();
       x.where = e.where;
       for (const auto& approach : x.approaches)

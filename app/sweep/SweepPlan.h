@@ -31,6 +31,7 @@ struct PlannedExperiment {
   std::vector<std::string> approaches;
   std::vector<std::uint64_t> seeds;
   std::vector<std::string> arguments;  // the `cbtl run` options of its trials, e.g. {"--steps", "10000", "--replan"}
+  std::vector<std::int64_t> columns;   // the checkpoints its table shows (empty: the default)
   std::string dir;                     // OUT/<name>
   std::string where;                   // the config's JSON pointer
   std::vector<std::size_t> trials;     // indices into SweepPlan::trials

@@ -179,8 +179,8 @@ int collectSweep(const sweep::SweepConfig& config, const sweep::SweepPlan& plan,
       records.push_back(TrialRecord{*approach::parseApproach(t.approach), t.seed, &results[k], 0.0});
     }
     fmt::print("== {}\n", x.name);
-    const ReportColumns columns{
-        {}, false, prepared[e].args.steps, prepared[e].args.evalEvery, prepared[e].args.evalTasks};
+    const ReportColumns columns{x.columns, !x.columns.empty(), prepared[e].args.steps, prepared[e].args.evalEvery,
+                                prepared[e].args.evalTasks};
     const int code = reportExperiment("sweep", prepared[e].kinds, x.seeds.size(), records, columns, x.dir);
     exitCode = std::max(exitCode, code);
     collected[e] = true;

@@ -139,18 +139,24 @@ Rgb seriesColor(const std::string& label, const std::vector<std::string>& labels
                                  {0.839, 0.153, 0.157}, {0.580, 0.404, 0.741}, {0.549, 0.337, 0.294},
                                  {0.890, 0.467, 0.761}, {0.498, 0.498, 0.498}, {0.737, 0.741, 0.133},
                                  {0.090, 0.745, 0.812}};
-  static const char* kApproaches[] = {"cbtl", "no-personalization", "free-explore", "exploit-only", "epsilon-greedy"};
   constexpr std::size_t kReserved = 5, kColours = 10;
-  for (std::size_t i = 0; i < kReserved; ++i)
-    if (label == kApproaches[i]) return kPalette[i];
+  // An approach by its name or the name figures give it (ResultsFigure.h approachDisplayName).
+  static const char* kApproaches[2][kReserved] = {
+      {"cbtl", "no-personalization", "free-explore", "exploit-only", "epsilon-greedy"},
+      {"CBTL", "No Personalization", "Free Explore", "Exploit Only", "Epsilon Greedy"}};
+  const auto approachIndex = [&](const std::string& l) -> std::size_t {
+    for (std::size_t i = 0; i < kReserved; ++i)
+      if (l == kApproaches[0][i] || l == kApproaches[1][i]) return i;
+    return kReserved;
+  };
+  if (approachIndex(label) < kReserved) return kPalette[approachIndex(label)];
   // Other labels take, in order, the palette's colours that no approach of the figure uses.
   std::vector<bool> used(kColours, false);
   for (const auto& l : labels)
-    for (std::size_t i = 0; i < kReserved; ++i)
-      if (l == kApproaches[i]) used[i] = true;
+    if (approachIndex(l) < kReserved) used[approachIndex(l)] = true;
   std::size_t next = 0;
   for (const auto& l : labels) {
-    if (std::find(std::begin(kApproaches), std::end(kApproaches), l) != std::end(kApproaches)) continue;
+    if (approachIndex(l) < kReserved) continue;
     while (used[next % kColours] && next < 2 * kColours) ++next;
     if (l == label) return kPalette[next % kColours];
     ++next;

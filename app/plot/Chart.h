@@ -75,10 +75,10 @@ inline constexpr double kPngScale = 2.0;
 // y range.
 FigureLayout layoutFigure(const FigureSpec& spec);
 
-// Colour of a series (0..1 RGB): the paper's approaches always get the same colour (cbtl blue, no-personalization
-// orange, free-explore green, exploit-only red, epsilon-greedy purple); other labels take, in the order `labels`
-// (every series of the figure, in order of appearance) names them, the palette's colours no approach of the figure
-// uses.
+// Colour of a series (0..1 RGB): the paper's approaches, by name or display name, always get the same colour (cbtl
+// blue, no-personalization orange, free-explore green, exploit-only red, epsilon-greedy purple); other labels take, in
+// the order `labels` (every series of the figure, in order of appearance) names them, the palette's colours no approach
+// of the figure uses.
 struct Rgb {
   double r = 0, g = 0, b = 0;
 };

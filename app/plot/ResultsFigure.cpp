@@ -102,6 +102,17 @@ Curve curveOf(const SummaryTable& t, const std::string& approach, const std::str
 
 }  // namespace
 
+std::string approachDisplayName(const std::string& approach) {
+  static const std::pair<const char*, const char*> kNames[] = {{"cbtl", "CBTL"},
+                                                               {"no-personalization", "No Personalization"},
+                                                               {"free-explore", "Free Explore"},
+                                                               {"exploit-only", "Exploit Only"},
+                                                               {"epsilon-greedy", "Epsilon Greedy"}};
+  for (const auto& [name, display] : kNames)
+    if (approach == name) return display;
+  return approach;
+}
+
 std::optional<Metric> parseMetric(const std::string& name) {
   if (name == "eval") return Metric::Eval;
   if (name == "success") return Metric::TaskSuccess;
@@ -143,12 +154,15 @@ FigureSpec figureFromResults(const FigureRequest& r) {
     panel.marks = r.marks;
     for (const auto& a : approaches) {
       // Together: the folder's label names the series; with several approaches in a folder, the approach too.
-      const std::string series = onePanel && (r.together || r.results.size() > 1)
-                                     ? (approaches.size() > 1 ? fmt::format("{} {}", labels[i], a) : labels[i])
-                                     : a;
+      // A bar always names its approach: "Approach (label)" when folders have labels.
+      const bool labelled = onePanel && (r.together || r.results.size() > 1 || !r.labels.empty());
+      const std::string series = !labelled ? approachDisplayName(a)
+                                 : approaches.size() > 1 || r.kind == ChartKind::Bars
+                                     ? fmt::format("{} ({})", approachDisplayName(a), labels[i])
+                                     : labels[i];
       if (r.kind == ChartKind::Bars) {
         const Checkpoint& c = checkpointAt(tables[i], a, r.atStep);
-        panel.bars.push_back(Bar{series, a, value(c, r.metric), stderrOf(c, r.metric)});
+        panel.bars.push_back(Bar{series, approachDisplayName(a), value(c, r.metric), stderrOf(c, r.metric)});
       } else {
         panel.curves.push_back(curveOf(tables[i], a, series, r.metric));
       }

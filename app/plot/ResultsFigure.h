@@ -2,7 +2,8 @@
 // sweep's "plots" ask for. One request, two layouts:
 //   panels    one panel per results folder (the paper's Figure 3: one per environment), a curve or bar per approach;
 //   together  every results folder in one panel (Figure 5: the nonstationary variants side by side), a series per
-//             folder and approach, labelled by the folder's label (and the approach when the folder has several).
+//             folder and approach, labelled by the folder's label, or "Approach (label)" when the folder has
+//             several approaches. Bars are labelled the same way.
 #pragma once
 
 #include "app/plot/Chart.h"
@@ -35,6 +36,10 @@ struct FigureRequest {
 // Throws ResultsError (a results file) or PlotError (a request that does not fit the results, e.g. three titles for
 // two folders, an approach no folder has, a step that is not a checkpoint), each naming what is wrong.
 FigureSpec figureFromResults(const FigureRequest& request);
+
+// The name a figure gives an approach: the paper's ("CBTL", "No Personalization", "Free Explore", "Exploit Only",
+// "Epsilon Greedy"); another name as it is.
+std::string approachDisplayName(const std::string& approach);
 
 // "eval", "success", "preferences"; nullopt for another name.
 std::optional<Metric> parseMetric(const std::string& name);

@@ -175,13 +175,16 @@ int reportExperiment(const std::string& command, const std::vector<approach::App
     }
     const Stat all = stat(s.meanOverCheckpoints);
     const Stat success = stat(s.finalSuccess), prefs = stat(s.finalPrefs), served = stat(s.finalPrefsWhenServed);
-    // Trials read back from their folders were not timed here: "-".
-    const bool timed = std::any_of(s.seconds.begin(), s.seconds.end(), [](double x) { return x > 0; });
+    // Trials read back from their folders were not timed here (0): "-" when none was, else the timed ones' mean.
+    std::vector<double> timedSeconds;
+    for (double x : s.seconds)
+      if (x > 0) timedSeconds.push_back(x);
+    const bool timed = !timedSeconds.empty();
     fmt::print(" {:>14} {:>12} {:>12} {:>12} {:>8}\n", fmt::format("{:+.3f} ± {:.3f}", all.mean, all.se),
                fmt::format("{:.2f} ± {:.2f}", success.mean, success.sd),
                fmt::format("{:.2f} ± {:.2f}", prefs.mean, prefs.sd),
                fmt::format("{:.2f} ± {:.2f}", served.mean, served.sd),
-               timed ? fmt::format("{:.2f}", stat(s.seconds).mean) : std::string("-"));
+               timed ? fmt::format("{:.2f}", stat(timedSeconds).mean) : std::string("-"));
   }
   fmt::print(
       "columns: eval satisfaction per checkpoint and over all checkpoints (mean ± standard error over seeds); task\n"

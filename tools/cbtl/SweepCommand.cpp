@@ -20,6 +20,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 #include <thread>
@@ -144,15 +145,18 @@ int runSweep(const SweepArgs& a) {
   for (std::size_t i : indices)
     if (!sweep::trialComplete(plan.trials[i])) todo.push_back(i);
   Progress progress(indices.size(), indices.size() - todo.size(), a.quiet);
-  const std::size_t failed =
-      cli::runSweepTrials(plan, prepared, todo, a.jobs, [&](const cli::TrialEvent& e) { progress.finished(plan, e); });
+  std::map<std::size_t, double> seconds;
+  const std::size_t failed = cli::runSweepTrials(plan, prepared, todo, a.jobs, [&](const cli::TrialEvent& e) {
+    progress.finished(plan, e);
+    seconds[e.trial] = e.seconds;
+  });
   if (failed > 0) {
     fmt::print(stderr, "cbtl sweep: {} trial{} failed (above); run the sweep again to retry them\n", failed,
                failed == 1 ? "" : "s");
     return 1;
   }
   if (a.index >= 0) return 0;  // a SLURM task: `--collect` merges once every task has finished
-  return cli::collectSweep(config, plan, prepared);
+  return cli::collectSweep(config, plan, prepared, seconds);
 }
 
 void addSweep(CLI::App& app, int& exitCode) {

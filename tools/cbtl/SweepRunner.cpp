@@ -155,7 +155,7 @@ std::size_t runSweepTrials(const sweep::SweepPlan& plan, const std::vector<Prepa
 }
 
 int collectSweep(const sweep::SweepConfig& config, const sweep::SweepPlan& plan,
-                 const std::vector<PreparedExperiment>& prepared) {
+                 const std::vector<PreparedExperiment>& prepared, const std::map<std::size_t, double>& seconds) {
   int exitCode = 0;
   std::vector<bool> collected(plan.experiments.size(), false);
   for (std::size_t e = 0; e < plan.experiments.size(); ++e) {
@@ -176,7 +176,9 @@ int collectSweep(const sweep::SweepConfig& config, const sweep::SweepPlan& plan,
     std::vector<TrialRecord> records;
     for (std::size_t k = 0; k < x.trials.size(); ++k) {
       const sweep::SweepTrial& t = plan.trials[x.trials[k]];
-      records.push_back(TrialRecord{*approach::parseApproach(t.approach), t.seed, &results[k], 0.0});
+      const auto timed = seconds.find(t.index);
+      records.push_back(TrialRecord{*approach::parseApproach(t.approach), t.seed, &results[k],
+                                    timed == seconds.end() ? 0.0 : timed->second});
     }
     fmt::print("== {}\n", x.name);
     const ReportColumns columns{x.columns, !x.columns.empty(), prepared[e].args.steps, prepared[e].args.evalEvery,

@@ -13,6 +13,7 @@
 #include "tools/cbtl/RuntimeSupport.h"
 
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -44,9 +45,10 @@ std::size_t runSweepTrials(const sweep::SweepPlan& plan, const std::vector<Prepa
 
 // For every experiment whose trials have all finished: summary.csv and preferences.csv in its folder and its tables
 // on stdout; then every plot whose experiments are all collected. Experiments with unfinished trials are named on
-// stderr. Returns 0 when everything was collected, 1 when something was not finished or a figure failed, 70 as
-// reportExperiment does.
+// stderr. `seconds`: the wall clock of the trials this process ran, by index (the tables' s/trial averages those;
+// "-" for an experiment none of whose trials ran here). Returns 0 when everything was collected, 1 when something
+// was not finished or a figure failed, 70 as reportExperiment does.
 int collectSweep(const sweep::SweepConfig& config, const sweep::SweepPlan& plan,
-                 const std::vector<PreparedExperiment>& prepared);
+                 const std::vector<PreparedExperiment>& prepared, const std::map<std::size_t, double>& seconds = {});
 
 }  // namespace cbtl::cli

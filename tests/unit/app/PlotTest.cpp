@@ -174,7 +174,7 @@ TEST_F(PlotTest, FiguresFromResultsFollowTheRequest) {
   ASSERT_EQ(spec.panels.size(), 1u);
   ASSERT_EQ(spec.panels[0].curves.size(), 3u);
   EXPECT_EQ(spec.panels[0].curves[0].label, "no adaptation");
-  EXPECT_EQ(spec.panels[0].curves[1].label, "user reset cbtl");
+  EXPECT_EQ(spec.panels[0].curves[1].label, "CBTL (user reset)");
   EXPECT_EQ(spec.panels[0].marks, std::vector<double>{50});
   r.kind = ChartKind::Bars;
   r.atStep = 100;
@@ -182,7 +182,8 @@ TEST_F(PlotTest, FiguresFromResultsFollowTheRequest) {
   spec = figureFromResults(r);
   ASSERT_EQ(spec.panels[0].bars.size(), 3u);
   EXPECT_DOUBLE_EQ(spec.panels[0].bars[1].mean, 0.9);
-  EXPECT_EQ(spec.panels[0].bars[2].series, "no-personalization");
+  EXPECT_EQ(spec.panels[0].bars[2].series, "No Personalization");
+  EXPECT_EQ(spec.panels[0].bars[0].label, "CBTL (no adaptation)") << "a bar names its approach";
   r.atStep = 50;
   EXPECT_THROW(figureFromResults(r), PlotError) << "50 is no checkpoint";
   r.atStep.reset();

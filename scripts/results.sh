@@ -1,46 +1,43 @@
 #!/usr/bin/env bash
-# Reproduces every figure in docs/results.md (Cooking; Cleaning and Books with ROBOT=1, about 30 minutes more on 2 cores).
-# Usage: [ROBOT=1] scripts/results.sh [BUILD_DIR] [OUT_DIR]
-# Each block is one `cbtl experiment` command; its table is printed and its CSVs land in OUT_DIR.
+# Reproduces every table and figure in docs/results.md: the paper's Cooking experiments (Figure 3, Table 1,
+# Figure 5), Figure 3 for Cleaning and Books, Books' first 1,000 steps, Feeding's preferences, the Feeding study
+# with 60 simulated participants and the demonstration; then the figures, copied to docs/images/results/.
+#
+# Usage: [JOBS=N] [QUICK=1] scripts/results.sh [BUILD_DIR] [OUT_DIR]
+#   JOBS   trials in parallel (default: the machine's cores); results are the same for any JOBS
+#   QUICK  1: Cooking only (about 3 minutes on 2 cores) instead of everything (docs/results.md says how long)
+# The experiments are two sweeps (bench/sweeps/paper-cooking.json, paper-robots.json): run again on the same OUT_DIR,
+# the script keeps every finished trial and continues the others, so an interrupted run loses nothing; a new
+# OUT_DIR starts from scratch. Tables go to stdout, CSVs and figures under OUT_DIR.
 set -euo pipefail
 build=${1:-build}
 out=${2:-results}
-cooking=domains/cooking/cooking.cbtl
+jobs=${JOBS:-$(nproc)}
 cbtl="$build/bin/cbtl"
+images=docs/images/results
+mkdir -p "$out/figures" "$images"
+start=$(date +%s)
 
-echo "== Figure 3: Cooking, 10 seeds, 10,000 steps, eval every 100 on 10 tasks"
-"$cbtl" experiment "$cooking" --approaches cbtl,no-personalization,free-explore,exploit-only,epsilon-greedy \
-  --seeds 0..9 --steps 10000 --eval-every 100 --eval-tasks 10 --columns 0,200,500,1000,2000,5000,10000 \
-  --out "$out/figure3" --force -q
+echo "== Cooking: Figure 3, Table 1, Figure 5 (bench/sweeps/paper-cooking.json)"
+"$cbtl" sweep bench/sweeps/paper-cooking.json --out "$out/cooking" --jobs "$jobs" -q
 
-echo "== Table 1: unsatisfiable preferences (50% of restocks), 10 seeds x 10 eval tasks after 2,500 steps"
-"$cbtl" experiment "$cooking" --approaches cbtl --replan --unsatisfiable-stock 0.5 \
-  --seeds 0..9 --steps 2500 --eval-every 2500 --eval-tasks 10 --out "$out/table1-replan" --force -q
-"$cbtl" experiment "$cooking" --approaches cbtl,no-personalization --unsatisfiable-stock 0.5 \
-  --seeds 0..9 --steps 2500 --eval-every 2500 --eval-tasks 10 --out "$out/table1-noreplan" --force -q
-
-echo "== Figure 5: nonstationary preferences (each range rescaled by U[0.9, 1.1] every 3,000 steps)"
-for mode in no-adapt user-reset periodic-reset; do
-  echo "-- cbtl, $mode"
-  "$cbtl" experiment "$cooking" --approaches cbtl --nonstationary "$mode" --shift-every 3000 \
-    --seeds 0..9 --steps 10000 --eval-every 100 --eval-tasks 10 --columns 0,2900,3100,3500,4000,5900,6500,8900,10000 \
-    --out "$out/figure5-$mode" --force -q
-done
-echo "-- free-explore, no-adapt"
-"$cbtl" experiment "$cooking" --approaches free-explore --nonstationary no-adapt --shift-every 3000 \
-  --seeds 0..9 --steps 10000 --eval-every 100 --eval-tasks 10 --columns 0,2900,3100,3500,4000,5900,6500,8900,10000 \
-  --out "$out/figure5-free-explore" --force -q
-
-if [[ ${ROBOT:-0} == 1 ]]; then
-  # Cleaning: surfacePreferred vs the hidden user; Books: the range of motion vs the hidden [0.1, 0.3] m and the
-  # enjoyed book handed over first.
+if [[ ${QUICK:-0} != 1 ]]; then
+  echo "== Cleaning and Books: Figure 3; Books' first 1,000 steps; Feeding's preferences (bench/sweeps/paper-robots.json)"
+  "$cbtl" sweep bench/sweeps/paper-robots.json --out "$out/robots" --jobs "$jobs" -q
   for domain in cleaning books; do
-    echo "== Figure 3: $domain, 10 seeds, 5,000 steps, eval every 500 on 10 tasks (the paper's protocol)"
-    "$cbtl" experiment "domains/$domain/$domain.cbtl" \
-      --approaches cbtl,no-personalization,free-explore,exploit-only,epsilon-greedy \
-      --seeds 0..9 --steps 5000 --eval-every 500 --eval-tasks 10 --columns 0,500,1000,2000,3000,5000 \
-      --out "$out/figure3-$domain" --force -q
     echo "-- $domain: what was learned, against the hidden user"
-    python3 scripts/learned-vs-hidden.py "$domain" "$out/figure3-$domain"
+    python3 scripts/learned-vs-hidden.py "$domain" "$out/robots/figure3-$domain"
   done
+  echo "== Feeding: the five meals with 60 simulated participants"
+  "$cbtl" study simulate domains/feeding/feeding.cbtl --participants 60 --out "$out/study" --force
+  echo "== Feeding: the demonstration"
+  "$cbtl" study demo domains/feeding/feeding.cbtl --out "$out/demo" --force
+  echo "== Figure 3, the three environments side by side"
+  "$cbtl" plot "$out/cooking/figure3-cooking" "$out/robots/figure3-cleaning" "$out/robots/figure3-books" \
+    --panel-title Cooking --panel-title Cleaning --panel-title Books --ymin -1 --ymax 1 --out "$out/figures/figure3.png"
 fi
+
+cp "$out"/cooking/figures/*.png "$out"/figures/ 2>/dev/null || true
+[[ -d $out/robots/figures ]] && cp "$out"/robots/figures/*.png "$out"/figures/
+cp "$out"/figures/*.png "$images"/
+echo "figures: $out/figures (copied to $images); $(($(date +%s) - start)) s in all"

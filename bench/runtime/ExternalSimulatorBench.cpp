@@ -6,6 +6,7 @@
 //     process and over the protocol: the ratio is what a Cooking-sized external domain pays (target: within 3x).
 #include "app/LoadedProgram.h"
 #include "app/SimulatorSource.h"
+#include "bench/runtime/BenchPrograms.h"
 #include "runtime/approach/Experiment.h"
 #include "runtime/sim/ExternalSimulator.h"
 
@@ -21,14 +22,7 @@ namespace {
 
 using namespace cbtl;
 
-const app::LoadedProgram& cookingProgram() {
-  static const auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/cooking/cooking.cbtl");
-  if (!lp->ok()) {
-    std::fprintf(stderr, "%s", lp->errors().c_str());
-    std::abort();
-  }
-  return *lp;
-}
+const app::LoadedProgram& cookingProgram() { return bench::domainProgram("cooking"); }
 
 std::optional<sim::ExternalSimulatorConfig> served(bool overProtocol) {
   if (!overProtocol) return std::nullopt;

@@ -2,6 +2,7 @@
 // key holds <points> labelled examples in its temperature interval factor (and one in the quantity factor), the
 // shape of a user who has been served for a long time. The JSON text is built once, outside the timing.
 #include "app/LoadedProgram.h"
+#include "bench/runtime/BenchPrograms.h"
 #include "runtime/model/UserModel.h"
 
 #include <benchmark/benchmark.h>
@@ -15,14 +16,7 @@ namespace {
 
 using namespace cbtl;
 
-const app::LoadedProgram& cookingProgram() {
-  static const auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/cooking/cooking.cbtl");
-  if (!lp->ok()) {
-    std::fprintf(stderr, "%s", lp->errors().c_str());
-    std::abort();
-  }
-  return *lp;
-}
+const app::LoadedProgram& cookingProgram() { return bench::domainProgram("cooking"); }
 
 // Points spread over the factor's range 25 .. 35 by a fixed linear congruential sequence; liked inside 28 .. 32.
 std::string profileText(std::int64_t points) {

@@ -10,6 +10,7 @@
 #include "app/DomainSolverOptions.h"
 #include "app/LoadedProgram.h"
 #include "app/SimulatorFacts.h"
+#include "bench/runtime/BenchPrograms.h"
 #include "domains/DomainRegistry.h"
 #include "runtime/approach/Experiment.h"
 #include "runtime/approach/Planner.h"
@@ -34,18 +35,7 @@ using namespace cbtl;
 
 const char* const kDomains[] = {"cleaning", "books", "feeding"};
 
-app::LoadedProgram& program(const std::string& domain) {
-  static std::map<std::string, std::unique_ptr<app::LoadedProgram>> loaded;
-  auto& lp = loaded[domain];
-  if (!lp) {
-    lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/" + domain + "/" + domain + ".cbtl");
-    if (!lp->ok()) {
-      std::fprintf(stderr, "%s", lp->errors().c_str());
-      std::abort();
-    }
-  }
-  return *lp;
-}
+app::LoadedProgram& program(const std::string& domain) { return bench::domainProgram(domain); }
 
 approach::SimulatorFactory factory(const app::LoadedProgram& lp) {
   const auto facts = std::make_shared<domains::ProgramFacts>(app::simulatorFacts(lp));

@@ -4,6 +4,7 @@
 //   BM_SolverThroughput/<csp>: candidates per second of the sampling solver on Cooking CSPs: exploit (hard and
 //     personalized constraints, first feasible), explore (hard constraints, maximize entropy, learned models).
 #include "app/LoadedProgram.h"
+#include "bench/runtime/BenchPrograms.h"
 #include "domains/DomainRegistry.h"
 #include "runtime/approach/Experiment.h"
 #include "runtime/approach/Planner.h"
@@ -20,14 +21,7 @@ namespace {
 
 using namespace cbtl;
 
-const app::LoadedProgram& cooking() {
-  static const auto lp = app::LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/cooking/cooking.cbtl");
-  if (!lp->ok()) {
-    std::fprintf(stderr, "%s", lp->errors().c_str());
-    std::abort();
-  }
-  return *lp;
-}
+const app::LoadedProgram& cooking() { return bench::domainProgram("cooking"); }
 
 approach::SimulatorFactory factory() {
   return [](const sim::SimulatorOptions& o, std::uint64_t seed) {

@@ -1,6 +1,7 @@
 #include "app/plot/SummaryTable.h"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -36,12 +37,58 @@ double number(const std::string& text, const std::string& where, const char* col
   return v;
 }
 
+// The column of `name` in a CSV header; throws when it has none.
+std::size_t columnOf(const std::vector<std::string>& header, const std::string& name, const std::string& where) {
+  const auto it = std::find(header.begin(), header.end(), name);
+  if (it == header.end()) throw ResultsError(fmt::format("{}: no column {}", where, name));
+  return static_cast<std::size_t>(it - header.begin());
+}
+
+// One run's folder (`cbtl run --out DIR`): its eval.csv as a summary of one seed, named by config.json's approach.
+SummaryTable readRun(const std::filesystem::path& dir) {
+  SummaryTable t;
+  t.path = (dir / "eval.csv").string();
+  std::string approach = "run";
+  if (std::ifstream config(dir / "config.json"); config) {
+    const auto j = nlohmann::json::parse(config, nullptr, false);
+    if (j.is_object() && j.contains("approach") && j["approach"].is_string())
+      approach = j["approach"].get<std::string>();
+  }
+  std::ifstream in(t.path);
+  std::string line;
+  if (!std::getline(in, line)) throw ResultsError(t.path + ":1: empty");
+  const auto header = cells(line);
+  const std::size_t step = columnOf(header, "training_step", t.path + ":1");
+  const std::size_t mean = columnOf(header, "eval_mean_user_satisfaction", t.path + ":1");
+  const std::size_t success = columnOf(header, "eval_task_success_rate", t.path + ":1");
+  const std::size_t prefs = columnOf(header, "eval_preferences_met_rate", t.path + ":1");
+  for (int n = 2; std::getline(in, line); ++n) {
+    if (line.empty()) continue;
+    const std::string where = fmt::format("{}:{}", t.path, n);
+    const auto c = cells(line);
+    if (c.size() != header.size())
+      throw ResultsError(fmt::format("{}: {} columns, the header has {}", where, c.size(), header.size()));
+    Checkpoint p;
+    p.step = static_cast<std::int64_t>(number(c[step], where, "training_step"));
+    p.seeds = 1;
+    p.evalMean = number(c[mean], where, "eval_mean_user_satisfaction");
+    p.taskSuccess = number(c[success], where, "eval_task_success_rate");
+    p.preferencesMet = number(c[prefs], where, "eval_preferences_met_rate");
+    t.byApproach[approach].push_back(p);
+  }
+  if (t.byApproach.empty()) throw ResultsError(t.path + ": no checkpoints");
+  t.approaches = {approach};
+  return t;
+}
+
 }  // namespace
 
 SummaryTable readSummary(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::path file(path);
+  if (fs::is_directory(file, ec) && !fs::exists(file / "summary.csv", ec) && fs::is_regular_file(file / "eval.csv", ec))
+    return readRun(file);
   if (fs::is_directory(file, ec)) file /= "summary.csv";
   if (!fs::is_regular_file(file, ec))
     throw ResultsError(

@@ -30,7 +30,8 @@ struct SummaryTable {
   std::map<std::string, std::vector<Checkpoint>> byApproach;
 };
 
-// Reads `path`: a summary.csv, or a folder that holds one. Throws ResultsError.
+// Reads `path`: a summary.csv, a folder that holds one, or a single run's folder (`cbtl run --out DIR`: its
+// eval.csv, one seed, no standard error, named by its config.json's approach). Throws ResultsError.
 SummaryTable readSummary(const std::string& path);
 
 }  // namespace cbtl::plot

@@ -80,6 +80,17 @@ TEST_F(PlotTest, ReadsASummaryAndSaysWhereOneIsWrong) {
   EXPECT_THROW(readSummary(shortRow), ResultsError);
   std::ofstream(dir_ / "other.csv") << "a,b\n1,2\n";
   EXPECT_THROW(readSummary((dir_ / "other.csv").string()), ResultsError);
+
+  // A single run's folder: its eval.csv, named by its approach.
+  fs::create_directories(dir_ / "run");
+  std::ofstream(dir_ / "run" / "config.json") << "{\n  \"approach\": \"free-explore\",\n  \"seed\": 3\n}\n";
+  std::ofstream(dir_ / "run" / "eval.csv")
+      << "training_step,eval_mean_user_satisfaction,eval_task_success_rate,eval_preferences_met_rate\n0,-1,1,0\n"
+         "100,0.4,1,0.7\n";
+  const SummaryTable run = readSummary((dir_ / "run").string());
+  ASSERT_EQ(run.approaches, std::vector<std::string>{"free-explore"});
+  ASSERT_EQ(run.byApproach.at("free-explore").size(), 2u);
+  EXPECT_DOUBLE_EQ(run.byApproach.at("free-explore")[1].preferencesMet, 0.7);
 }
 
 TEST_F(PlotTest, CurvesAreDrawnWhereTheLayoutPutsThemInTheirApproachColour) {

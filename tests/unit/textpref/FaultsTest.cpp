@@ -18,15 +18,19 @@ namespace {
 
 constexpr const char* kSecret = "sk-proj-TESTSECRET0123456789abcdef";
 
-// A language-model backend aimed at the loopback server, one attempt per request unless told otherwise.
-TextBackendConfig backendConfig(Harness& h, int attempts = 1, int breaker = 3) {
+// A language-model backend aimed at the loopback server, one attempt per request unless told otherwise. The request
+// timeout is generous where the server answers (a loaded machine or a sanitizer build must not turn an answer into
+// a timeout); tests whose server hangs on purpose pass a short one (kHangTimeoutMs).
+constexpr int kAnswerTimeoutMs = 10000, kHangTimeoutMs = 500;
+TextBackendConfig backendConfig(Harness& h, int attempts = 1, int breaker = 3,
+                                int requestTimeoutMs = kAnswerTimeoutMs) {
   auto config = textBackendConfigFromJson({{"backend", "openai-compatible"},
                                            {"base_url", h.server.baseUrl()},
                                            {"model", "test-model"},
                                            {"api_key_env", kKeyVariable},
                                            {"max_attempts", attempts},
                                            {"connect_timeout_ms", 1000},
-                                           {"request_timeout_ms", 200},
+                                           {"request_timeout_ms", requestTimeoutMs},
                                            {"breaker_threshold", breaker}});
   EXPECT_TRUE(config.ok());
   return config.value();
@@ -131,8 +135,8 @@ TEST(CircuitBreaker, OpensAfterConsecutiveTimeoutsAndStopsCallingTheServer) {
   h.server.setDefault(h.server.hang());
   std::vector<std::string> notices;
   TextBackend backend(
-      backendConfig(h, /*attempts=*/1, /*breaker=*/2), [&](const std::string& w) { notices.push_back(w); },
-      h.sleeper());
+      backendConfig(h, /*attempts=*/1, /*breaker=*/2, kHangTimeoutMs),
+      [&](const std::string& w) { notices.push_back(w); }, h.sleeper());
   auto model = backend.makeModel(examplePrompts());
   std::vector<ErrorKind> kinds;
   for (int i = 0; i < 6; ++i) {
@@ -164,7 +168,7 @@ TEST(CircuitBreaker, AnAnswerResetsTheCount) {
   h.server.push(replyRating({{"6", 1.0}}));
   h.server.push(h.server.hang());
   h.server.push(replyRating({{"6", 1.0}}));
-  TextBackend backend(backendConfig(h, 1, 2), {}, h.sleeper());
+  TextBackend backend(backendConfig(h, 1, 2, kHangTimeoutMs), {}, h.sleeper());
   auto model = backend.makeModel(examplePrompts());
   const PromptTemplates prompts = examplePrompts();
   // Different items, so that the response cache does not answer.

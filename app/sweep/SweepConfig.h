@@ -86,7 +86,8 @@ struct SweepConfig {
 // Reads and checks `path` (JSON). Throws SweepError.
 SweepConfig readSweepConfig(const std::string& path);
 
-// "0..9", "3" or "1,4,7" (at most 10001 seeds); false for anything else.
+// "0..9", "3" or "1,4,7" (at most 10001 seeds; digits only, so "-1", "0-9" and "1.5" are refused); false for
+// anything else. `cbtl experiment --seeds` and a sweep's "seeds" read the same syntax.
 bool parseSeedList(const std::string& text, std::vector<std::uint64_t>& seeds);
 
 }  // namespace cbtl::sweep

@@ -51,7 +51,6 @@ class RobotSimulator : public sim::DomainSimulator {
   explicit RobotSimulator(Setup setup);
 
   const world::Scene& scene() const { return *scene_; }
-  const std::shared_ptr<const world::Scene>& scenePointer() const { return scene_; }
   // The movable objects' poses as the scene file puts them.
   const std::map<std::string, world::Pose3>& scenePoses() const { return scenePoses_; }
   // Makes `state` the world's state at an episode start and forgets what the robot said and how long it idled. A

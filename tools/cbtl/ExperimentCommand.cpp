@@ -12,6 +12,7 @@
 #include "tools/cbtl/RuntimeSupport.h"
 #include "tools/cbtl/TrialPool.h"
 
+#include "app/sweep/SweepConfig.h"
 #include "runtime/approach/RunDirectory.h"
 #include "runtime/model/UserModel.h"
 
@@ -44,23 +45,6 @@ std::vector<std::string> split(const std::string& s, char sep) {
     if (!item.empty()) out.push_back(item);
   }
   return out;
-}
-
-// "0..9", "3", or "1,4,7"; seeds are unsigned, so a minus sign is refused (std::stoull would wrap it).
-bool parseSeeds(const std::string& text, std::vector<std::uint64_t>& seeds) {
-  if (text.find('-') != std::string::npos) return false;
-  try {
-    if (auto dots = text.find(".."); dots != std::string::npos) {
-      const auto lo = std::stoull(text.substr(0, dots)), hi = std::stoull(text.substr(dots + 2));
-      if (lo > hi || hi - lo > 10000) return false;
-      for (auto s = lo; s <= hi; ++s) seeds.push_back(s);
-      return true;
-    }
-    for (const auto& s : split(text, ',')) seeds.push_back(std::stoull(s));
-    return !seeds.empty();
-  } catch (...) {
-    return false;
-  }
 }
 
 // "--columns 0,500,1000": training steps >= 0; anything else is a usage error naming the option.
@@ -124,7 +108,7 @@ int runExperiments(const ExperimentArgs& a) {
   const std::vector<std::int64_t> requestedColumns =
       parseColumns(a.columns);  // before the trials: a typo costs nothing
   std::vector<std::uint64_t> seeds;
-  if (!parseSeeds(a.seeds, seeds)) {
+  if (!cbtl::sweep::parseSeedList(a.seeds, seeds)) {
     fmt::print(stderr, "cbtl experiment: error: --seeds wants 'LO..HI' or a comma-separated list, not '{}'\n", a.seeds);
     return 2;
   }

@@ -59,15 +59,19 @@ inline const std::map<std::string, std::vector<std::string>>& commandExamples() 
        {"cbtl run domains/cooking/cooking.cbtl --simulator 'cbtl simulator serve domains/cooking/cooking.cbtl'"}},
       {"render", {"cbtl render domains/feeding/feeding.xml --out feeding.png"}},
       {"plot",
-       {"cbtl plot results/figure3 results/figure3-cleaning --panel-title Cooking --panel-title Cleaning --ymin -1 "
+       {"cbtl plot results/cooking/figure3-cooking results/robots/figure3-cleaning --panel-title Cooking --panel-title "
+        "Cleaning --ymin -1 "
         "--ymax 1 --out figure3.png",
-        "cbtl plot results/figure5-no-adapt results/figure5-user-reset --layout together --marks 3000,6000,9000 "
+        "cbtl plot results/cooking/figure5/nonstationary=no-adapt results/cooking/figure5/nonstationary=user-reset "
+        "--layout together --marks 3000,6000,9000 "
         "--out figure5.svg",
-        "cbtl plot results/table1-replan results/table1-noreplan --kind bars --label 'with replanning' --label "
+        "cbtl plot results/cooking/table1-replan results/cooking/table1-noreplan --kind bars --label 'with replanning' "
+        "--label "
         "'without replanning' --out table1.pdf"}},
       {"sweep",
-       {"cbtl sweep bench/sweeps/paper.json --jobs 2", "cbtl sweep bench/sweeps/paper.json --emit-slurm > sweep.sbatch",
-        "cbtl sweep bench/sweeps/paper.json --collect"}},
+       {"cbtl sweep bench/sweeps/paper-cooking.json --jobs 2",
+        "cbtl sweep bench/sweeps/paper-cooking.json --emit-slurm   # writes results/cooking/paper-cooking.sbatch",
+        "cbtl sweep bench/sweeps/paper-cooking.json --collect"}},
       {"profile", {"cbtl profile history --db care.sqlite ann feeding"}},
       {"study", {"cbtl study simulate domains/feeding/feeding.cbtl --participants 60"}},
   };

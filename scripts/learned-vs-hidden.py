@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """What an approach learned in a robot-domain experiment, against the hidden simulated user (docs/results.md).
 
-Usage: scripts/learned-vs-hidden.py books|cleaning EXPERIMENT_DIR [APPROACH...]
+Usage: scripts/learned-vs-hidden.py books|cleaning|feeding EXPERIMENT_DIR [APPROACH...]
 
 For every seed folder of each APPROACH (default: every approach folder in EXPERIMENT_DIR) it reads the last
 model snapshot (models/<last step>.json) and the last evaluation (eval.csv).
@@ -13,6 +13,14 @@ books: the handoverInROM interval's version space (the lower bound lies in [x1, 
   often an enjoyed book is picked first.
 cleaning: whether the surfacePreferred table equals the hidden one (only shelfMiddle and sideTable0 welcome), and
   which surfaces were never labelled.
+feeding: what each checkpoint's models/<step>.json knows of the user's occlusion sensitivity (the occlusionFree
+  threshold; the hidden user's is 0.05): the version space [highest score the user let pass, lowest they
+  complained about] and the threshold model's verdict there (it accepts a score up to the middle, where P(holds)
+  = 0.5; runtime/model/ThresholdModel.h); per approach and checkpoint, mean over seeds: the width of the version
+  space, the verdict's distance from the hidden threshold, and the share of 1,001 scores evenly spread over
+  0 .. 0.1 (the range the arm's configurations take in this scene) on which the model's verdict is the user's.
+  Unlike the evaluation's met rates this measures what was learned, not whether a choice happened to pass: a
+  robot that keeps far below the user's threshold meets the preference without knowing it.
 Standard library only.
 """
 import csv
@@ -80,8 +88,42 @@ def cleaning(approach, runs):
     print(f"  learned table equals the hidden one: {exact}/{len(runs)} seeds")
 
 
+HIDDEN_OCCLUSION = 0.05
+SCORE_GRID = [0.1 * i / 1000 for i in range(1001)]
+
+
+def occlusion_knowledge(snapshot):
+    """(version-space width, |verdict - hidden|, accuracy over SCORE_GRID) of one profile's occlusion model."""
+    model = snapshot["generators"].get("occlusionFree", {}).get("", {}).get("threshold", {})
+    lo, hi = model.get("lo", 0.0), model.get("hi", 1.0)
+    for score, holds in model.get("data", []):  # direction "below": holds => threshold >= score
+        if holds:
+            lo = max(lo, score)
+        else:
+            hi = min(hi, score)
+    verdict = (lo + hi) / 2 if lo < hi else lo
+    correct = sum(1 for x in SCORE_GRID if (x <= verdict) == (x < HIDDEN_OCCLUSION))
+    return hi - lo, abs(verdict - HIDDEN_OCCLUSION), correct / len(SCORE_GRID)
+
+
+def feeding(approach, runs):
+    by_step = {}
+    for _, run in runs:
+        folder = os.path.join(run, "models")
+        for name in os.listdir(folder):
+            if name.endswith(".json"):
+                with open(os.path.join(folder, name)) as f:
+                    by_step.setdefault(int(name[:-5]), []).append(occlusion_knowledge(json.load(f)))
+    print(f"{approach}: occlusion threshold, mean over {len(runs)} seeds")
+    print("    step   version-space width   |verdict - 0.05|   verdict = user's on 0..0.1")
+    for step in sorted(by_step):
+        rows = by_step[step]
+        mean = [sum(r[k] for r in rows) / len(rows) for k in range(3)]
+        print(f"  {step:6}   {mean[0]:19.4f}   {mean[1]:16.4f}   {mean[2]:26.3f}")
+
+
 def main():
-    if len(sys.argv) < 3 or sys.argv[1] not in ("books", "cleaning"):
+    if len(sys.argv) < 3 or sys.argv[1] not in ("books", "cleaning", "feeding"):
         sys.exit(__doc__)
     root = sys.argv[2]
     approaches = sys.argv[3:] or sorted(
@@ -90,7 +132,7 @@ def main():
         folder = os.path.join(root, approach)
         seeds = sorted((d for d in os.listdir(folder) if d.startswith("seed")), key=lambda d: int(d[4:]))
         runs = [(seed, os.path.join(folder, seed)) for seed in seeds]
-        (books if sys.argv[1] == "books" else cleaning)(approach, runs)
+        {"books": books, "cleaning": cleaning, "feeding": feeding}[sys.argv[1]](approach, runs)
 
 
 if __name__ == "__main__":

@@ -28,6 +28,9 @@ if [[ ${QUICK:-0} != 1 ]]; then
     echo "-- $domain: what was learned, against the hidden user"
     python3 scripts/learned-vs-hidden.py "$domain" "$out/robots/figure3-$domain"
   done
+  echo "-- feeding: each preference's learning curve; what was learned of the occlusion sensitivity"
+  python3 scripts/preference-curves.py "$out/robots/feeding-preferences"
+  python3 scripts/learned-vs-hidden.py feeding "$out/robots/feeding-preferences"
   echo "== Feeding: the five meals with 60 simulated participants"
   "$cbtl" study simulate domains/feeding/feeding.cbtl --participants 60 --out "$out/study" --force
   echo "== Feeding: the demonstration"

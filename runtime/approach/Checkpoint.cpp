@@ -15,7 +15,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr int kVersion = 2;  // 2: competence counters, the open plan's flags
+constexpr int kVersion = 3;  // 2: competence counters, the open plan's flags; 3: every evaluation starts afresh
 
 // Doubles exactly: finite ones as JSON numbers (nlohmann writes the shortest text that reads back to the same
 // double), the others as text.
@@ -237,7 +237,6 @@ json Checkpoint::toJson() const {
           {"files", {{"train.csv", trainCsvBytes}, {"eval.csv", evalCsvBytes}, {"world-calls.jsonl", worldLogBytes}}},
           {"world_calls", worldCalls},
           {"train_solver", trainSolver},
-          {"eval_solver", evalSolver},
           {"approach_rng", approachRng},
           {"strings", strings},
           {"profile", profile},
@@ -263,7 +262,6 @@ Checkpoint Checkpoint::fromJson(const json& j, const std::string& source) {
     cp.worldLogBytes = j.at("files").at("world-calls.jsonl").get<std::uint64_t>();
     cp.worldCalls = j.at("world_calls").get<std::uint64_t>();
     cp.trainSolver = j.at("train_solver");
-    cp.evalSolver = j.at("eval_solver");
     cp.profile = j.at("profile");
     cp.approachRng = j.at("approach_rng").get<std::string>();
     cp.strings = j.at("strings").get<std::vector<std::string>>();
@@ -388,6 +386,14 @@ void RunOutput::openForResume(const json& config) {
   }
   if (fs::exists(path("complete.json"))) {
     const json done = readJsonFile(path("complete.json"));
+    // An earlier format's evaluation is not comparable with this one's (version 3: each checkpoint's evaluation
+    // no longer carries the previous one's solver state), so its numbers are not reused.
+    if (done.value("version", 0) != kVersion) {
+      throw RunDirectoryError(fmt::format(
+          "'{}' was written by an earlier cbtl (format version {}, this one writes {}): its results are not "
+          "comparable with this version's; run it again in a new folder (or with --force)",
+          path("complete.json"), done.value("version", 0), kVersion));
+    }
     try {
       completed_ = experimentResultFromJson(done.at("result"));
     } catch (const json::exception& e) {

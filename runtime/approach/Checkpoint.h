@@ -4,7 +4,8 @@
 // eval.csv row and models/<step>.json are written. Its order makes every prefix of it safe to be killed in:
 //   1. train.csv, eval.csv and world-calls.jsonl are flushed and fsynced;
 //   2. checkpoint.json is replaced atomically. It holds the step, the three files' byte lengths at that
-//      moment, both solvers' states (RNG and memory, Solver::saveState), the approach RNG, the program's
+//      moment, the training solver's state (RNG and memory, Solver::saveState; every evaluation starts its
+//      own solver afresh, Experiment.h), the approach RNG, the program's
 //      interned texts, the profile learned so far, the pending calls of the current plan and their cursor,
 //      and the ExperimentResult so far.
 // `--resume` truncates the three files to the recorded lengths (dropping rows of steps after the checkpoint),
@@ -45,7 +46,7 @@ std::vector<std::string> differingKeys(const nlohmann::json& now, const nlohmann
 struct Checkpoint {
   std::int64_t step = 0;
   std::uint64_t trainCsvBytes = 0, evalCsvBytes = 0, worldLogBytes = 0, worldCalls = 0;
-  nlohmann::json trainSolver, evalSolver, profile;
+  nlohmann::json trainSolver, profile;
   std::string approachRng;
   std::vector<std::string> strings;  // the program's interned texts, in id order
   std::vector<sim::ActionCall> pending;

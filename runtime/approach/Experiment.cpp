@@ -61,6 +61,8 @@ std::uint64_t evaluationTaskSeed(std::uint64_t seed, int task) {
   return deriveSeed(seed + 100000, 1000 + static_cast<std::uint64_t>(task));
 }
 
+std::uint64_t evaluationSolverSeed(std::uint64_t seed) { return deriveSeed(seed + 100000, 1); }
+
 std::uint64_t deriveSeed(std::uint64_t seed, std::uint64_t stream) {
   // SplitMix64 at the stream's position in the sequence started at `seed`: well-mixed, independent streams
   // from one run seed (stream 0 is splitMix64(seed)).
@@ -184,7 +186,6 @@ struct Trial {
         trainWorld(std::move(world)),
         user(lp_.graph(), config_.textBackend),
         trainSolver(config_.solverOptions, deriveSeed(config_.seed, 1)),
-        evalSolver(config_.solverOptions, deriveSeed(config_.seed + 100000, 1)),
         approachRng(deriveSeed(config_.seed, 2)),
         learning(learns(config_.approach)),
         fallback(fallsBack(config_.approach)) {}
@@ -196,7 +197,7 @@ struct Trial {
   RecordingSimulator trainWorld;
   std::unique_ptr<sim::DomainSimulator> evalWorld;
   model::UserModel user;
-  solver::Solver trainSolver, evalSolver;
+  solver::Solver trainSolver;
   rt::Rng approachRng;
   bool learning, fallback;
   ExperimentResult result;
@@ -234,6 +235,9 @@ void evaluate(Trial& tr, std::int64_t step) {
   EvalPoint point;
   point.step = step;
   model::UserModel evalUser = tr.user;  // the evaluation agent loads the training agent's models
+  // Every checkpoint's evaluation starts from the same solver state, so what it measures depends on the models
+  // at this step only, not on how many evaluations came before (a solver remembers satisfying values).
+  solver::Solver evalSolver(config.solverOptions, evaluationSolverSeed(config.seed));
   int successes = 0, satisfied = 0;
   for (int i = 0; i < config.evalTasks; ++i) {
     tr.evalWorld->reset(evaluationTaskSeed(config.seed, i));
@@ -243,8 +247,8 @@ void evaluate(Trial& tr, std::int64_t step) {
     while (!done && steps < config.maxEvalEpisodeSteps) {
       lp.syncWorld(*tr.evalWorld);
       const auto obs = observationVector(lp.program(), tr.evalWorld->observe());
-      Plan plan = makePlan(lp, lp.taskFor(*tr.evalWorld, tr.taskIdx), obs, evaluationChoice(), tr.fallback,
-                           tr.evalSolver, evalUser);
+      Plan plan = makePlan(lp, lp.taskFor(*tr.evalWorld, tr.taskIdx), obs, evaluationChoice(), tr.fallback, evalSolver,
+                           evalUser);
       countRecheck(tr.result, plan);
       if (plan.replanned) ++point.replans;
       ++point.competence.requests;
@@ -368,7 +372,6 @@ void saveCheckpoint(Trial& tr, std::int64_t step) {
   cp.step = step;
   cp.worldCalls = tr.trainWorld.calls();
   cp.trainSolver = tr.trainSolver.saveState();
-  cp.evalSolver = tr.evalSolver.saveState();
   cp.profile = nlohmann::json::parse(tr.user.toJson());
   cp.approachRng = tr.approachRng.saveState();
   const rt::StringTable& strings = tr.lp.program().strings();
@@ -390,7 +393,6 @@ void restoreCheckpoint(Trial& tr, const Checkpoint& cp) {
                                         tr.out.worldLogPath(), tr.trainWorld.calls(), cp.worldCalls));
   }
   tr.trainSolver.restoreState(cp.trainSolver);
-  tr.evalSolver.restoreState(cp.evalSolver);
   tr.user.fromJson(cp.profile.dump(), tr.out.dir() + "/checkpoint.json");
   if (!tr.approachRng.restoreState(cp.approachRng))
     throw RunDirectoryError("the checkpoint's approach RNG state is malformed");

@@ -3,7 +3,9 @@
 // Train for `steps` steps in one world that is never reset (a served meal restocks it); every `evalEvery`
 // steps (and at step 0 and at the end), copy what was learned into an evaluation agent and run `evalTasks`
 // episodes, episode i in a world reset with evaluationTaskSeed(seed, i) — the same held-out tasks at every
-// checkpoint (the reference's evaluation tasks drifted between checkpoints), and different tasks for
+// checkpoint (the reference's evaluation tasks drifted between checkpoints), each checkpoint's evaluation solved
+// by a solver started afresh from evaluationSolverSeed(seed) (so a checkpoint's numbers do not depend on how many
+// evaluations came before it), and different tasks for
 // different run seeds (the reference's seed + 100000 + i made seeds s and s + 1 share nine of ten tasks,
 // so ten seeds were far from ten independent samples). An episode scores the sum of
 // the user's satisfaction over at most `maxEvalEpisodeSteps` steps; an episode whose CSP cannot be solved
@@ -161,6 +163,9 @@ ExperimentResult runExperiment(const PreparedProgram& lp, const SimulatorFactory
 
 // The world seed of held-out evaluation task `task` of run `seed`.
 std::uint64_t evaluationTaskSeed(std::uint64_t seed, int task);
+
+// The seed every checkpoint's evaluation solver of run `seed` starts from.
+std::uint64_t evaluationSolverSeed(std::uint64_t seed);
 
 // Seeds for independent components derived from one run seed.
 std::uint64_t deriveSeed(std::uint64_t seed, std::uint64_t stream);

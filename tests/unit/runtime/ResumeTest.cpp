@@ -238,6 +238,29 @@ TEST(RunDirectory, ResumingACompleteRunRunsNothing) {
   EXPECT_EQ(test::readFile(dir + "/train.csv"), train);
 }
 
+// A finished run of an earlier format (whose evaluation was measured differently) is not read back as if it
+// were this version's result.
+TEST(RunDirectory, ACompleteRunOfAnEarlierFormatIsNotReused) {
+  const Variant v{"cbtl", approach::ApproachKind::Cbtl, false};
+  const std::string dir = tempDir("old_format");
+  approach::ExperimentConfig c = config(v, dir);
+  c.steps = 200;
+  runFresh(c);
+  std::string marker = test::readFile(dir + "/complete.json");
+  const auto at = marker.find("\"version\": ");
+  ASSERT_NE(at, std::string::npos) << marker;
+  marker.replace(at, std::string("\"version\": 3").size(), "\"version\": 2");
+  { std::ofstream(dir + "/complete.json") << marker; }
+  c.runMode = approach::RunMode::Resume;
+  try {
+    runFresh(c);
+    FAIL() << "an earlier format's result was reused";
+  } catch (const approach::RunDirectoryError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("earlier cbtl (format version 2, this one writes 3)"), std::string::npos) << what;
+  }
+}
+
 TEST(RunDirectory, ResumeRemovesTheTemporariesOfAKilledWrite) {
   // kill -9 during an atomic write leaves "<file>.tmp.<pid>.<n>"; a resumed run must not keep them (found by
   // results_cli.sh's kill at an arbitrary moment).

@@ -1,5 +1,6 @@
 #include "domains/feeding/FeedingSimulator.h"
 
+#include "domains/feeding/BiteAnswers.h"
 #include "domains/feeding/FeedingActions.h"
 #include "domains/home/HomeEpisode.h"
 #include "domains/home/HomeScene.h"
@@ -37,23 +38,6 @@ const std::vector<std::string> kDips = {"ketchup", "bbqSauce", "ranch", "hummus"
 const std::vector<std::string> kSettings = {"alone", "withFriend", "withTv", "withFriendAndTv"};
 
 sim::Value foodValue(const std::string& food) { return sim::Value::name(foodEntry(food)); }
-
-// One answer about a choice: `answer`(leading..., offered, ideal), then `turnedDown`(leading..., choice) for every
-// other choice the user neither got nor named (naming the ideal among them turns the rest down).
-void answerAmong(std::vector<sim::FeedbackEvent>& out, const std::vector<sim::Value>& leading, const char* answer,
-                 const char* turnedDown, const std::vector<std::string>& choices, const std::string& offered,
-                 const std::string& ideal) {
-  std::vector<sim::Value> args = leading;
-  args.push_back(sim::Value::name(offered));
-  args.push_back(sim::Value::name(ideal));
-  out.push_back({answer, std::move(args)});
-  for (const auto& choice : choices) {
-    if (choice == offered || choice == ideal) continue;
-    std::vector<sim::Value> other = leading;
-    other.push_back(sim::Value::name(choice));
-    out.push_back({turnedDown, std::move(other)});
-  }
-}
 
 }  // namespace
 
@@ -379,13 +363,9 @@ sim::StepResult FeedingSimulator::waitedForUser(const std::string& signal, sim::
     const int spoke = static_cast<int>(world().utterances().size()) - progress_.utterancesAtStart;
     const std::string verbosity = FeedingUser::perceivedVerbosity(spoke);
     const std::string signalGiven = progress_.signal.empty() ? "autoContinue" : progress_.signal;
-    std::vector<std::string> choices = dips_;
-    choices.push_back("noDip");
-    answerAmong(step.feedback, {foodValue(food_)}, "dipAnswer", "dipNotWanted", choices, progress_.dip, idealDip);
-    answerAmong(step.feedback, {}, "signalAnswer", "signalNotWanted", FeedingUser::readySignals(), signalGiven,
-                idealSignal);
-    answerAmong(step.feedback, {}, "verbosityAnswer", "verbosityNotWanted", FeedingUser::verbosities(), verbosity,
-                idealVerbosity);
+    for (auto& event : biteAnswerEvents(BiteOffer{food_, dips_, progress_.dip, signalGiven, verbosity},
+                                        BiteIdeals{idealDip, idealSignal, idealVerbosity}))
+      step.feedback.push_back(std::move(event));
     step.preferences = {{"view", !progress_.viewBlocked},
                         {"dip", progress_.dip == idealDip},
                         {"signal", signalGiven == idealSignal},

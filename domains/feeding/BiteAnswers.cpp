@@ -57,6 +57,11 @@ std::optional<std::string> checkIdeals(const BiteOffer& offer, const BiteIdeals&
   return std::nullopt;
 }
 
+sim::FeedbackEvent viewAnswerEvent(const world::ArmConfig& q, bool blocked) {
+  return sim::FeedbackEvent{blocked ? "viewBlocked" : "viewClear",
+                            {sim::Value::vec(std::vector<double>(q.begin(), q.end()))}};
+}
+
 std::vector<sim::FeedbackEvent> biteAnswerEvents(const BiteOffer& offer, const BiteIdeals& ideals) {
   if (auto problem = checkIdeals(offer, ideals)) throw std::invalid_argument(*problem);
   std::vector<sim::FeedbackEvent> events;

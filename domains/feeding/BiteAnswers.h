@@ -9,6 +9,7 @@
 // catalogue entry), then the signal, then the verbosity.
 #pragma once
 
+#include "robot/world/Pose.h"
 #include "runtime/sim/DomainSimulator.h"
 
 #include <optional>
@@ -36,6 +37,9 @@ std::vector<std::string> dipChoicesOf(const BiteOffer& offer);
 // Why the answers cannot be taken (an ideal that is not one of its question's choices, naming the choices), or
 // nothing when they can.
 std::optional<std::string> checkIdeals(const BiteOffer& offer, const BiteIdeals& ideals);
+
+// "Would the arm at q block your view?" answered: viewBlocked(q) or viewClear(q).
+sim::FeedbackEvent viewAnswerEvent(const world::ArmConfig& q, bool blocked);
 
 // The events the answers say, in the order above. The answers must pass checkIdeals (std::invalid_argument
 // otherwise); the offer is taken as the robot's record of the bite.

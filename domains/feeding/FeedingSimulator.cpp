@@ -189,8 +189,7 @@ double FeedingSimulator::occlusionAt(const world::ArmConfig& q) { return world::
 sim::FeedbackEvent FeedingSimulator::viewAnswer(const world::ArmConfig& q, double* score) {
   const double s = occlusionAt(q);
   if (score != nullptr) *score = s;
-  return sim::FeedbackEvent{user().viewBlocked(s) ? "viewBlocked" : "viewClear",
-                            {sim::Value::vec(std::vector<double>(q.begin(), q.end()))}};
+  return viewAnswerEvent(q, user().viewBlocked(s));
 }
 
 void FeedingSimulator::startRequest(Request r) {

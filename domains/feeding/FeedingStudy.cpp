@@ -27,6 +27,23 @@ void learnOrThrow(const approach::PreparedProgram& lp, StudyArm& arm, const std:
     throw std::runtime_error("feedback does not fit its declaration: " + report.problems.front());
 }
 
+std::size_t feedBiteTask(const approach::PreparedProgram& lp) {
+  const int task = lp.taskIndex("feedBite");
+  if (task < 0) throw std::runtime_error(lp.path() + ": the study needs the task feedBite");
+  return static_cast<std::size_t>(task);
+}
+
+// The shown choice as the participant sees it, before anyone judges it.
+MealChoice choiceOf(FeedingSimulator& world, const MealOffer& offer) {
+  MealChoice choice;
+  if (!offer.shown.ok) return choice;
+  choice.dip = offer.read.dip;
+  choice.signal = offer.read.signal;
+  choice.verbosity = offer.read.verbosity;
+  if (offer.read.abovePlateConf) choice.occlusion = world.occlusionAt(*offer.read.abovePlateConf);
+  return choice;
+}
+
 void countRecheck(StudyResult& tally, const approach::Plan& plan) {
   if (!plan.rechecked) return;
   ++tally.rechecks;
@@ -74,46 +91,75 @@ std::vector<StudyArm> makeStudyArms(const approach::PreparedProgram& lp, const P
   return arms;
 }
 
-MealChoice runStudyMeal(const approach::PreparedProgram& lp, StudyArm& arm, std::size_t meal, StudyResult& tally) {
+MealOffer offerMeal(const approach::PreparedProgram& lp, StudyArm& arm, std::size_t meal, StudyResult& tally) {
   FeedingSimulator& world = *arm.world;
   world.serveMealNow(paperMeals().at(meal));
-  const int task = lp.taskIndex("feedBite");
-  if (task < 0) throw std::runtime_error(lp.path() + ": the study needs the task feedBite");
-  const auto taskIndex = static_cast<std::size_t>(task);
+  const std::size_t task = feedBiteTask(lp);
   lp.syncWorld(world);
-  const auto observation = approach::observationVector(lp.program(), world.observe());
-
-  std::optional<world::ArmConfig> exploringConf;
+  MealOffer offer;
+  offer.meal = meal;
+  offer.observation = approach::observationVector(lp.program(), world.observe());
   if (arm.learns) {
     rt::Rng unused(0);
-    const approach::Plan exploring =
-        approach::makePlan(lp, taskIndex, observation, approach::trainingChoice({approach::ApproachKind::Cbtl}, unused),
-                           false, arm.exploringSolver, arm.model);
+    const approach::Plan exploring = approach::makePlan(
+        lp, task, offer.observation, approach::trainingChoice({approach::ApproachKind::Cbtl}, unused), false,
+        arm.exploringSolver, arm.model);
     countRecheck(tally, exploring);
-    if (exploring.ok) exploringConf = readConf(lp, taskIndex, exploring.solve.assignment, kAbovePlateConf);
+    if (exploring.ok) offer.exploringConf = readConf(lp, task, exploring.solve.assignment, kAbovePlateConf);
   }
+  offer.shown =
+      approach::makePlan(lp, task, offer.observation, approach::evaluationChoice(), false, arm.solver, arm.model);
+  countRecheck(tally, offer.shown);
+  if (offer.shown.ok) offer.read = readPlanChoices(lp, task, offer.shown.solve.assignment);
+  return offer;
+}
 
-  MealChoice choice;
-  const approach::Plan shown =
-      approach::makePlan(lp, taskIndex, observation, approach::evaluationChoice(), false, arm.solver, arm.model);
-  countRecheck(tally, shown);
-  if (shown.ok) {
-    const PlanChoices read = readPlanChoices(lp, taskIndex, shown.solve.assignment);
-    choice.dip = read.dip;
-    choice.signal = read.signal;
-    choice.verbosity = read.verbosity;
-    if (read.abovePlateConf) choice.occlusion = world.occlusionAt(*read.abovePlateConf);
+MealChoice runStudyMeal(const approach::PreparedProgram& lp, StudyArm& arm, std::size_t meal, StudyResult& tally) {
+  const MealOffer offer = offerMeal(lp, arm, meal, tally);
+  FeedingSimulator& world = *arm.world;
+  MealChoice choice = choiceOf(world, offer);
+  if (offer.shown.ok) {
     const PlanRun run =
-        runPlan(world, shown.calls, learnAsJudged(lp, arm, approach::StepWorld{shown.solve.assignment, observation}));
+        runPlan(world, offer.shown.calls,
+                learnAsJudged(lp, arm, approach::StepWorld{offer.shown.solve.assignment, offer.observation}));
     choice.solved = run.done && !run.failed;
     for (const auto& [name, met] : run.preferences) choice.preferences[name] = met;
   }
-  if (arm.learns && exploringConf) {
+  if (arm.learns && offer.exploringConf) {
     // Asked with the arm back where the plan left it: the score is the configuration's (the utensil, stowed or
     // held, is not in the user's view), read in the world as it is now.
     lp.syncWorld(world);
-    learnOrThrow(lp, arm, {world.viewAnswer(*exploringConf)}, approach::StepWorld{{}, observation});
+    learnOrThrow(lp, arm, {world.viewAnswer(*offer.exploringConf)}, approach::StepWorld{{}, offer.observation});
   }
+  return choice;
+}
+
+MealChoice answerMeal(const approach::PreparedProgram& lp, StudyArm& arm, const MealOffer& offer,
+                      const MealAnswers& answers) {
+  const Meal& meal = paperMeals().at(offer.meal);
+  const BiteOffer bite{meal.food, meal.dips, offer.read.dip, offer.read.signal, offer.read.verbosity};
+  if (offer.shown.ok) {
+    if (auto problem = checkIdeals(bite, answers.ideals)) throw std::invalid_argument(*problem);
+  }
+  FeedingSimulator& world = *arm.world;
+  MealChoice choice = choiceOf(world, offer);
+  if (!offer.shown.ok) return choice;
+  const PlanRun run = runPlan(world, offer.shown.calls);
+  choice.solved = run.done && !run.failed;
+  bool blocked = false;
+  for (const auto& [conf, isBlocked] : answers.views) blocked = blocked || isBlocked;
+  choice.preferences = {{"dip", bite.dip == answers.ideals.dip},
+                        {"signal", bite.signal == answers.ideals.signal},
+                        {"verbosity", bite.verbosity == answers.ideals.verbosity},
+                        {"view", !blocked}};
+  choice.preferences["bite"] = choice.met() == 4;
+  if (!arm.learns) return choice;
+  lp.syncWorld(world);
+  learnOrThrow(lp, arm, biteAnswerEvents(bite, answers.ideals),
+               approach::StepWorld{offer.shown.solve.assignment, offer.observation});
+  std::vector<sim::FeedbackEvent> views;
+  for (const auto& [conf, isBlocked] : answers.views) views.push_back(viewAnswerEvent(conf, isBlocked));
+  learnOrThrow(lp, arm, views, approach::StepWorld{{}, offer.observation});
   return choice;
 }
 

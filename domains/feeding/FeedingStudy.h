@@ -18,9 +18,11 @@
 #pragma once
 
 #include "domains/ProgramFacts.h"
+#include "domains/feeding/BiteAnswers.h"
 #include "domains/feeding/FeedingPlanReading.h"
 #include "domains/feeding/FeedingSimulator.h"
 #include "runtime/approach/Experiment.h"
+#include "runtime/approach/Planner.h"
 #include "runtime/approach/PreparedProgram.h"
 #include "runtime/model/UserModel.h"
 #include "runtime/solver/Solver.h"
@@ -106,9 +108,39 @@ std::vector<StudyArm> makeStudyArms(const approach::PreparedProgram& lp, const P
 // fit their declarations.
 FeedbackHandler learnAsJudged(const approach::PreparedProgram& lp, StudyArm& arm, const approach::StepWorld& world);
 
-// Runs meal `meal` (an index into paperMeals()) for one arm: steps 1 and 2 above. Throws rt::RuntimeError or
+// What one arm would do at meal `meal` (an index into paperMeals()), decided and not yet carried out: the meal is
+// served in the arm's world, the choice it shows is solved (step 1's CSP) and, for an arm that learns, the
+// above-plate configuration its exploring CSP is least sure of (step 2's question). Throws rt::RuntimeError or
 // std::runtime_error for a program that does not fit the Feeding simulator.
+struct MealOffer {
+  std::size_t meal = 0;
+  std::vector<double> observation;  // the CSP's observation, in the program's order
+  approach::Plan shown;
+  PlanChoices read;                               // the shown plan's choices (when it was solved)
+  std::optional<world::ArmConfig> exploringConf;  // the learner's most uncertain view
+};
+MealOffer offerMeal(const approach::PreparedProgram& lp, StudyArm& arm, std::size_t meal, StudyResult& tally);
+
+// Runs meal `meal` for one arm with a simulated participant: offerMeal, the shown plan carried out in the arm's
+// world (whose participant judges it and, for a learner, teaches it as it goes), then the exploring view's
+// question answered by the participant.
 MealChoice runStudyMeal(const approach::PreparedProgram& lp, StudyArm& arm, std::size_t meal, StudyResult& tally);
+
+// A real participant's answers about one meal (the web study): the ideals (BiteAnswers.h) and, for each view they
+// were shown, whether the arm there would block their view.
+struct MealAnswers {
+  BiteIdeals ideals;
+  std::vector<std::pair<world::ArmConfig, bool>> views;  // (configuration shown, blocked)
+};
+
+// Carries `offer` out in the arm's world (so the next meal starts where this one left the plate; the world's own
+// simulated participant is not listened to) and, for an arm that learns, learns what `answers` say about it: the
+// bite's answers about the shown choice, then each view answer, each read in the world as it is after the meal.
+// Returns the choice with the preferences the answers judge it by (dip, signal and verbosity against the ideals;
+// view: no shown configuration called blocked). Throws std::invalid_argument for answers outside the meal's
+// choices (checkIdeals), std::runtime_error as offerMeal.
+MealChoice answerMeal(const approach::PreparedProgram& lp, StudyArm& arm, const MealOffer& offer,
+                      const MealAnswers& answers);
 
 // The whole study. `lp` must be the Feeding program (domains/feeding/feeding.cbtl or one with its tasks,
 // variables and feedback events).

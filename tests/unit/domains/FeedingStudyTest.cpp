@@ -99,6 +99,69 @@ TEST(FeedingStudy, AParticipantsResultsDoNotDependOnTheOthers) {
   }
 }
 
+// A participant's typed answers (the web study's path, answerMeal): what they say is what CBTL learns, and what it
+// offers next follows it; No Personalization offers the same whatever they say.
+TEST(FeedingStudy, AnsweredMealsTeachCbtlWhatTheParticipantSaid) {
+  const auto& lp = feedingProgram();
+  ASSERT_TRUE(lp.ok()) << lp.errors();
+  StudyResult tally;
+  std::vector<StudyArm> arms = makeStudyArms(lp, cbtl::test::programFacts("feeding"), studyOptions(0, 1), 7);
+  StudyArm& cbtlArm = arms.at(0);
+  StudyArm& npArm = arms.at(1);
+  ASSERT_EQ(cbtlArm.approach, "cbtl");
+  // The participant wants no dip with any potato, the button and silence; the first three meals teach it.
+  const auto answer = [](const MealOffer& offer) {
+    MealAnswers a;
+    a.ideals = BiteIdeals{"noDip", "button", "silent"};
+    if (offer.read.abovePlateConf) a.views.emplace_back(*offer.read.abovePlateConf, false);
+    if (offer.exploringConf) a.views.emplace_back(*offer.exploringConf, false);
+    return a;
+  };
+  std::size_t labels = 0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const MealOffer c = offerMeal(lp, cbtlArm, k, tally);
+    const MealOffer n = offerMeal(lp, npArm, k, tally);
+    ASSERT_TRUE(c.shown.ok && n.shown.ok) << k;
+    EXPECT_TRUE(c.exploringConf.has_value()) << "a learner asks about its most uncertain view";
+    EXPECT_FALSE(n.exploringConf.has_value());
+    const MealChoice judged = answerMeal(lp, cbtlArm, c, answer(c));
+    answerMeal(lp, npArm, n, answer(n));
+    EXPECT_TRUE(judged.solved) << k;
+    EXPECT_EQ(judged.preferences.at("dip"), c.read.dip == "noDip");
+    EXPECT_TRUE(judged.preferences.at("view"));
+    // Every answer is learned: the three questions account for every choice, and each view is one more label.
+    EXPECT_GT(cbtlArm.model.dataCount(), labels) << k;
+    labels = cbtlArm.model.dataCount();
+  }
+  EXPECT_EQ(npArm.model.dataCount(), 0u);
+  // Meal 5 (tater tots, with a friend and the TV): the potato dip was taught three times over.
+  const MealOffer c5 = offerMeal(lp, cbtlArm, 4, tally);
+  ASSERT_TRUE(c5.shown.ok);
+  EXPECT_EQ(c5.read.dip, "noDip");
+  // Meal 4 (alone, like meal 1): signal and verbosity as taught; without learning, something else.
+  const MealOffer c4 = offerMeal(lp, cbtlArm, 3, tally);
+  const MealOffer n4 = offerMeal(lp, npArm, 3, tally);
+  ASSERT_TRUE(c4.shown.ok && n4.shown.ok);
+  EXPECT_EQ(c4.read.signal, "button");
+  EXPECT_EQ(c4.read.verbosity, "silent");
+  EXPECT_FALSE(n4.read.signal == "button" && n4.read.verbosity == "silent" && n4.read.dip == "noDip")
+      << "the untrained robot happens to make the taught choices: the test would show nothing";
+  EXPECT_EQ(tally.recheckViolations, 0);
+}
+
+TEST(FeedingStudy, AnswersOutsideTheMealsChoicesAreRefusedAndTeachNothing) {
+  const auto& lp = feedingProgram();
+  ASSERT_TRUE(lp.ok()) << lp.errors();
+  StudyResult tally;
+  std::vector<StudyArm> arms = makeStudyArms(lp, cbtl::test::programFacts("feeding"), studyOptions(0, 1), 3);
+  const MealOffer offer = offerMeal(lp, arms.at(0), 0, tally);
+  ASSERT_TRUE(offer.shown.ok);
+  MealAnswers bad;
+  bad.ideals = BiteIdeals{"ranch", "button", "silent"};  // meal 1 serves ketchup and BBQ sauce
+  EXPECT_THROW(answerMeal(lp, arms.at(0), offer, bad), std::invalid_argument);
+  EXPECT_EQ(arms.at(0).model.dataCount(), 0u);
+}
+
 TEST(FeedingDemo, ComplaintsFollowTheHiddenThresholdAndCbtlKeepsTheViewClear) {
   const auto& lp = feedingProgram();
   ASSERT_TRUE(lp.ok()) << lp.errors();

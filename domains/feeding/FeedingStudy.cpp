@@ -14,11 +14,6 @@ namespace cbtl::domains::feeding {
 
 namespace {
 
-// Seeds per participant: the world's start and each arm's solver (streams of approach::deriveSeed).
-std::uint64_t participantSeed(std::uint64_t seed, int participant) {
-  return approach::deriveSeed(seed, 7000 + static_cast<std::uint64_t>(participant));
-}
-
 void learnOrThrow(const approach::PreparedProgram& lp, StudyArm& arm, const std::vector<sim::FeedbackEvent>& events,
                   const approach::StepWorld& world) {
   if (events.empty()) return;
@@ -51,6 +46,10 @@ void countRecheck(StudyResult& tally, const approach::Plan& plan) {
 }
 
 }  // namespace
+
+std::uint64_t participantSeed(std::uint64_t seed, int participant) {
+  return approach::deriveSeed(seed, 7000 + static_cast<std::uint64_t>(participant));
+}
 
 FeedbackHandler learnAsJudged(const approach::PreparedProgram& lp, StudyArm& arm, const approach::StepWorld& world) {
   if (!arm.learns) return {};

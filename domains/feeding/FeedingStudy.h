@@ -99,6 +99,10 @@ struct StudyArm {
            const StudyOptions& options, std::uint64_t solverSeed);
 };
 
+// Participant n's seed in a study of seed `seed`: their worlds' start and every random choice made for them
+// (streams of approach::deriveSeed).
+std::uint64_t participantSeed(std::uint64_t seed, int participant);
+
 // Makes participant n's two arms (studyApproaches()), both worlds reset with the participant's seed.
 std::vector<StudyArm> makeStudyArms(const approach::PreparedProgram& lp, const ProgramFacts& facts,
                                     const StudyOptions& options, int participant);

@@ -1,11 +1,11 @@
 #include "app/profile/ProfileStore.h"
 
+#include "app/profile/SqliteFile.h"
+
 #include <fmt/format.h>
 #include <sqlite3.h>
 #include <nlohmann/json.hpp>
 
-#include <chrono>
-#include <ctime>
 #include <filesystem>
 #include <utility>
 
@@ -34,102 +34,21 @@ CREATE TABLE events(id INTEGER PRIMARY KEY AUTOINCREMENT, profile_id INTEGER NOT
 CREATE INDEX events_by_profile ON events(profile_id, id);
 )sql";
 
+struct ProfileStoreFile {
+  using Error = StoreError;
+  static constexpr const char* kind = "profile store";
+};
+using Statement = sqlite::Statement<ProfileStoreFile>;
+using WriteTransaction = sqlite::WriteTransaction<ProfileStoreFile>;
+using sqlite::utcNow;
 std::string failure(const std::string& path, sqlite3* db, int code) {
-  if (code == SQLITE_BUSY || code == SQLITE_LOCKED)
-    return fmt::format("{}: the store is busy (another process held it longer than the busy timeout)", path);
-  if (code == SQLITE_NOTADB) return fmt::format("{}: not a SQLite database, so not a CBTL profile store", path);
-  return fmt::format("{}: {}", path, db != nullptr ? sqlite3_errmsg(db) : sqlite3_errstr(code));
+  return sqlite::failure(path, db, code, ProfileStoreFile::kind);
 }
-
-class Statement {
- public:
-  Statement(sqlite3* db, const std::string& path, const char* sql) : db_(db), path_(path) {
-    const int rc = sqlite3_prepare_v2(db, sql, -1, &stmt_, nullptr);
-    if (rc != SQLITE_OK) throw StoreError(failure(path_, db_, rc));
-  }
-  ~Statement() { sqlite3_finalize(stmt_); }
-  Statement(const Statement&) = delete;
-  Statement& operator=(const Statement&) = delete;
-
-  Statement& bind(int i, const std::string& text) {
-    check(sqlite3_bind_text(stmt_, i, text.data(), static_cast<int>(text.size()), SQLITE_TRANSIENT));
-    return *this;
-  }
-  Statement& bind(int i, std::int64_t value) {
-    check(sqlite3_bind_int64(stmt_, i, value));
-    return *this;
-  }
-  // True while there is a row to read.
-  bool step() {
-    const int rc = sqlite3_step(stmt_);
-    if (rc == SQLITE_ROW) return true;
-    if (rc == SQLITE_DONE) return false;
-    throw StoreError(failure(path_, db_, rc));
-  }
-  void reset() {
-    sqlite3_reset(stmt_);
-    sqlite3_clear_bindings(stmt_);
-  }
-  std::int64_t integer(int column) const { return sqlite3_column_int64(stmt_, column); }
-  std::string text(int column) const {
-    const auto* p = reinterpret_cast<const char*>(sqlite3_column_text(stmt_, column));
-    return p != nullptr ? std::string(p, static_cast<std::size_t>(sqlite3_column_bytes(stmt_, column))) : "";
-  }
-
- private:
-  void check(int rc) const {
-    if (rc != SQLITE_OK) throw StoreError(failure(path_, db_, rc));
-  }
-  sqlite3* db_;
-  const std::string& path_;
-  sqlite3_stmt* stmt_ = nullptr;
-};
-
-void exec(sqlite3* db, const std::string& path, const char* sql) {
-  char* message = nullptr;
-  const int rc = sqlite3_exec(db, sql, nullptr, nullptr, &message);
-  if (rc != SQLITE_OK) {
-    const std::string what = rc == SQLITE_BUSY || rc == SQLITE_NOTADB || message == nullptr
-                                 ? failure(path, db, rc)
-                                 : fmt::format("{}: {}", path, message);
-    sqlite3_free(message);
-    throw StoreError(what);
-  }
-}
-
-// BEGIN IMMEDIATE takes the write lock at once, so two writers queue on the busy timeout instead of failing later
-// with a deadlock; anything that leaves the scope before commit() rolls back.
-class WriteTransaction {
- public:
-  WriteTransaction(sqlite3* db, const std::string& path) : db_(db), path_(path) { exec(db_, path_, "BEGIN IMMEDIATE"); }
-  ~WriteTransaction() {
-    if (!done_) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
-  }
-  void commit() {
-    exec(db_, path_, "COMMIT");
-    done_ = true;
-  }
-
- private:
-  sqlite3* db_;
-  const std::string& path_;
-  bool done_ = false;
-};
+void exec(sqlite3* db, const std::string& path, const char* sql) { sqlite::exec<ProfileStoreFile>(db, path, sql); }
 
 std::int64_t pragmaInt(sqlite3* db, const std::string& path, const char* sql) {
   Statement s(db, path, sql);
   return s.step() ? s.integer(0) : 0;
-}
-
-std::string utcNow() {
-  const auto now = std::chrono::system_clock::now();
-  const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
-  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
-  std::tm tm{};
-  gmtime_r(&seconds, &tm);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &tm);
-  return fmt::format("{}.{:03d}Z", text, static_cast<int>(ms));
 }
 
 void checkName(const std::string& path, const char* what, const std::string& name) {

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian bookworm packages the build and the tests need, and only those that are missing.
+# Installs the Debian bookworm packages the build and the tests need, and only those that are missing, then the
+# browser test's npm package (tests/browser: playwright-core, which drives Debian's chromium).
 # Safe to run again: with everything present it only checks.
 set -euo pipefail
 
@@ -14,7 +15,13 @@ packages=(
   clang libclang-rt-14-dev clang-format
   libcairo2-dev fonts-dejavu-core
   slurm-wlm munge
+  chromium
 )
+# Node.js for the browser test: Debian's, unless a node is there already (e.g. from NodeSource, whose package
+# conflicts with Debian's npm).
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -23,7 +30,17 @@ for p in "${packages[@]}"; do
   fi
 done
 
+browser_test_packages() {
+  local dir
+  dir="$(cd "$(dirname "$0")/.." && pwd)/tests/browser"
+  if [ ! -f "$dir/node_modules/playwright-core/package.json" ]; then
+    echo "install-deps: installing the browser test's npm packages in $dir"
+    npm ci --prefix "$dir" --no-audit --no-fund --loglevel=error
+  fi
+}
+
 if [ ${#missing[@]} -eq 0 ]; then
+  browser_test_packages
   exit 0
 fi
 
@@ -37,3 +54,4 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+browser_test_packages

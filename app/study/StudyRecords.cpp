@@ -43,8 +43,8 @@ bool hasStudyTables(sqlite3* db, const std::string& path) {
   return s.step() && s.integer(0) > 0;
 }
 
-// A name as it may appear in a message: quoted, with quotes, backslashes and anything outside printable ASCII
-// escaped, and cut when long, since it may be whatever a URL held.
+}  // namespace
+
 std::string quoted(const std::string& text) {
   constexpr std::size_t kShown = 80;
   std::string out = "'";
@@ -60,6 +60,8 @@ std::string quoted(const std::string& text) {
   out += text.size() > kShown ? fmt::format("'... ({} bytes)", text.size()) : "'";
   return out;
 }
+
+namespace {
 
 bool isKind(const std::string& kind) {
   if (kind.empty() || kind.size() > 40) return false;

@@ -48,6 +48,10 @@ constexpr int kMeals = 5;  // a record's meal is 1..kMeals, or 0 for a page abou
 // 1..64 characters of [A-Za-z0-9_.-].
 bool isParticipantId(const std::string& id);
 
+// Text as it may appear in a message: quoted, with quotes, backslashes and anything outside printable ASCII escaped,
+// and cut when long, since it may be whatever a URL held.
+std::string quoted(const std::string& text);
+
 struct Participant {
   std::string id;
   std::string created;

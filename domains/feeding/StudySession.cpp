@@ -64,18 +64,23 @@ const MealPresentation& StudySession::current() {
   return *current_;
 }
 
-std::map<std::string, MealChoice> StudySession::answer(const ParticipantAnswers& answers) {
+std::optional<std::string> StudySession::check(const ParticipantAnswers& answers) {
   const MealPresentation& p = current();
   if (answers.blocked.size() != p.views.size())
-    throw std::invalid_argument(
-        fmt::format("{} view answers for {} view questions", answers.blocked.size(), p.views.size()));
+    return fmt::format("{} view answers for {} view questions", answers.blocked.size(), p.views.size());
   for (const auto& [name, offer] : p.offers) {
     if (!offer.shown.ok) continue;
     const Meal& meal = paperMeals().at(meal_);
     if (auto problem = checkIdeals(
             BiteOffer{meal.food, meal.dips, offer.read.dip, offer.read.signal, offer.read.verbosity}, answers.ideals))
-      throw std::invalid_argument(*problem);
+      return problem;
   }
+  return std::nullopt;
+}
+
+std::map<std::string, MealChoice> StudySession::answer(const ParticipantAnswers& answers) {
+  if (auto problem = check(answers)) throw std::invalid_argument(*problem);
+  const MealPresentation& p = current();
   MealAnswers said;
   said.ideals = answers.ideals;
   for (std::size_t i = 0; i < p.views.size(); ++i) said.views.emplace_back(p.views[i].conf, answers.blocked[i]);

@@ -57,10 +57,16 @@ class StudySession {
   // The current meal as shown (computed once per meal). std::logic_error when finished.
   const MealPresentation& current();
 
+  // Why answer() would refuse these answers about the current meal (an ideal outside the meal's choices, a count
+  // of view answers other than the questions'), or nothing when it would take them. std::logic_error when finished.
+  std::optional<std::string> check(const ParticipantAnswers& answers);
+
   // Takes the answers about the current meal and moves to the next. Returns each approach's choice as the answers
-  // judge it. std::invalid_argument (nothing changes) for answers outside the meal's choices or a count of view
-  // answers other than the questions'; std::logic_error when finished.
+  // judge it. std::invalid_argument (nothing changes) for answers check() refuses; std::logic_error when finished.
   std::map<std::string, MealChoice> answer(const ParticipantAnswers& answers);
+
+  // What CBTL has learned so far (the first of studyApproaches()).
+  const model::UserModel& learnerModel() const { return arms_.front().model; }
 
   // Solutions re-checked before execution and refused, over every meal so far.
   const StudyResult& tally() const { return tally_; }

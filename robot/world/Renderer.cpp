@@ -39,6 +39,8 @@ struct OffscreenRenderer::Impl {
   mjvOption opt;
 
   ~Impl() {
+    if (display != EGL_NO_DISPLAY && context != EGL_NO_CONTEXT)
+      eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context);  // mjr_freeContext needs it current
     if (mjvReady) mjv_freeScene(&scn);
     if (mjrReady) mjr_freeContext(&con);
     if (display != EGL_NO_DISPLAY) {
@@ -136,6 +138,9 @@ std::unique_ptr<OffscreenRenderer> OffscreenRenderer::create(std::shared_ptr<con
     message = "MuJoCo could not select its offscreen buffer";
     return nullptr;
   }
+  // Released, so that render() can make it current in whichever thread calls it (a context is current in one
+  // thread at most; a server renders on its request threads).
+  eglMakeCurrent(im.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   status = RenderStatus::Ok;
   message.clear();
   return r;
@@ -166,7 +171,12 @@ RenderStatus OffscreenRenderer::render(Workspace& ws, const CameraSpec& camera, 
     cam.azimuth = camera.azimuth;
     cam.elevation = camera.elevation;
   }
-  eglMakeCurrent(im.display, EGL_NO_SURFACE, EGL_NO_SURFACE, im.context);
+  if (!eglMakeCurrent(im.display, EGL_NO_SURFACE, EGL_NO_SURFACE, im.context)) return RenderStatus::ContextFailed;
+  // Released on every return below, as after create().
+  struct Release {
+    EGLDisplay display;
+    ~Release() { eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT); }
+  } release{im.display};
   mj_camlight(m, ws.data());  // camera and light poses (mj_kinematics does not compute them)
   mjv_updateScene(m, ws.data(), &im.opt, nullptr, &cam, mjCAT_ALL, &im.scn);
   const mjrRect viewport{0, 0, width, height};

@@ -21,7 +21,7 @@ namespace cbtl::world {
 enum class RenderStatus {
   Ok,
   EglUnavailable,  // no EGL display could be initialised (no libEGL / driver): callers may skip
-  ContextFailed,   // EGL or MuJoCo could not create an OpenGL context
+  ContextFailed,   // EGL or MuJoCo could not create an OpenGL context, or it could not be made current
   UnknownCamera,   // no camera with the requested name
   TooLarge,        // the requested size exceeds the scene's offscreen buffer
 };
@@ -52,7 +52,9 @@ class OffscreenRenderer {
   OffscreenRenderer(const OffscreenRenderer&) = delete;
   OffscreenRenderer& operator=(const OffscreenRenderer&) = delete;
 
-  // Renders the Workspace's current state. `ws` must be over the renderer's scene.
+  // Renders the Workspace's current state. `ws` must be over the renderer's scene. Callable from any thread, one
+  // thread at a time: the OpenGL context is made current for the call and released after it (ContextFailed when it
+  // cannot be made current).
   RenderStatus render(Workspace& ws, const CameraSpec& camera, int width, int height, Image& out);
 
   int maxWidth() const;

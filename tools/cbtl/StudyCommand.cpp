@@ -3,6 +3,7 @@
 #include "tools/cbtl/CommandRegistry.h"
 #include "tools/cbtl/ErrorHandling.h"
 #include "tools/cbtl/RuntimeSupport.h"
+#include "tools/cbtl/StudyCommands.h"
 
 #include "domains/feeding/FeedingDemo.h"
 #include "domains/feeding/FeedingStudy.h"
@@ -20,33 +21,7 @@ namespace {
 
 namespace feeding = cbtl::domains::feeding;
 
-struct StudyArgs {
-  std::string file, out, stdlibDir;
-  int participants = 60, firstParticipant = 0, participant = 0, trials = 5, width = 480, height = 360;
-  std::uint64_t seed = 0;
-  bool noExploringView = false, force = false, noPictures = false;
-  cbtl::cli::SolverArgs solver;
-  cbtl::cli::TextBackendArgs text;
-};
-
-// Loads the Feeding program and the study options, or prints why not (nullptr).
-std::unique_ptr<cbtl::app::LoadedProgram> loadFeeding(const char* command, const StudyArgs& a,
-                                                      feeding::StudyOptions& options) {
-  auto lp = cbtl::cli::loadForRun(command, a.file, a.stdlibDir);
-  if (!lp) return nullptr;
-  if (lp->graph().domain != "feeding") {
-    fmt::print(stderr, "cbtl {}: error: {}: the study is the Feeding domain's; this program is domain '{}'\n", command,
-               a.file, lp->graph().domain);
-    return nullptr;
-  }
-  const auto backend = cbtl::cli::makeTextBackend(command, a.text);
-  if (!backend) return nullptr;
-  options.textBackend = *backend;
-  options.solver = cbtl::cli::solverOptionsFor(a.solver, "feeding");
-  options.seed = a.seed;
-  options.askExploringView = !a.noExploringView;
-  return lp;
-}
+using cbtl::cli::StudyArgs;
 
 // An output folder for files `names`: created when missing; refused when one of them is there, unless --force.
 bool prepareOut(const char* command, const StudyArgs& a, const std::vector<std::string>& names) {
@@ -68,8 +43,9 @@ void writeFile(const std::string& path, const std::string& text) {
 }
 
 int runSimulate(const StudyArgs& a) {
+  if (!a.inProcess) return cbtl::cli::runStudySimulateOverHttp(a);
   feeding::StudyOptions options;
-  auto lp = loadFeeding("study simulate", a, options);
+  auto lp = cbtl::cli::loadFeedingStudy("study simulate", a, options);
   if (!lp) return 1;
   if (!prepareOut("study simulate", a, {"study.csv", "meals.csv"})) return 1;
   options.participants = a.participants;
@@ -151,7 +127,7 @@ class DemoPictures {
 
 int runDemoCommand(const StudyArgs& a) {
   feeding::DemoOptions options;
-  auto lp = loadFeeding("study demo", a, options.study);
+  auto lp = cbtl::cli::loadFeedingStudy("study demo", a, options.study);
   if (!lp) return 1;
   std::vector<std::string> pictures;
   for (const auto& approach : feeding::studyApproaches())
@@ -209,11 +185,15 @@ void addStudy(CLI::App& app, int& exitCode) {
       study->add_subcommand("simulate", "five meals with simulated participants: CBTL against No Personalization");
   CLI::App* demo =
       study->add_subcommand("demo", "meal 5 after meals 1-4: plate and drink in front, complaints and pictures");
-  for (CLI::App* cmd : {sim, demo}) {
+  CLI::App* serve = study->add_subcommand(
+      "serve", "the web study: pages and JSON API for participants at /p/<id>, CBTL learning from their answers");
+  for (CLI::App* cmd : {sim, demo, serve}) {
     cmd->add_option("file", args->file, "the Feeding program (domains/feeding/feeding.cbtl)")->required();
     cmd->add_option("--seed", args->seed, "seed of every random choice")->capture_default_str();
-    cmd->add_option("--out", args->out, "output folder");
-    cmd->add_flag("--force", args->force, "replace the files of an earlier run in --out");
+    if (cmd != serve) {
+      cmd->add_option("--out", args->out, "output folder");
+      cmd->add_flag("--force", args->force, "replace the files of an earlier run in --out");
+    }
     cmd->add_flag("--no-exploring-view", args->noExploringView,
                   "CBTL learns from its shown choices only (no question about its most uncertain view)");
     cmd->add_option("--stdlib", args->stdlibDir, "standard library folder (default: embedded)");
@@ -225,6 +205,13 @@ void addStudy(CLI::App& app, int& exitCode) {
       ->capture_default_str();
   sim->add_option("--first-participant", args->firstParticipant, "the first participant's number")
       ->check(CLI::Range(0, 1000000000));
+  sim->add_flag("--in-process", args->inProcess,
+                "run the study inside this process, without the server, judging by each preference met (the "
+                "simulator's own tables: study.csv, meals.csv)");
+  sim->add_option("--db", args->db, "the study database to write (default: <out>/study.sqlite, or a temporary one)");
+  sim->add_option("--jobs", args->jobs, "participants taking the study at once (results do not depend on it)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   demo->add_option("--participant", args->participant, "the simulated participant")->check(CLI::Range(0, 1000000000));
   demo->add_option("--trials", args->trials, "trials (seed, seed + 1, ...)")
       ->check(CLI::Range(1, 1000))
@@ -232,12 +219,50 @@ void addStudy(CLI::App& app, int& exitCode) {
   demo->add_option("--width", args->width, "picture width in pixels")->check(CLI::Range(16, 1280));
   demo->add_option("--height", args->height, "picture height in pixels")->check(CLI::Range(16, 960));
   demo->add_flag("--no-pictures", args->noPictures, "do not render pictures");
+  serve->add_option("--db", args->db, "the study's database (SQLite; created when missing)")->required();
+  serve->add_option("--host", args->host, "address to listen on (other than 127.0.0.1: reachable from elsewhere)")
+      ->capture_default_str();
+  serve->add_option("--port", args->port, "port to listen on (0: any free port, printed)")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  serve->add_flag("--no-pictures", args->noPictures, "do not render the view pictures (they are answered 503)");
+  serve->add_option("--picture-width", args->width, "picture width in pixels")
+      ->check(CLI::Range(16, 1280))
+      ->capture_default_str();
+  serve->add_option("--picture-height", args->height, "picture height in pixels")
+      ->check(CLI::Range(16, 960))
+      ->capture_default_str();
   sim->callback(
       [args, &exitCode] { cbtl::cli::runCommand("study simulate", exitCode, [&] { return runSimulate(*args); }); });
+  serve->callback([args, &exitCode] {
+    cbtl::cli::runCommand("study serve", exitCode, [&] { return cbtl::cli::runStudyServe(*args); });
+  });
   demo->callback(
       [args, &exitCode] { cbtl::cli::runCommand("study demo", exitCode, [&] { return runDemoCommand(*args); }); });
 }
 
 }  // namespace
+
+namespace cbtl::cli {
+
+std::unique_ptr<app::LoadedProgram> loadFeedingStudy(const char* command, const StudyArgs& a,
+                                                     domains::feeding::StudyOptions& options) {
+  auto lp = loadForRun(command, a.file, a.stdlibDir);
+  if (!lp) return nullptr;
+  if (lp->graph().domain != "feeding") {
+    fmt::print(stderr, "cbtl {}: error: {}: the study is the Feeding domain's; this program is domain '{}'\n", command,
+               a.file, lp->graph().domain);
+    return nullptr;
+  }
+  const auto backend = makeTextBackend(command, a.text);
+  if (!backend) return nullptr;
+  options.textBackend = *backend;
+  options.solver = solverOptionsFor(a.solver, "feeding");
+  options.seed = a.seed;
+  options.askExploringView = !a.noExploringView;
+  return lp;
+}
+
+}  // namespace cbtl::cli
 
 const cbtl::cli::RegisterCommand registerStudy(25, addStudy);

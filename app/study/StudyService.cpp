@@ -1,0 +1,364 @@
+#include "app/study/StudyService.h"
+
+#include "app/PlanReport.h"
+#include "app/study/StudyPages.h"
+#include "domains/feeding/BiteAnswers.h"
+#include "robot/world/PngWriter.h"
+#include "robot/world/Renderer.h"
+#include "robot/world/Workspace.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+
+namespace cbtl::app::study {
+
+namespace feeding = domains::feeding;
+using nlohmann::json;
+
+struct StudyService::Session {
+  std::unique_ptr<feeding::StudySession> study;  // null until built
+  std::string broken;                            // why it could not be built or continued; empty when fine
+  std::size_t picturesMeal = static_cast<std::size_t>(-1);
+  std::vector<std::vector<std::uint8_t>> pictures;  // the current meal's, PNG bytes, rendered on first request
+};
+
+namespace {
+
+HttpReply jsonReply(const json& j, int status = 200) { return HttpReply{status, "application/json", j.dump()}; }
+
+// A StudyRecords failure after every check passed: the database's (busy, broken), not the request's.
+HttpReply storageError(const std::exception& e) {
+  const std::string what = e.what();
+  return errorReply(what.find("busy") != std::string::npos ? 503 : 500, what);
+}
+
+}  // namespace
+
+StudyService::StudyService(const approach::PreparedProgram& lp, const domains::ProgramFacts& facts,
+                           StudyServiceOptions options, const std::string& databasePath)
+    : lp_(lp), facts_(facts), options_(std::move(options)), records_(databasePath), profiles_(databasePath) {
+  if (!options_.pictures) {
+    noRendererReason_ = "this server was started without pictures";
+    return;
+  }
+  scene_ = facts.scene;
+  if (!scene_) {
+    auto loaded = world::Scene::loadFile(facts.scenePath);
+    scene_ = loaded.scene;
+    if (!scene_) {
+      noRendererReason_ = "the program's scene could not be loaded: " + facts.scenePath;
+      return;
+    }
+  }
+  world::RenderStatus status{};
+  std::string message;
+  renderer_ = world::OffscreenRenderer::create(scene_, status, message);
+  if (!renderer_) {
+    noRendererReason_ = fmt::format("pictures cannot be rendered here: {}: {}", world::toString(status), message);
+    return;
+  }
+  pictureWorkspace_ = std::make_unique<world::Workspace>(scene_);
+}
+
+StudyService::~StudyService() = default;
+
+StudyService::Session& StudyService::sessionOf(const Participant& p) {
+  auto& slot = sessions_[p.id];
+  if (!slot) slot = std::make_unique<Session>();
+  return *slot;
+}
+
+namespace {
+
+// The participant's own study options (kept when they began) over the server's.
+feeding::StudyOptions optionsOf(const Participant& p, feeding::StudyOptions base) {
+  const json o = json::parse(p.options, nullptr, false);
+  if (o.is_object()) {
+    if (o.contains("study_seed") && o["study_seed"].is_number_unsigned()) base.seed = o["study_seed"];
+    if (o.contains("exploring_view") && o["exploring_view"].is_boolean()) base.askExploringView = o["exploring_view"];
+  }
+  return base;
+}
+
+}  // namespace
+
+std::optional<HttpReply> StudyService::ensureBuilt(Session& s, const Participant& p) {
+  if (!s.study && s.broken.empty()) {
+    std::vector<StoredRecord> stored;
+    {
+      std::lock_guard<std::mutex> lock(dbMutex_);
+      stored = records_.records(p.id);
+    }
+    try {
+      // StudySession is deterministic: fed the stored answers, it shows the meal the participant is at.
+      s.study =
+          std::make_unique<feeding::StudySession>(lp_, facts_, optionsOf(p, options_.study), static_cast<int>(p.seed));
+      for (const StoredRecord& r : stored) {
+        if (r.kind != "answers") continue;
+        const feeding::ParticipantAnswers a = participantAnswersOf(json::parse(r.response));
+        if (auto problem = s.study->check(a))
+          throw std::runtime_error(fmt::format("trial {} (meal {}): {}", r.trialIndex, r.meal, *problem));
+        s.study->answer(a);
+      }
+    } catch (const std::exception& e) {
+      s.study.reset();
+      s.broken = fmt::format(
+          "participant '{}' cannot be continued: {} (was the server started with other solver or text options than "
+          "when they began?)",
+          p.id, e.what());
+    }
+  }
+  if (!s.broken.empty()) return errorReply(500, s.broken);
+  return std::nullopt;
+}
+
+HttpReply StudyService::begin(const std::string& participant) {
+  if (!isParticipantId(participant)) return errorReply(400, invalidIdMessage(participant));
+  Participant p;
+  try {
+    std::lock_guard<std::mutex> lock(dbMutex_);
+    const json options = {{"study_seed", options_.study.seed}, {"exploring_view", options_.study.askExploringView}};
+    p = records_.begin(participant, records_.participants().size(), options.dump());
+  } catch (const StudyError& e) {
+    return storageError(e);
+  }
+  std::lock_guard<std::mutex> lock(programMutex_);
+  Session& s = sessionOf(p);
+  return stateReply(s, p);
+}
+
+HttpReply StudyService::state(const std::string& participant) {
+  if (!isParticipantId(participant)) return errorReply(400, invalidIdMessage(participant));
+  std::optional<Participant> p;
+  {
+    std::lock_guard<std::mutex> lock(dbMutex_);
+    p = records_.participant(participant);
+  }
+  if (!p) return errorReply(404, fmt::format("no participant '{}': open their page to begin", participant));
+  std::lock_guard<std::mutex> lock(programMutex_);
+  Session& s = sessionOf(*p);
+  return stateReply(s, *p);
+}
+
+HttpReply StudyService::stateReply(Session& s, const Participant& p, const char* status) {
+  if (auto error = ensureBuilt(s, p)) return *error;
+  std::int64_t next = 0;
+  {
+    std::lock_guard<std::mutex> lock(dbMutex_);
+    next = records_.nextTrial(p.id);
+  }
+  const StudyPage page = pageOfTrial(next);
+  json state = {{"participant", p.id}, {"next_trial", next}, {"page", page.kind},
+                {"meal", page.meal},   {"meals", kMeals},    {"pages", kStudyPages}};
+  if (page.meal > 0) {
+    if (s.study->meal() + 1 != static_cast<std::size_t>(page.meal))
+      return errorReply(500, fmt::format("participant '{}': the records are at meal {}, the session at meal {}", p.id,
+                                         page.meal, s.study->meal() + 1));
+    describeMeal(state, s.study->current(), page, p.id);
+  }
+  if (!status) return jsonReply(state);
+  return jsonReply({{"status", status}, {"state", state}});
+}
+
+namespace {
+
+// A record request's fields, checked for presence and type (not yet against the participant's pages).
+struct RecordRequest {
+  NewRecord record;
+  json response;
+};
+
+std::optional<std::string> parseRecord(const std::string& participant, const std::string& body, RecordRequest& out) {
+  const json j = json::parse(body, nullptr, false);
+  if (j.is_discarded()) return std::string("the body is not JSON");
+  if (!j.is_object()) return std::string("the body must be a JSON object");
+  for (const char* key : {"trial_index", "kind", "meal", "elapsed_ms", "rt_ms", "response"})
+    if (!j.contains(key)) return fmt::format("the record lacks the field '{}'", key);
+  for (const char* key : {"trial_index", "meal", "elapsed_ms", "rt_ms"})
+    if (!j[key].is_number_integer() || j[key].get<std::int64_t>() < 0)
+      return fmt::format("{} must be a whole number >= 0", key);
+  if (!j["kind"].is_string()) return std::string("kind must be text");
+  if (j["meal"].get<std::int64_t>() > kMeals) return fmt::format("meal must be 0 to {}", kMeals);
+  out.record = NewRecord{participant,     j["trial_index"], j["kind"], static_cast<int>(j["meal"].get<std::int64_t>()),
+                         j["elapsed_ms"], j["rt_ms"],       ""};
+  out.response = j["response"];
+  return std::nullopt;
+}
+
+std::string pageName(const StudyPage& page) {
+  return page.meal > 0 ? fmt::format("the '{}' page of meal {}", page.kind, page.meal)
+                       : fmt::format("the '{}' page", page.kind);
+}
+
+}  // namespace
+
+HttpReply StudyService::record(const std::string& participant, const std::string& body) {
+  RecordRequest req;
+  if (!isParticipantId(participant)) return errorReply(400, invalidIdMessage(participant));
+  if (auto problem = parseRecord(participant, body, req)) return errorReply(400, *problem);
+  std::optional<Participant> p;
+  {
+    std::lock_guard<std::mutex> lock(dbMutex_);
+    p = records_.participant(participant);
+  }
+  if (!p) return errorReply(404, fmt::format("no participant '{}': open their page to begin", participant));
+  std::lock_guard<std::mutex> lock(programMutex_);
+  Session& s = sessionOf(*p);
+  const NewRecord& r = req.record;
+  std::int64_t next = 0;
+  std::optional<StoredRecord> earlier;
+  {
+    std::lock_guard<std::mutex> db(dbMutex_);
+    next = records_.nextTrial(participant);
+    if (r.trialIndex < next) earlier = records_.records(participant).at(static_cast<std::size_t>(r.trialIndex));
+  }
+  if (earlier) {
+    const bool same = earlier->kind == r.kind && earlier->meal == r.meal &&
+                      sentPart(r.kind, json::parse(earlier->response)) == req.response;
+    if (!same)
+      return errorReply(409, fmt::format("trial {} was already answered, differently: it is {}, answered {}",
+                                         r.trialIndex, pageName(pageOfTrial(r.trialIndex)), earlier->response));
+    return stateReply(s, *p, "replayed");
+  }
+  const StudyPage page = pageOfTrial(next);
+  if (page.kind == "done") return errorReply(409, "this participant has finished the study");
+  if (r.trialIndex > next)
+    return errorReply(409, fmt::format("trial {} is not this participant's next page: that is trial {}, {}",
+                                       r.trialIndex, next, pageName(page)));
+  if (r.kind != page.kind || r.meal != page.meal)
+    return errorReply(409,
+                      fmt::format("trial {} is {}, not kind '{}' of meal {}", next, pageName(page), r.kind, r.meal));
+  if (auto problem = checkResponse(r.kind, req.response)) return errorReply(400, *problem);
+  if (auto error = ensureBuilt(s, *p)) return *error;
+  NewRecord stored = r;
+  stored.response = req.response.dump();
+  if (r.kind == "answers") return storeAnswers(s, *p, stored);
+  if (r.kind == "rating") stored.response = storedRating(req.response, s.study->current()).dump();
+  try {
+    std::lock_guard<std::mutex> db(dbMutex_);
+    records_.record(stored);
+    if (r.kind == "complete") records_.complete(participant);
+  } catch (const StudyError& e) {
+    return storageError(e);
+  }
+  return stateReply(s, *p, "stored");
+}
+
+HttpReply StudyService::storeAnswers(Session& s, const Participant& p, const NewRecord& r) {
+  const json response = json::parse(r.response);
+  const feeding::ParticipantAnswers answers = participantAnswersOf(response);
+  if (auto problem = s.study->check(answers)) return errorReply(400, *problem);
+  const feeding::MealPresentation& m = s.study->current();
+  NewRecord stored = r;
+  stored.response = storedAnswers(response, m).dump();
+  // What CBTL learns from, in words, for the profile: computed now, as the session moves on below.
+  std::vector<profile::NewEvent> events;
+  const feeding::MealOffer& cbtl = m.offers.at(feeding::studyApproaches()[0]);
+  const feeding::Meal& meal = feeding::paperMeals().at(m.meal);
+  if (cbtl.shown.ok)
+    for (const auto& e : feeding::biteAnswerEvents(
+             feeding::BiteOffer{meal.food, meal.dips, cbtl.read.dip, cbtl.read.signal, cbtl.read.verbosity},
+             answers.ideals))
+      events.push_back({profile::EventSource::Study, renderEvent(e), ""});
+  for (std::size_t k = 0; k < m.views.size(); ++k)
+    events.push_back(
+        {profile::EventSource::Study, renderEvent(feeding::viewAnswerEvent(m.views[k].conf, answers.blocked[k])), ""});
+  try {
+    std::lock_guard<std::mutex> db(dbMutex_);
+    records_.record(stored);
+  } catch (const StudyError& e) {
+    return storageError(e);
+  }
+  try {
+    s.study->answer(answers);
+  } catch (const std::exception& e) {
+    // The answers are stored; the session is rebuilt from the records on the next request, which says why it fails.
+    s.study.reset();
+    return errorReply(500,
+                      fmt::format("participant '{}': meal {} could not be carried out: {}", p.id, r.meal, e.what()));
+  }
+  s.pictures.clear();
+  storeProfile(s, p, events, r.meal);
+  return stateReply(s, p, "stored");
+}
+
+// The profile is a copy of what the session learned, for `cbtl profile` and the REPL: a failure to write it is
+// reported on the server's error stream and does not refuse the participant's answers, which are stored.
+void StudyService::storeProfile(Session& s, const Participant& p, const std::vector<profile::NewEvent>& events,
+                                int meal) {
+  try {
+    const model::UserModel& model = s.study->learnerModel();
+    std::lock_guard<std::mutex> db(dbMutex_);
+    profiles_.recordLearning(p.id, lp_.graph().domain, events, model.toJson(),
+                             static_cast<std::int64_t>(model.dataCount()), fmt::format("study: meal {}", meal));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cbtl study serve: warning: the profile of '%s' was not updated: %s\n", p.id.c_str(),
+                 e.what());
+  }
+}
+
+HttpReply StudyService::view(const std::string& participant, int meal, int picture) {
+  return withPicture(participant, meal, picture, [this](Session& s, std::size_t k) {
+    if (!renderer_) return errorReply(503, noRendererReason_);
+    return renderPicture(s, k);
+  });
+}
+
+HttpReply StudyService::viewMeasure(const std::string& participant, int meal, int picture) {
+  return withPicture(participant, meal, picture, [](Session& s, std::size_t k) {
+    return jsonReply({{"occlusion", s.study->current().views.at(k).occlusion}});
+  });
+}
+
+HttpReply StudyService::withPicture(const std::string& participant, int meal, int picture,
+                                    const std::function<HttpReply(Session&, std::size_t)>& answer) {
+  // Taken first: where the participant is must not change between the check and the picture.
+  std::lock_guard<std::mutex> lock(programMutex_);
+  if (!isParticipantId(participant)) return errorReply(400, invalidIdMessage(participant));
+  std::optional<Participant> p;
+  std::int64_t next = 0;
+  {
+    std::lock_guard<std::mutex> db(dbMutex_);
+    p = records_.participant(participant);
+    if (p) next = records_.nextTrial(participant);
+  }
+  if (!p) return errorReply(404, fmt::format("no participant '{}'", participant));
+  const StudyPage page = pageOfTrial(next);
+  if (page.meal != meal)
+    return errorReply(404, fmt::format("no pictures of meal {} now: participant '{}' is at {}", meal, participant,
+                                       page.kind == "done" ? "the end" : "trial " + std::to_string(next)));
+  Session& s = sessionOf(*p);
+  if (auto error = ensureBuilt(s, *p)) return *error;
+  const feeding::MealPresentation& m = s.study->current();
+  if (picture < 0 || static_cast<std::size_t>(picture) >= m.views.size())
+    return errorReply(404, fmt::format("meal {} has {} pictures (0 to {})", meal, m.views.size(),
+                                       static_cast<int>(m.views.size()) - 1));
+  return answer(s, static_cast<std::size_t>(picture));
+}
+
+HttpReply StudyService::renderPicture(Session& s, std::size_t picture) {
+  const feeding::MealPresentation& m = s.study->current();
+  if (s.picturesMeal != m.meal || s.pictures.size() != m.views.size()) {
+    s.pictures.assign(m.views.size(), {});
+    s.picturesMeal = m.meal;
+  }
+  std::vector<std::uint8_t>& png = s.pictures[picture];
+  if (png.empty()) {
+    std::lock_guard<std::mutex> lock(rendererMutex_);
+    if (pictureWorkspace_->setState(m.views[picture].state) != world::StateStatus::Ok)
+      return errorReply(500, "the picture's scene could not be set up");
+    world::CameraSpec camera;
+    camera.name = "user_view";
+    world::Image image;
+    const world::RenderStatus status =
+        renderer_->render(*pictureWorkspace_, camera, options_.pictureWidth, options_.pictureHeight, image);
+    if (status != world::RenderStatus::Ok)
+      return errorReply(500, fmt::format("the picture could not be rendered: {}", world::toString(status)));
+    png = world::encodePng(image.width, image.height, image.rgb);
+  }
+  return HttpReply{200, "image/png", std::string(png.begin(), png.end())};
+}
+
+}  // namespace cbtl::app::study

@@ -1,0 +1,332 @@
+// The web study behind its API (app/study/StudyService.h, StudyPages.h) and over real HTTP (StudyHttpServer.h): a
+// participant's thirteen pages with what is stored of each, a restart continuing every session where it was,
+// replays, and bad requests refused without changing anything.
+#include "app/study/StudyService.h"
+
+#include "app/DomainSolverOptions.h"
+#include "app/study/StudyPages.h"
+#include "app/study/StudyRecords.h"
+#include "tests/unit/domains/ProgramFactsSupport.h"
+
+#include <gtest/gtest.h>
+#include <httplib.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+namespace cbtl::app::study {
+namespace {
+
+using nlohmann::json;
+
+const LoadedProgram& feedingProgram() {
+  static const auto lp = LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/feeding/feeding.cbtl");
+  return *lp;
+}
+
+StudyServiceOptions serviceOptions(bool pictures = false) {
+  StudyServiceOptions o;
+  o.study.solver = domainSolverOptions("feeding");
+  o.pictures = pictures;
+  o.pictureWidth = 64;
+  o.pictureHeight = 48;
+  return o;
+}
+
+json body(const HttpReply& r) { return json::parse(r.body); }
+
+class StudyServiceTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_TRUE(feedingProgram().ok()) << feedingProgram().errors();
+    dir_ = std::filesystem::temp_directory_path() /
+           ("cbtl-serve-" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+    std::filesystem::create_directories(dir_);
+    db_ = (dir_ / "study.sqlite").string();
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  std::unique_ptr<StudyService> service(const std::string& db, bool pictures = false) {
+    return std::make_unique<StudyService>(feedingProgram(), test::programFacts("feeding"), serviceOptions(pictures),
+                                          db);
+  }
+
+  static json recordBody(std::int64_t trial, const std::string& kind, int meal, const json& response) {
+    return {{"trial_index", trial},       {"kind", kind},         {"meal", meal},
+            {"elapsed_ms", 1000 * trial}, {"rt_ms", 100 + trial}, {"response", response}};
+  }
+
+  // The answer this test's participant gives on `state`'s page: their ideals vary with the meal; Option A is
+  // preferred on odd meals.
+  static json answerFor(const json& state) {
+    const std::string page = state["page"];
+    const int meal = state["meal"];
+    if (page == "consent") return {{"agree", true}};
+    if (page == "demographics")
+      return {{"age", 31},
+              {"gender", "other"},
+              {"gender_other", "agender"},
+              {"robot_experience", true},
+              {"fed_experience", false}};
+    if (page == "rating") return {{"likert", meal % 2 == 1 ? 2 : 5}};
+    if (page == "answers") {
+      json blocked = json::array();
+      for (std::size_t k = 0; k < state["views"].size(); ++k) blocked.push_back(k == 1);
+      return {{"dip", state["choices"]["dip"][static_cast<std::size_t>(meal % 3)]},
+              {"signal", meal < 3 ? "button" : "mouthOpen"},
+              {"verbosity", "brief"},
+              {"blocked", blocked}};
+    }
+    return {{"comments", "fine"}};
+  }
+
+  // Answers pages until the participant's next page is `untilPage` of meal `untilMeal` (or done); returns that state.
+  static json answerUntil(StudyService& s, const std::string& id, json state, const std::string& untilPage,
+                          int untilMeal) {
+    while (state["page"] != "done" && !(state["page"] == untilPage && state["meal"] == untilMeal)) {
+      const HttpReply r =
+          s.record(id, recordBody(state["next_trial"], state["page"], state["meal"], answerFor(state)).dump());
+      EXPECT_EQ(r.status, 200) << r.body;
+      if (r.status != 200) return state;
+      EXPECT_EQ(body(r)["status"], "stored");
+      state = body(r)["state"];
+    }
+    return state;
+  }
+
+  std::filesystem::path dir_;
+  std::string db_;
+};
+
+TEST_F(StudyServiceTest, AParticipantAnswersThirteenPagesAndTheRecordsKeepWhatEachPageShowed) {
+  auto s = service(db_);
+  HttpReply begun = s->begin("P-1");
+  ASSERT_EQ(begun.status, 200) << begun.body;
+  EXPECT_EQ(body(begun)["page"], "consent");
+  EXPECT_EQ(body(begun)["next_trial"], 0);
+
+  json state = body(begun);
+  while (state["page"] != "done") {
+    if (state["page"] == "rating" || state["page"] == "answers") {
+      EXPECT_EQ(state["options"].size(), 2u);
+      for (const auto& o : state["options"]) {
+        EXPECT_FALSE(o.contains("approach")) << "the page must not say which";
+      }
+      EXPECT_EQ(state["choices"]["dip"].back(), "noDip");
+      EXPECT_EQ(state["labels"]["noDip"], "no dip");
+    }
+    if (state["page"] == "answers") {
+      EXPECT_EQ(state["views"].size(), 2u);
+    }
+    const HttpReply r =
+        s->record("P-1", recordBody(state["next_trial"], state["page"], state["meal"], answerFor(state)).dump());
+    ASSERT_EQ(r.status, 200) << r.body;
+    state = body(r)["state"];
+  }
+  EXPECT_EQ(state["next_trial"], 13);
+  EXPECT_EQ(s->record("P-1", recordBody(13, "complete", 0, {{"comments", ""}}).dump()).status, 409);
+
+  StudyRecords records(db_, false);
+  const auto stored = records.records("P-1");
+  ASSERT_EQ(stored.size(), 13u);
+  ASSERT_TRUE(records.participant("P-1")->completed.has_value());
+  for (std::size_t t = 0; t < stored.size(); ++t) {
+    const StudyPage page = pageOfTrial(static_cast<std::int64_t>(t));
+    EXPECT_EQ(stored[t].kind, page.kind) << t;
+    EXPECT_EQ(stored[t].meal, page.meal) << t;
+    const json r = json::parse(stored[t].response);
+    if (page.kind == "rating") {
+      const int likert = r["likert"];
+      EXPECT_EQ(likert, page.meal % 2 == 1 ? 2 : 5);
+      const bool cbtlIsA = r["options"][0]["approach"] == "cbtl";
+      EXPECT_EQ(r["cbtl_preference"], cbtlIsA ? 6 - likert : likert);
+      EXPECT_NE(r["options"][0]["approach"], r["options"][1]["approach"]);
+    }
+    if (page.kind == "answers") {
+      for (const char* q : {"dip", "signal", "verbosity"})
+        for (const char* a : {"cbtl", "no-personalization"})
+          EXPECT_EQ(r["met"][a][q], r["predicted"][a][q] == r[q]) << t << q << a;
+      EXPECT_EQ(r["views"].size(), 2u);
+      EXPECT_EQ(r["views"][0]["shown_choice"], true);
+      EXPECT_EQ(r["met"]["cbtl"]["view"], false) << "the second picture was called blocked";
+    }
+  }
+  profile::ProfileStore profiles(db_, false);
+  const auto versions = profiles.versions("P-1", "feeding");
+  ASSERT_EQ(versions.size(), 5u) << "one learned model per meal";
+  EXPECT_EQ(versions.back().reason, "study: meal 5");
+  const auto events = profiles.events("P-1", "feeding");
+  ASSERT_FALSE(events.empty());
+  for (const auto& e : events) EXPECT_EQ(e.source, profile::EventSource::Study);
+}
+
+TEST_F(StudyServiceTest, ARestartedServiceShowsWhatAnUninterruptedOneShows) {
+  json uninterrupted;
+  {
+    auto s = service(db_);
+    uninterrupted = answerUntil(*s, "P-2", body(s->begin("P-2")), "rating", 3);
+  }
+  const std::string db2 = (dir_ / "restarted.sqlite").string();
+  {
+    auto s = service(db2);
+    answerUntil(*s, "P-2", body(s->begin("P-2")), "answers", 2);
+  }
+  auto restarted = service(db2);
+  json state = body(restarted->state("P-2"));
+  EXPECT_EQ(state["page"], "answers");
+  EXPECT_EQ(state["meal"], 2);
+  state = answerUntil(*restarted, "P-2", state, "rating", 3);
+  EXPECT_EQ(state, uninterrupted);
+  // A reload begins again: the same participant, the same page.
+  EXPECT_EQ(body(restarted->begin("P-2")), uninterrupted);
+}
+
+TEST_F(StudyServiceTest, AResentRecordIsReplayedAndADifferentAnswerToAnAnsweredPageConflicts) {
+  auto s = service(db_);
+  json state = answerUntil(*s, "P-3", body(s->begin("P-3")), "answers", 1);
+  const json rating = recordBody(2, "rating", 1, {{"likert", 2}});
+  HttpReply again = s->record("P-3", rating.dump());
+  ASSERT_EQ(again.status, 200) << again.body;
+  EXPECT_EQ(body(again)["status"], "replayed");
+  EXPECT_EQ(body(again)["state"], state);
+  HttpReply other = s->record("P-3", recordBody(2, "rating", 1, {{"likert", 4}}).dump());
+  EXPECT_EQ(other.status, 409);
+  EXPECT_NE(body(other)["error"].get<std::string>().find("already answered"), std::string::npos) << other.body;
+  const json answers = recordBody(3, "answers", 1, answerFor(state));
+  ASSERT_EQ(s->record("P-3", answers.dump()).status, 200);
+  HttpReply replayedAnswers = s->record("P-3", answers.dump());
+  EXPECT_EQ(replayedAnswers.status, 200) << replayedAnswers.body;
+  EXPECT_EQ(body(replayedAnswers)["status"], "replayed");
+  EXPECT_EQ(body(replayedAnswers)["state"]["meal"], 2) << "a replay does not answer the meal twice";
+}
+
+TEST_F(StudyServiceTest, BadRequestsAreRefusedWithAReasonAndChangeNothing) {
+  auto s = service(db_);
+  EXPECT_EQ(s->begin("no spaces").status, 400);
+  EXPECT_EQ(s->state("unknown").status, 404);
+  EXPECT_EQ(s->record("unknown", recordBody(0, "consent", 0, {{"agree", true}}).dump()).status, 404);
+  const json atAnswers = answerUntil(*s, "P-4", body(s->begin("P-4")), "answers", 1);
+  json wrongDip = answerFor(atAnswers);
+  wrongDip["dip"] = "peanutButter";
+  json tooFewViews = answerFor(atAnswers);
+  tooFewViews["blocked"] = json::array({true});
+  json extraField = answerFor(atAnswers);
+  extraField["mood"] = "good";
+  const struct {
+    std::string body;
+    int status;
+    std::string says;
+  } bad[] = {
+      {"not json", 400, "not JSON"},
+      {"[1, 2]", 400, "JSON object"},
+      {json{{"trial_index", 3}, {"kind", "answers"}, {"meal", 1}}.dump(), 400, "elapsed_ms"},
+      {recordBody(3, "answers", 1, wrongDip).dump(), 400, "peanutButter"},
+      {recordBody(3, "answers", 1, tooFewViews).dump(), 400, "view"},
+      {recordBody(3, "answers", 1, extraField).dump(), 400, "mood"},
+      {recordBody(5, "answers", 2, answerFor(atAnswers)).dump(), 409, "next page"},
+      {recordBody(3, "rating", 1, {{"likert", 3}}).dump(), 409, "'answers' page of meal 1"},
+  };
+  for (const auto& b : bad) {
+    const HttpReply r = s->record("P-4", b.body);
+    EXPECT_EQ(r.status, b.status) << b.body << " -> " << r.body;
+    EXPECT_NE(body(r)["error"].get<std::string>().find(b.says), std::string::npos) << r.body;
+  }
+  EXPECT_EQ(body(s->state("P-4")), atAnswers) << "a refused request changed the session";
+  EXPECT_EQ(StudyRecords(db_, false).nextTrial("P-4"), 3);
+  const HttpReply right = s->record("P-4", recordBody(3, "answers", 1, answerFor(atAnswers)).dump());
+  EXPECT_EQ(right.status, 200) << "the session still takes the right answers: " << right.body;
+}
+
+TEST_F(StudyServiceTest, PicturesAreTheCurrentMealsOnly) {
+  auto s = service(db_, true);
+  const json atAnswers = answerUntil(*s, "P-5", body(s->begin("P-5")), "answers", 1);
+  EXPECT_EQ(s->view("P-5", 2, 0).status, 404) << "meal 2 is not shown yet";
+  EXPECT_EQ(s->view("P-5", 1, 2).status, 404) << "two pictures only";
+  const HttpReply picture = s->view("P-5", 1, 0);
+  if (!s->pictureProblem().empty()) {
+    EXPECT_EQ(picture.status, 503);
+    EXPECT_EQ(body(picture)["error"], s->pictureProblem());
+    return;
+  }
+  ASSERT_EQ(picture.status, 200) << picture.body;
+  EXPECT_EQ(picture.contentType, "image/png");
+  ASSERT_GT(picture.body.size(), 24u);
+  EXPECT_EQ(picture.body.substr(1, 3), "PNG");
+  // The width and height in the IHDR chunk, big-endian.
+  auto be32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (std::size_t i = 0; i < 4; ++i) v = (v << 8) | static_cast<unsigned char>(picture.body[at + i]);
+    return v;
+  };
+  EXPECT_EQ(be32(16), 64u);
+  EXPECT_EQ(be32(20), 48u);
+  // The second picture through the server: rendered on one of its request threads, not the thread that made the
+  // renderer (an OpenGL context is current in one thread at a time; a black picture would say it was not).
+  StudyHttpServer server(*s);
+  std::string error;
+  const int port = server.bind("127.0.0.1", 0, error);
+  ASSERT_GT(port, 0) << error;
+  std::thread listening([&] { server.listen(); });
+  httplib::Client client("127.0.0.1", port);
+  auto second = client.Get(atAnswers["views"][1].get<std::string>());
+  server.stop();
+  listening.join();
+  ASSERT_TRUE(second);
+  ASSERT_EQ(second->status, 200) << second->body;
+  EXPECT_NE(second->body, picture.body) << "the two configurations look different";
+  // The PNG's pixels are stored uncompressed (PngWriter.h): a lit scene has mostly non-zero bytes.
+  const auto lit = std::count_if(second->body.begin(), second->body.end(), [](char c) { return c != 0; });
+  EXPECT_GT(lit, static_cast<std::ptrdiff_t>(second->body.size() / 4)) << "a black picture";
+}
+
+TEST_F(StudyServiceTest, TheHttpServerServesThePagesAndTheApiOnLoopback) {
+  auto s = service(db_);
+  StudyHttpServer server(*s);
+  std::string error;
+  const int port = server.bind("127.0.0.1", 0, error);
+  ASSERT_GT(port, 0) << error;
+  std::thread listening([&] { server.listen(); });
+  httplib::Client client("127.0.0.1", port);
+  client.set_read_timeout(std::chrono::seconds(60));
+
+  auto page = client.Get("/p/P-6");
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_EQ(page->get_header_value("Content-Type"), "text/html; charset=utf-8");
+  EXPECT_NE(page->body.find("/static/study.js"), std::string::npos);
+  EXPECT_NE(page->get_header_value("Content-Security-Policy").find("default-src 'self'"), std::string::npos);
+  for (const char* file : {"/static/study.js", "/static/study.css"}) {
+    auto f = client.Get(file);
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->status, 200) << file;
+    EXPECT_FALSE(f->body.empty());
+  }
+  auto missing = client.Get("/static/other.js");
+  ASSERT_TRUE(missing);
+  EXPECT_EQ(missing->status, 404);
+  EXPECT_TRUE(json::parse(missing->body).contains("error"));
+
+  auto begun = client.Post("/api/participants/P-6", "", "application/json");
+  ASSERT_TRUE(begun);
+  EXPECT_EQ(begun->status, 200);
+  EXPECT_EQ(json::parse(begun->body)["page"], "consent");
+  auto consent = client.Post("/api/participants/P-6/records", recordBody(0, "consent", 0, {{"agree", true}}).dump(),
+                             "application/json");
+  ASSERT_TRUE(consent);
+  EXPECT_EQ(consent->status, 200) << consent->body;
+  EXPECT_EQ(json::parse(consent->body)["state"]["page"], "demographics");
+  auto tooLarge = client.Post("/api/participants/P-6/records", std::string(100 * 1024, ' '), "application/json");
+  ASSERT_TRUE(tooLarge);
+  EXPECT_EQ(tooLarge->status, 413);
+  auto badId = client.Get("/api/participants/a%20b");
+  ASSERT_TRUE(badId);
+  EXPECT_EQ(badId->status, 400);
+  server.stop();
+  listening.join();
+}
+
+}  // namespace
+}  // namespace cbtl::app::study

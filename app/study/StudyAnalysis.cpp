@@ -2,6 +2,8 @@
 // read into what they answered (ParticipantPages), then those are summed up per meal, per question and per kind.
 #include "app/study/StudyAnalysis.h"
 
+#include "app/study/StudySequence.h"
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -48,27 +50,10 @@ namespace {
 
 constexpr double kNeutralPreference = 3;  // "no preference" on the 1..5 scale
 constexpr int kAgeMin = 18, kAgeMax = 120;
-constexpr std::int64_t kLastTrial = 2 + 2 * kMeals;  // the `complete` page
+constexpr std::int64_t kLastTrial = kStudyPages - 1;  // the `complete` page
 constexpr const char* kPathSeparator = " > ";
 
 // ---- Checking and reading one participant's records ----
-
-// A participant id or answer as a message may show it: quoted, anything outside printable ASCII escaped, cut when
-// long, since it comes from a browser.
-std::string quotedName(const std::string& text) {
-  constexpr std::size_t kShown = 80;
-  std::string out = "'";
-  for (std::size_t i = 0; i < text.size() && i < kShown; ++i) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (c == '\'' || c == '\\')
-      out += fmt::format("\\{}", static_cast<char>(c));
-    else if (c < 0x20 || c >= 0x7f)
-      out += fmt::format("\\x{:02x}", c);
-    else
-      out += static_cast<char>(c);
-  }
-  return out + (text.size() > kShown ? fmt::format("'... ({} bytes)", text.size()) : "'");
-}
 
 std::string shown(const json& value) {
   constexpr std::size_t kShown = 60;
@@ -77,17 +62,10 @@ std::string shown(const json& value) {
 }
 
 // The page at each trial index, as docs/study-api.md fixes it.
-struct ExpectedPage {
-  std::string kind;
-  int meal = 0;
-};
-
-std::optional<ExpectedPage> expectedPage(std::int64_t trial) {
-  if (trial == 0) return ExpectedPage{"consent", 0};
-  if (trial == 1) return ExpectedPage{"demographics", 0};
-  if (trial == kLastTrial) return ExpectedPage{"complete", 0};
+// The page a stored record at `trial` must be (StudySequence.h); none past the `complete` page.
+std::optional<StudyPage> expectedPage(std::int64_t trial) {
   if (trial < 0 || trial > kLastTrial) return std::nullopt;
-  return ExpectedPage{trial % 2 == 0 ? "rating" : "answers", static_cast<int>((trial - 2) / 2) + 1};
+  return pageOfTrial(trial);
 }
 
 // One record's response, parsed, with typed access by dotted path ("predicted.cbtl.dip") that throws a StudyError
@@ -98,13 +76,13 @@ class Response {
     try {
       root_ = json::parse(record.response);
     } catch (const json::exception&) {
-      fail("the response is not JSON: " + quotedName(record.response));
+      fail("the response is not JSON: " + quotedText(record.response));
     }
     if (!root_.is_object()) fail("the response " + shown(root_) + " is not a JSON object");
   }
 
   [[noreturn]] void fail(const std::string& what) const {
-    throw StudyError(fmt::format("participant {}, trial {} ({}, meal {}): {}", quotedName(record_.participant),
+    throw StudyError(fmt::format("participant {}, trial {} ({}, meal {}): {}", quotedText(record_.participant),
                                  record_.trialIndex, record_.kind, record_.meal, what));
   }
 
@@ -194,7 +172,7 @@ void readDemographics(const Response& r, ParticipantPages& pages) {
   const auto& genders = studyGenders();
   if (std::find(genders.begin(), genders.end(), d.gender) == genders.end())
     r.fail(fmt::format("gender is {}, not one of male, female, non-binary, prefer-not-to-say, other",
-                       quotedName(d.gender)));
+                       quotedText(d.gender)));
   d.robotExperience = r.boolean("robot_experience");
   d.fedExperience = r.boolean("fed_experience");
   pages.demographics = d;
@@ -215,7 +193,7 @@ void readRating(const Response& r, int meal, ParticipantPages& pages) {
   }
   if (std::set<std::string>{approach[0], approach[1]} != std::set<std::string>{"cbtl", "no-personalization"})
     r.fail(fmt::format("the options' approaches are {} and {}, not cbtl and no-personalization",
-                       quotedName(approach[0]), quotedName(approach[1])));
+                       quotedText(approach[0]), quotedText(approach[1])));
   const int expected = approach[1] == "cbtl" ? likert : 6 - likert;
   if (preference != expected)
     r.fail(fmt::format("cbtl_preference is {}, but likert {} with CBTL as option {} means {}", preference, likert,
@@ -247,7 +225,7 @@ void readAnswers(const Response& r, int meal, ParticipantPages& pages) {
 
 void readRecord(const StoredRecord& record, ParticipantPages& pages) {
   const Response r(record);
-  const std::optional<ExpectedPage> page = expectedPage(record.trialIndex);
+  const std::optional<StudyPage> page = expectedPage(record.trialIndex);
   if (!page) r.fail(fmt::format("no page has trial index {} (the last is {})", record.trialIndex, kLastTrial));
   if (record.kind != page->kind || record.meal != page->meal)
     r.fail(fmt::format("expected the {} page{}", page->kind,
@@ -276,7 +254,7 @@ std::vector<ParticipantPages> readParticipants(const std::vector<Participant>& p
     const auto it = index.find(record.participant);
     if (it == index.end())
       throw StudyError(fmt::format("participant {}, trial {}: a record of no known participant",
-                                   quotedName(record.participant), record.trialIndex));
+                                   quotedText(record.participant), record.trialIndex));
     recordsOf[it->second].push_back(&record);
   }
   for (std::size_t i = 0; i < participants.size(); ++i) {
@@ -286,9 +264,9 @@ std::vector<ParticipantPages> readParticipants(const std::vector<Participant>& p
       const auto expected = static_cast<std::int64_t>(k);
       if (own[k]->trialIndex > expected)
         throw StudyError(fmt::format("participant {}, trial {}: no record of trial {} before it",
-                                     quotedName(pages[i].id), own[k]->trialIndex, expected));
+                                     quotedText(pages[i].id), own[k]->trialIndex, expected));
       if (own[k]->trialIndex < expected)
-        throw StudyError(fmt::format("participant {}, trial {}: a second record of it", quotedName(pages[i].id),
+        throw StudyError(fmt::format("participant {}, trial {}: a second record of it", quotedText(pages[i].id),
                                      own[k]->trialIndex));
       readRecord(*own[k], pages[i]);
     }
@@ -489,23 +467,27 @@ void printParticipants(const StudyAnalysis& a, std::ostream& out) {
   }
 }
 
+// A p-value as the report shows it: four decimals, or two significant digits below 0.0001 (the paper's claim is
+// p < 0.005; "0.0000" would hide how far below).
+std::string pValue(double p) { return p < 1e-4 ? fmt::format("{:.1e}", p) : fmt::format("{:.4f}", p); }
+
 void printRatings(const StudyAnalysis& a, std::ostream& out) {
   out << "\nCBTL preference per meal (1 strongly prefers No Personalization .. 5 strongly prefers CBTL), Wilcoxon "
          "signed-rank test against 3:\n";
-  out << fmt::format("{:>4} | {:>3} | {:>25} | {:>5} | {:>6} | {:>13} | {:>18} | {:>6} | {}\n", "meal", "n",
+  out << fmt::format("{:>4} | {:>3} | {:>25} | {:>7} | {:>6} | {:>13} | {:>18} | {:>6} | {}\n", "meal", "n",
                      "CBTL preference mean ± sd", "W+", "z", "p (two-sided)", "p (CBTL preferred)", "r", "test");
   for (const auto& r : a.ratings) {
     const std::string meanSd = fmt::format("{} ± {}", orDash(r.mean, 2), orDash(r.sd, 2));
     if (!r.test.tested) {
-      out << fmt::format("{:>4} | {:>3} | {:>25} | {:>5} | {:>6} | {:>13} | {:>18} | {:>6} | none, {} neutral\n",
+      out << fmt::format("{:>4} | {:>3} | {:>25} | {:>7} | {:>6} | {:>13} | {:>18} | {:>6} | none, {} neutral\n",
                          r.meal, r.n(), meanSd, "-", "-", "-", "-", "-", r.test.zeros);
       continue;
     }
     const char* method = r.test.method == SignedRankResult::Method::Exact ? "exact" : "normal";
     out << fmt::format(
-        "{:>4} | {:>3} | {:>25} | {:>5.1f} | {:>6.3f} | {:>13.4f} | {:>18.4f} | {:>6.3f} | {}, {} neutral dropped\n",
-        r.meal, r.n(), meanSd, r.test.wPlus, r.test.z, r.test.pTwoSided, r.test.pGreater, r.test.effectSize, method,
-        r.test.zeros);
+        "{:>4} | {:>3} | {:>25} | {:>7.1f} | {:>6.3f} | {:>13} | {:>18} | {:>6.3f} | {}, {} neutral dropped\n", r.meal,
+        r.n(), meanSd, r.test.wPlus, r.test.z, pValue(r.test.pTwoSided), pValue(r.test.pGreater), r.test.effectSize,
+        method, r.test.zeros);
   }
 }
 

@@ -14,16 +14,8 @@ namespace feeding = domains::feeding;
 using nlohmann::json;
 using nlohmann::ordered_json;
 
-StudyPage pageOfTrial(std::int64_t t) {
-  if (t <= 0) return {"consent", 0};
-  if (t == 1) return {"demographics", 0};
-  if (t < 2 + 2 * kMeals) return {t % 2 == 0 ? "rating" : "answers", static_cast<int>((t - 2) / 2 + 1)};
-  if (t == 2 + 2 * kMeals) return {"complete", 0};
-  return {"done", 0};
-}
-
 std::string invalidIdMessage(const std::string& id) {
-  return fmt::format("the participant id {} is not 1 to 64 characters of A-Z, a-z, 0-9, '_', '.', '-'", quoted(id));
+  return fmt::format("the participant id {} is not 1 to 64 characters of A-Z, a-z, 0-9, '_', '.', '-'", quotedText(id));
 }
 
 namespace {

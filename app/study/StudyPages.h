@@ -1,8 +1,9 @@
-// StudyPages.h — the web study's pages as data (docs/study-api.md): the fixed sequence of 13 pages a participant
-// answers, what each page's state shows, how each answer is checked, and what is stored of it. Pure functions over
+// StudyPages.h — the web study's pages as data (docs/study-api.md; their order is StudySequence.h's): what each
+// page's state shows, how each answer is checked, and what is stored of it. Pure functions over
 // JSON and a StudySession's MealPresentation: no database, no HTTP, no locks.
 #pragma once
 
+#include "app/study/StudySequence.h"
 #include "domains/feeding/StudySession.h"
 
 #include <nlohmann/json.hpp>
@@ -12,15 +13,6 @@
 #include <string>
 
 namespace cbtl::app::study {
-
-// A participant's page at some trial index: consent (0), demographics (1), then per meal 1..5 rating and answers
-// (2..11), complete (12), and from 13 on "done" (nothing to answer). `meal` is 0 for pages about no meal.
-struct StudyPage {
-  std::string kind;
-  int meal = 0;
-};
-StudyPage pageOfTrial(std::int64_t trialIndex);
-constexpr std::int64_t kStudyPages = 13;
 
 // "the participant id '...' is not ..." for an id that isParticipantId() refuses.
 std::string invalidIdMessage(const std::string& id);

@@ -45,7 +45,7 @@ bool hasStudyTables(sqlite3* db, const std::string& path) {
 
 }  // namespace
 
-std::string quoted(const std::string& text) {
+std::string quotedText(const std::string& text) {
   constexpr std::size_t kShown = 80;
   std::string out = "'";
   for (std::size_t i = 0; i < text.size() && i < kShown; ++i) {
@@ -73,7 +73,7 @@ bool isKind(const std::string& kind) {
 void checkId(const std::string& path, const std::string& id) {
   if (!isParticipantId(id))
     throw StudyError(fmt::format("{}: the participant id {} is not 1 to 64 characters of A-Z, a-z, 0-9, '_', '.', '-'",
-                                 path, quoted(id)));
+                                 path, quotedText(id)));
 }
 
 // The response as compact JSON, keeping the sender's key order; StudyError when it is not JSON.
@@ -81,17 +81,17 @@ std::string compactResponse(const std::string& path, const NewRecord& r) {
   const nlohmann::ordered_json parsed = nlohmann::ordered_json::parse(r.response, nullptr, false);
   if (parsed.is_discarded())
     throw StudyError(fmt::format("{}: the response of trial {} of participant {} is not JSON", path, r.trialIndex,
-                                 quoted(r.participant)));
+                                 quotedText(r.participant)));
   return parsed.dump();
 }
 
 void checkRecord(const std::string& path, const NewRecord& r) {
   checkId(path, r.participant);
-  const std::string which = fmt::format("trial {} of participant {}", r.trialIndex, quoted(r.participant));
+  const std::string which = fmt::format("trial {} of participant {}", r.trialIndex, quotedText(r.participant));
   if (r.trialIndex < 0) throw StudyError(fmt::format("{}: {}: a trial index is >= 0", path, which));
   if (!isKind(r.kind))
     throw StudyError(
-        fmt::format("{}: {}: the kind {} is not 1 to 40 characters of a-z, '_', '-'", path, which, quoted(r.kind)));
+        fmt::format("{}: {}: the kind {} is not 1 to 40 characters of a-z, '_', '-'", path, which, quotedText(r.kind)));
   if (r.meal < 0 || r.meal > kMeals)
     throw StudyError(fmt::format("{}: {}: meal {} is not 0 (none) or 1 to {}", path, which, r.meal, kMeals));
   if (r.elapsedMs < 0 || r.rtMs < 0)
@@ -118,7 +118,7 @@ StoredRecord readRecord(const Statement& s) {
 std::string differences(const StoredRecord& stored, const NewRecord& sent) {
   std::string out;
   const auto add = [&](const std::string& what) { out += (out.empty() ? "" : ", ") + what; };
-  if (stored.kind != sent.kind) add(fmt::format("kind {} vs {}", quoted(stored.kind), quoted(sent.kind)));
+  if (stored.kind != sent.kind) add(fmt::format("kind {} vs {}", quotedText(stored.kind), quotedText(sent.kind)));
   if (stored.meal != sent.meal) add(fmt::format("meal {} vs {}", stored.meal, sent.meal));
   if (nlohmann::json::parse(stored.response, nullptr, false) != nlohmann::json::parse(sent.response, nullptr, false))
     add("the response");
@@ -204,7 +204,7 @@ Participant StudyRecords::begin(const std::string& id, std::uint64_t seed, const
   checkId(path_, id);
   const nlohmann::json options = nlohmann::json::parse(optionsJson, nullptr, false);
   if (options.is_discarded() || !options.is_object())
-    throw StudyError(fmt::format("{}: the options of participant {} are not a JSON object", path_, quoted(id)));
+    throw StudyError(fmt::format("{}: the options of participant {} are not a JSON object", path_, quotedText(id)));
   WriteTransaction t(db_, path_);
   // Seeds of 2^63 and more are kept as their two's complement bit pattern, which reads back unchanged.
   Statement(db_, path_, "INSERT OR IGNORE INTO study_participants(id, created, seed, options) VALUES (?, ?, ?, ?)")
@@ -240,7 +240,7 @@ void StudyRecords::complete(const std::string& id) {
       .bind(2, id)
       .step();
   if (sqlite3_changes(db_) == 0 && !participant(id))
-    throw StudyError(fmt::format("{}: no participant {} to complete", path_, quoted(id)));
+    throw StudyError(fmt::format("{}: no participant {} to complete", path_, quotedText(id)));
   t.commit();
 }
 
@@ -250,7 +250,7 @@ RecordOutcome StudyRecords::record(const NewRecord& r) {
   WriteTransaction t(db_, path_);
   const std::optional<Participant> who = participant(r.participant);
   if (!who)
-    throw StudyError(fmt::format("{}: no participant {} (begin the session first)", path_, quoted(r.participant)));
+    throw StudyError(fmt::format("{}: no participant {} (begin the session first)", path_, quotedText(r.participant)));
 
   Statement existing(
       db_, path_,
@@ -261,15 +261,15 @@ RecordOutcome StudyRecords::record(const NewRecord& r) {
     const std::string differ = differences(stored, r);
     if (!differ.empty())
       throw StudyError(fmt::format("{}: trial {} of participant {} is already recorded, differently ({})", path_,
-                                   r.trialIndex, quoted(r.participant), differ));
+                                   r.trialIndex, quotedText(r.participant), differ));
     return {RecordOutcome::Status::Replayed, std::move(stored)};
   }
   if (who->completed)
     throw StudyError(fmt::format("{}: participant {} completed the study at {}; trial {} comes too late", path_,
-                                 quoted(r.participant), *who->completed, r.trialIndex));
+                                 quotedText(r.participant), *who->completed, r.trialIndex));
   const std::int64_t expected = nextTrial(r.participant);
   if (r.trialIndex != expected)
-    throw StudyError(fmt::format("{}: participant {}: expected trial {}, got {}", path_, quoted(r.participant),
+    throw StudyError(fmt::format("{}: participant {}: expected trial {}, got {}", path_, quotedText(r.participant),
                                  expected, r.trialIndex));
 
   StoredRecord stored{r.participant, r.trialIndex, r.kind, r.meal, r.elapsedMs, r.rtMs, response, utcNow()};
@@ -301,7 +301,7 @@ std::vector<StoredRecord> StudyRecords::records(const std::string& participant) 
 
 std::int64_t StudyRecords::nextTrial(const std::string& participant) const {
   if (!this->participant(participant))
-    throw StudyError(fmt::format("{}: no participant {}", path_, quoted(participant)));
+    throw StudyError(fmt::format("{}: no participant {}", path_, quotedText(participant)));
   Statement s(db_, path_, "SELECT count(*) FROM study_records WHERE participant = ?");
   s.bind(1, participant);
   return s.step() ? s.integer(0) : 0;

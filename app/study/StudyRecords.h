@@ -50,7 +50,7 @@ bool isParticipantId(const std::string& id);
 
 // Text as it may appear in a message: quoted, with quotes, backslashes and anything outside printable ASCII escaped,
 // and cut when long, since it may be whatever a URL held.
-std::string quoted(const std::string& text);
+std::string quotedText(const std::string& text);
 
 struct Participant {
   std::string id;

@@ -129,7 +129,7 @@ HttpReply StudyService::begin(const std::string& participant) {
   return stateReply(s, p);
 }
 
-HttpReply StudyService::state(const std::string& participant) {
+std::optional<HttpReply> StudyService::lookUp(const std::string& participant, Participant& out) {
   if (!isParticipantId(participant)) return errorReply(400, invalidIdMessage(participant));
   std::optional<Participant> p;
   {
@@ -137,13 +137,18 @@ HttpReply StudyService::state(const std::string& participant) {
     p = records_.participant(participant);
   }
   if (!p) return errorReply(404, fmt::format("no participant '{}': open their page to begin", participant));
+  out = std::move(*p);
+  return std::nullopt;
+}
+
+HttpReply StudyService::state(const std::string& participant) {
+  Participant p;
+  if (auto error = lookUp(participant, p)) return *error;
   std::lock_guard<std::mutex> lock(programMutex_);
-  Session& s = sessionOf(*p);
-  return stateReply(s, *p);
+  return stateReply(sessionOf(p), p);
 }
 
 HttpReply StudyService::stateReply(Session& s, const Participant& p, const char* status) {
-  if (auto error = ensureBuilt(s, p)) return *error;
   std::int64_t next = 0;
   {
     std::lock_guard<std::mutex> lock(dbMutex_);
@@ -153,6 +158,8 @@ HttpReply StudyService::stateReply(Session& s, const Participant& p, const char*
   json state = {{"participant", p.id}, {"next_trial", next}, {"page", page.kind},
                 {"meal", page.meal},   {"meals", kMeals},    {"pages", kStudyPages}};
   if (page.meal > 0) {
+    // Only a meal's pages need the session: the pages before and after meals are answered without building one.
+    if (auto error = ensureBuilt(s, p)) return *error;
     if (s.study->meal() + 1 != static_cast<std::size_t>(page.meal))
       return errorReply(500, fmt::format("participant '{}': the records are at meal {}, the session at meal {}", p.id,
                                          page.meal, s.study->meal() + 1));
@@ -198,12 +205,9 @@ HttpReply StudyService::record(const std::string& participant, const std::string
   RecordRequest req;
   if (!isParticipantId(participant)) return errorReply(400, invalidIdMessage(participant));
   if (auto problem = parseRecord(participant, body, req)) return errorReply(400, *problem);
-  std::optional<Participant> p;
-  {
-    std::lock_guard<std::mutex> lock(dbMutex_);
-    p = records_.participant(participant);
-  }
-  if (!p) return errorReply(404, fmt::format("no participant '{}': open their page to begin", participant));
+  Participant found;
+  if (auto error = lookUp(participant, found)) return *error;
+  const Participant* p = &found;
   std::lock_guard<std::mutex> lock(programMutex_);
   Session& s = sessionOf(*p);
   const NewRecord& r = req.record;
@@ -231,7 +235,9 @@ HttpReply StudyService::record(const std::string& participant, const std::string
     return errorReply(409,
                       fmt::format("trial {} is {}, not kind '{}' of meal {}", next, pageName(page), r.kind, r.meal));
   if (auto problem = checkResponse(r.kind, req.response)) return errorReply(400, *problem);
-  if (auto error = ensureBuilt(s, *p)) return *error;
+  if (page.meal > 0) {
+    if (auto error = ensureBuilt(s, *p)) return *error;
+  }
   NewRecord stored = r;
   stored.response = req.response.dump();
   if (r.kind == "answers") return storeAnswers(s, *p, stored);
@@ -243,7 +249,11 @@ HttpReply StudyService::record(const std::string& participant, const std::string
   } catch (const StudyError& e) {
     return storageError(e);
   }
-  return stateReply(s, *p, "stored");
+  HttpReply reply = stateReply(s, *p, "stored");
+  // A finished participant's two worlds and learner are not needed any more (tens of MB each); a later request
+  // rebuilds them from the records.
+  if (r.kind == "complete") sessions_.erase(participant);
+  return reply;
 }
 
 HttpReply StudyService::storeAnswers(Session& s, const Participant& p, const NewRecord& r) {
@@ -316,15 +326,14 @@ HttpReply StudyService::withPicture(const std::string& participant, int meal, in
                                     const std::function<HttpReply(Session&, std::size_t)>& answer) {
   // Taken first: where the participant is must not change between the check and the picture.
   std::lock_guard<std::mutex> lock(programMutex_);
-  if (!isParticipantId(participant)) return errorReply(400, invalidIdMessage(participant));
-  std::optional<Participant> p;
+  Participant found;
+  if (auto error = lookUp(participant, found)) return *error;
+  const Participant* p = &found;
   std::int64_t next = 0;
   {
     std::lock_guard<std::mutex> db(dbMutex_);
-    p = records_.participant(participant);
-    if (p) next = records_.nextTrial(participant);
+    next = records_.nextTrial(participant);
   }
-  if (!p) return errorReply(404, fmt::format("no participant '{}'", participant));
   const StudyPage page = pageOfTrial(next);
   if (page.meal != meal)
     return errorReply(404, fmt::format("no pictures of meal {} now: participant '{}' is at {}", meal, participant,

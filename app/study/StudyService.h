@@ -65,6 +65,8 @@ class StudyService : public StudyApi {
 
  private:
   struct Session;
+  // The stored participant, or the reply saying why there is none (400 for an invalid id, 404 for an unknown one).
+  std::optional<HttpReply> lookUp(const std::string& participant, Participant& out);
   Session& sessionOf(const Participant& p);  // the caller holds programMutex_
   // The caller holds programMutex_ in these.
   std::optional<HttpReply> ensureBuilt(Session& s, const Participant& p);

@@ -7,7 +7,7 @@
 
 namespace cbtl {
 
-// Generated from compiler/diag/examples (embed_examples.cmake).
+// Generated from compiler/diag/examples (cmake/EmbedFiles.cmake).
 const std::map<std::string, std::string_view>& diagnosticExampleFiles();
 
 namespace {

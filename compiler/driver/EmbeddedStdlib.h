@@ -1,4 +1,5 @@
-// EmbeddedStdlib.h — the standard-library modules compiled into the binary (stdlib/embed.cmake).
+// EmbeddedStdlib.h — the standard-library modules compiled into the binary (stdlib/CMakeLists.txt,
+// cmake/EmbedFiles.cmake).
 #pragma once
 
 #include <map>

@@ -395,7 +395,7 @@ TEST_F(StudyAnalysisTest, TheReportShowsEveryTableWithFixedFormats) {
            "  gender: male 2, female 1, non-binary 1, prefer-not-to-say 0, other 0\n",
            "meals:\n  1 a meal as the server describes it\n",
            // Meal 1: mean 4.25, sd 0.957; the W+ = 6 of the ratings test above.
-           "   1 |   4 |               4.25 ± 0.96 |   6.0 |",
+           "   1 |   4 |               4.25 ± 0.96 |     6.0 |",
            "   1 |       4 | cbtl               | 0.50 |   0.75 |      0.25 |     0.75 |       0.50 |          0.25 |"
            "     0.67\n",
            "   1 |       4 | no-personalization | 0.50 |   0.50 |      0.25 |     0.50 |       0.50 |          0.25 |"

@@ -127,6 +127,7 @@ TEST_F(StudyServiceTest, AParticipantAnswersThirteenPagesAndTheRecordsKeepWhatEa
     state = body(r)["state"];
   }
   EXPECT_EQ(state["next_trial"], 13);
+  EXPECT_EQ(body(s->state("P-1")), state) << "after the session was let go";
   EXPECT_EQ(s->record("P-1", recordBody(13, "complete", 0, {{"comments", ""}}).dump()).status, 409);
 
   StudyRecords records(db_, false);

@@ -161,8 +161,11 @@ ordered_json storedAnswers(const json& response, const feeding::MealPresentation
   ordered_json stored;
   for (const char* key : {"dip", "signal", "verbosity", "blocked"}) stored[key] = response[key];
   ordered_json predicted, met;
-  bool anyBlocked = false;
-  for (const auto& b : response["blocked"]) anyBlocked = anyBlocked || b.get<bool>();
+  const feeding::MealOffer& cbtl = offerOf(m, feeding::studyApproaches()[0]);
+  // The first picture is of the configuration CBTL's shown choice uses, when it has one (StudySession.h); the view
+  // preference is met when that one is not called blocked (the other picture is a question, not a choice).
+  const bool firstIsShown = cbtl.shown.ok && cbtl.read.abovePlateConf.has_value();
+  const bool shownBlocked = firstIsShown && !response["blocked"].empty() && response["blocked"][0].get<bool>();
   for (const auto& approach : feeding::studyApproaches()) {
     const feeding::MealOffer& offer = offerOf(m, approach);
     predicted[approach] = choicesJson(offer, "");
@@ -171,12 +174,10 @@ ordered_json storedAnswers(const json& response, const feeding::MealPresentation
     judged["signal"] = offer.shown.ok && offer.read.signal == response["signal"].get<std::string>();
     judged["verbosity"] = offer.shown.ok && offer.read.verbosity == response["verbosity"].get<std::string>();
     // Only CBTL's configurations were pictured; No Personalization's view was never asked about.
-    if (approach == feeding::studyApproaches()[0]) judged["view"] = offer.shown.ok && !anyBlocked;
+    if (approach == feeding::studyApproaches()[0]) judged["view"] = offer.shown.ok && !shownBlocked;
     met[approach] = judged;
   }
   stored["predicted"] = predicted;
-  const feeding::MealOffer& cbtl = offerOf(m, feeding::studyApproaches()[0]);
-  const bool firstIsShown = cbtl.shown.ok && cbtl.read.abovePlateConf.has_value();
   ordered_json views = ordered_json::array();
   for (std::size_t k = 0; k < m.views.size(); ++k)
     views.push_back({{"occlusion", m.views[k].occlusion}, {"shown_choice", k == 0 && firstIsShown}});

@@ -145,8 +145,11 @@ MealChoice answerMeal(const approach::PreparedProgram& lp, StudyArm& arm, const 
   if (!offer.shown.ok) return choice;
   const PlanRun run = runPlan(world, offer.shown.calls);
   choice.solved = run.done && !run.failed;
+  // The view preference is about the robot's own choice: a picture of another configuration (the exploring CSP's
+  // question) says what the participant would mind, not what this choice did.
   bool blocked = false;
-  for (const auto& [conf, isBlocked] : answers.views) blocked = blocked || isBlocked;
+  for (const auto& [conf, isBlocked] : answers.views)
+    blocked = blocked || (isBlocked && offer.read.abovePlateConf && conf == *offer.read.abovePlateConf);
   choice.preferences = {{"dip", bite.dip == answers.ideals.dip},
                         {"signal", bite.signal == answers.ideals.signal},
                         {"verbosity", bite.verbosity == answers.ideals.verbosity},

@@ -141,8 +141,8 @@ struct MealAnswers {
 // simulated participant is not listened to) and, for an arm that learns, learns what `answers` say about it: the
 // bite's answers about the shown choice, then each view answer, each read in the world as it is after the meal.
 // Returns the choice with the preferences the answers judge it by (dip, signal and verbosity against the ideals;
-// view: no shown configuration called blocked). Throws std::invalid_argument for answers outside the meal's
-// choices (checkIdeals), std::runtime_error as offerMeal.
+// view: the picture of the shown choice's above-plate configuration not called blocked). Throws std::invalid_argument
+// for answers outside the meal's choices (checkIdeals), std::runtime_error as offerMeal.
 MealChoice answerMeal(const approach::PreparedProgram& lp, StudyArm& arm, const MealOffer& offer,
                       const MealAnswers& answers);
 

@@ -74,7 +74,8 @@ class StudyServiceTest : public ::testing::Test {
     if (page == "rating") return {{"likert", meal % 2 == 1 ? 2 : 5}};
     if (page == "answers") {
       json blocked = json::array();
-      for (std::size_t k = 0; k < state["views"].size(); ++k) blocked.push_back(k == 1);
+      // Odd meals: the first picture blocked (the one of CBTL's shown choice); even meals: the second.
+      for (std::size_t k = 0; k < state["views"].size(); ++k) blocked.push_back(static_cast<int>(k) == (meal + 1) % 2);
       return {{"dip", state["choices"]["dip"][static_cast<std::size_t>(meal % 3)]},
               {"signal", meal < 3 ? "button" : "mouthOpen"},
               {"verbosity", "brief"},
@@ -152,7 +153,7 @@ TEST_F(StudyServiceTest, AParticipantAnswersThirteenPagesAndTheRecordsKeepWhatEa
           EXPECT_EQ(r["met"][a][q], r["predicted"][a][q] == r[q]) << t << q << a;
       EXPECT_EQ(r["views"].size(), 2u);
       EXPECT_EQ(r["views"][0]["shown_choice"], true);
-      EXPECT_EQ(r["met"]["cbtl"]["view"], false) << "the second picture was called blocked";
+      EXPECT_EQ(r["met"]["cbtl"]["view"], page.meal % 2 == 0) << "met unless the shown choice's picture is blocked";
     }
   }
   profile::ProfileStore profiles(db_, false);

@@ -31,8 +31,10 @@ if [[ ${QUICK:-0} != 1 ]]; then
   echo "-- feeding: each preference's learning curve; what was learned of the occlusion sensitivity"
   python3 scripts/preference-curves.py "$out/robots/feeding-preferences"
   python3 scripts/learned-vs-hidden.py feeding "$out/robots/feeding-preferences"
-  echo "== Feeding: the five meals with 60 simulated participants"
-  "$cbtl" study simulate domains/feeding/feeding.cbtl --participants 60 --out "$out/study" --force
+  echo "== Feeding: the five meals with 60 simulated participants, judged by the simulator (in one process)"
+  "$cbtl" study simulate domains/feeding/feeding.cbtl --in-process --participants 60 --out "$out/study" --force
+  echo "== Feeding: the web study's server with 60 simulated participants through its HTTP API, analysed"
+  "$cbtl" study simulate domains/feeding/feeding.cbtl --participants 60 --out "$out/study-web" --force
   echo "== Feeding: the demonstration"
   "$cbtl" study demo domains/feeding/feeding.cbtl --out "$out/demo" --force
   echo "== Figure 3, the three environments side by side"

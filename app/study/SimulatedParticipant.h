@@ -11,6 +11,8 @@
 // - answers: their ideal dip (among the meal's sauces), signal and verbosity; a picture is "blocked" when its
 //   occlusion score (the picture's measure, views/<meal>/<k>.json) reaches their threshold.
 // - complete: no comments.
+// Times: each page's rt_ms is a made-up 1 to 4 s (from the length of the answer), elapsed_ms their running sum, so
+// that the records have the browser's columns; they say nothing about people.
 #pragma once
 
 #include <cstdint>

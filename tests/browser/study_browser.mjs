@@ -614,17 +614,52 @@ function checkExport(cbtl, db, expected) {
   });
   log(`export: the ${PAGES} records of ${PARTICIPANT} hold what the test answered ` +
     `(elapsed ${records[0].elapsed_ms} .. ${lastElapsed} ms)`);
+  return records;
 }
 
-function checkAnalyze(cbtl, db) {
-  const result = run(cbtl, ['study', 'analyze', db]);
+// A CSV file of `cbtl study analyze --out` as objects by column name (its fields hold no commas or quotes).
+function readCsv(file) {
+  const lines = fs.readFileSync(file, 'utf8').trim().split('\n');
+  const header = lines[0].split(',');
+  return lines.slice(1).map((line) => Object.fromEntries(line.split(',').map((cell, i) => [header[i], cell])));
+}
+
+// The analysis must say what was clicked: with one participant, each meal's mean preference is their answer, each
+// prediction is right exactly when CBTL offered what they answered, and each question's path is their answers.
+function checkAnalyze(cbtl, db, records, artifacts) {
+  const dir = path.join(artifacts, 'analysis');
+  const result = run(cbtl, ['study', 'analyze', db, '--out', dir, '--force']);
   console.log(result.stdout);
   if (result.stderr) console.log(result.stderr);
   check(result.status === 0, `cbtl study analyze failed (status ${result.status})`);
-  // Lenient on wording: "1 completed participant", "participants: 1 completed", "completed: 1", ...
-  const mentionsOne = result.stdout.split('\n').some((line) =>
-    /complet/i.test(line) && /(^|[^\d.])1([^\d.]|$)/.test(line));
-  check(mentionsOne, 'cbtl study analyze does not mention 1 completed participant');
+  check(/participants: 1 begun, 1 consented, 1 completed/.test(result.stdout),
+    'cbtl study analyze does not report 1 completed participant');
+  const ratings = readCsv(path.join(dir, 'ratings.csv'));
+  const accuracy = readCsv(path.join(dir, 'accuracy.csv'));
+  const paths = readCsv(path.join(dir, 'paths.csv'));
+  const answers = records.filter((r) => r.kind === 'answers');
+  for (const rating of records.filter((r) => r.kind === 'rating')) {
+    const row = ratings.find((r) => Number(r.meal) === rating.meal);
+    check(row && Number(row.n) === 1 && Number(row.mean) === rating.response.cbtl_preference,
+      `ratings.csv meal ${rating.meal}: ${JSON.stringify(row)}, the clicked answer is ${rating.response.cbtl_preference}`);
+  }
+  for (const a of answers) {
+    for (const q of ['dip', 'signal', 'verbosity']) {
+      const row = accuracy.find((r) => Number(r.meal) === a.meal && r.measure === 'predicted' &&
+        r.approach === 'cbtl' && r.question === q);
+      const right = a.response.predicted.cbtl[q] === a.response[q] ? 1 : 0;
+      check(row && Number(row.hits) === right && Number(row.total) === 1,
+        `accuracy.csv meal ${a.meal} ${q}: ${JSON.stringify(row)}, CBTL offered ` +
+        `${a.response.predicted.cbtl[q]} and the test answered ${a.response[q]}`);
+    }
+  }
+  for (const q of ['dip', 'signal', 'verbosity']) {
+    const clicked = answers.map((a) => a.response[q]).join(' > ');
+    const row = paths.find((r) => r.question === q);
+    check(row && row.path === clicked && Number(row.count) === 1,
+      `paths.csv ${q}: ${JSON.stringify(row)}, the test answered ${clicked}`);
+  }
+  log('analysis: every meal\'s preference, every prediction and every path are what the test clicked');
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -675,8 +710,8 @@ async function main() {
     browser = null;
     await stopCleanly(server);
 
-    checkExport(args.cbtl, db, expected);
-    checkAnalyze(args.cbtl, db);
+    const records = checkExport(args.cbtl, db, expected);
+    checkAnalyze(args.cbtl, db, records, args.artifacts);
     check(laterFailures.length === 0, laterFailures.join('\n       '));
     log('PASS: the web study works in Chromium, end to end');
     console.log('1 passed, 0 failed');

@@ -54,6 +54,13 @@ HttpReply errorReply(int status, const std::string& message) {
 
 StudyHttpServer::StudyHttpServer(StudyApi& api) : api_(api), server_(std::make_unique<httplib::Server>()) {
   server_->set_payload_max_length(kMaxBody);
+  // cpp-httplib's default also sets SO_REUSEPORT, with which a second server binds a port in use and the kernel
+  // shares the connections between the two (two studies, two databases, one URL). SO_REUSEADDR alone lets a
+  // restarted server take its port back at once and refuses a port another server is listening on.
+  server_->set_socket_options([](socket_t sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, reinterpret_cast<const void*>(&yes), sizeof(yes));
+  });
   routes();
 }
 

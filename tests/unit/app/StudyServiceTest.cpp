@@ -326,6 +326,10 @@ TEST_F(StudyServiceTest, TheHttpServerServesThePagesAndTheApiOnLoopback) {
   auto badId = client.Get("/api/participants/a%20b");
   ASSERT_TRUE(badId);
   EXPECT_EQ(badId->status, 400);
+  // A second server cannot take a port the first one listens on (it would share its connections).
+  StudyHttpServer second(*s);
+  EXPECT_EQ(second.bind("127.0.0.1", port, error), -1);
+  EXPECT_NE(error.find("cannot listen"), std::string::npos) << error;
   server.stop();
   listening.join();
 }

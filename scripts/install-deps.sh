@@ -33,8 +33,13 @@ done
 browser_test_packages() {
   local dir
   dir="$(cd "$(dirname "$0")/.." && pwd)/tests/browser"
-  if [ ! -f "$dir/node_modules/playwright-core/package.json" ]; then
-    echo "install-deps: installing the browser test's npm packages in $dir"
+  local pinned installed=""
+  pinned=$(grep -o '"playwright-core": "[^"]*"' "$dir/package.json" | cut -d'"' -f4)
+  if [ -f "$dir/node_modules/playwright-core/package.json" ]; then
+    installed=$(grep -o '"version": "[^"]*"' "$dir/node_modules/playwright-core/package.json" | head -1 | cut -d'"' -f4)
+  fi
+  if [ "$installed" != "$pinned" ]; then
+    echo "install-deps: installing the browser test's npm packages in $dir (playwright-core $pinned)"
     npm ci --prefix "$dir" --no-audit --no-fund --loglevel=error
   fi
 }

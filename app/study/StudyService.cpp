@@ -72,6 +72,24 @@ StudyService::Session& StudyService::sessionOf(const Participant& p) {
 
 namespace {
 
+// What CBTL learns from a meal's answers, in words, for the participant's profile (the session learns the same
+// events: FeedingStudy.h answerMeal).
+std::vector<profile::NewEvent> profileEvents(const feeding::MealPresentation& m,
+                                             const feeding::ParticipantAnswers& answers) {
+  std::vector<profile::NewEvent> events;
+  const feeding::MealOffer& cbtl = m.offers.at(feeding::studyApproaches()[0]);
+  const feeding::Meal& meal = feeding::paperMeals().at(m.meal);
+  if (cbtl.shown.ok)
+    for (const auto& e : feeding::biteAnswerEvents(
+             feeding::BiteOffer{meal.food, meal.dips, cbtl.read.dip, cbtl.read.signal, cbtl.read.verbosity},
+             answers.ideals))
+      events.push_back({profile::EventSource::Study, renderEvent(e), ""});
+  for (std::size_t k = 0; k < m.views.size() && k < answers.blocked.size(); ++k)
+    events.push_back(
+        {profile::EventSource::Study, renderEvent(feeding::viewAnswerEvent(m.views[k].conf, answers.blocked[k])), ""});
+  return events;
+}
+
 // The participant's own study options (kept when they began) over the server's.
 feeding::StudyOptions optionsOf(const Participant& p, feeding::StudyOptions base) {
   const json o = json::parse(p.options, nullptr, false);
@@ -87,9 +105,11 @@ feeding::StudyOptions optionsOf(const Participant& p, feeding::StudyOptions base
 std::optional<HttpReply> StudyService::ensureBuilt(Session& s, const Participant& p) {
   if (!s.study && s.broken.empty()) {
     std::vector<StoredRecord> stored;
+    std::size_t profileVersions = 0;
     {
       std::lock_guard<std::mutex> lock(dbMutex_);
       stored = records_.records(p.id);
+      profileVersions = profiles_.versions(p.id, lp_.graph().domain).size();
     }
     try {
       // StudySession is deterministic: fed the stored answers, it shows the meal the participant is at.
@@ -100,7 +120,14 @@ std::optional<HttpReply> StudyService::ensureBuilt(Session& s, const Participant
         const feeding::ParticipantAnswers a = participantAnswersOf(json::parse(r.response));
         if (auto problem = s.study->check(a))
           throw std::runtime_error(fmt::format("trial {} (meal {}): {}", r.trialIndex, r.meal, *problem));
+        const std::vector<profile::NewEvent> events = profileEvents(s.study->current(), a);
         s.study->answer(a);
+        // A server stopped between storing a meal's answers and the profile version (kill -9) left the profile a
+        // meal behind: the version is written now, from the same answers.
+        if (profileVersions < static_cast<std::size_t>(r.meal)) {
+          storeProfile(s, p, events, r.meal);
+          ++profileVersions;
+        }
       }
     } catch (const std::exception& e) {
       s.study.reset();
@@ -263,18 +290,8 @@ HttpReply StudyService::storeAnswers(Session& s, const Participant& p, const New
   const feeding::MealPresentation& m = s.study->current();
   NewRecord stored = r;
   stored.response = storedAnswers(response, m).dump();
-  // What CBTL learns from, in words, for the profile: computed now, as the session moves on below.
-  std::vector<profile::NewEvent> events;
-  const feeding::MealOffer& cbtl = m.offers.at(feeding::studyApproaches()[0]);
-  const feeding::Meal& meal = feeding::paperMeals().at(m.meal);
-  if (cbtl.shown.ok)
-    for (const auto& e : feeding::biteAnswerEvents(
-             feeding::BiteOffer{meal.food, meal.dips, cbtl.read.dip, cbtl.read.signal, cbtl.read.verbosity},
-             answers.ideals))
-      events.push_back({profile::EventSource::Study, renderEvent(e), ""});
-  for (std::size_t k = 0; k < m.views.size(); ++k)
-    events.push_back(
-        {profile::EventSource::Study, renderEvent(feeding::viewAnswerEvent(m.views[k].conf, answers.blocked[k])), ""});
+  // Computed now: the session moves on below.
+  const std::vector<profile::NewEvent> events = profileEvents(m, answers);
   try {
     std::lock_guard<std::mutex> db(dbMutex_);
     records_.record(stored);

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <optional>
 #include <thread>
 
 namespace cbtl::app::study {
@@ -37,6 +38,23 @@ StudyServiceOptions serviceOptions(bool pictures = false) {
 }
 
 json body(const HttpReply& r) { return json::parse(r.body); }
+
+// A StudyHttpServer answering on a free port of 127.0.0.1 until destroyed (also when an assertion returns early).
+struct ServerOnLoopback {
+  explicit ServerOnLoopback(StudyApi& api) : server(api) {
+    port = server.bind("127.0.0.1", 0, error);
+    if (port > 0) listening = std::thread([this] { server.listen(); });
+  }
+  ~ServerOnLoopback() {
+    if (!listening.joinable()) return;
+    server.stop();
+    listening.join();
+  }
+  StudyHttpServer server;
+  std::string error;
+  int port = -1;
+  std::thread listening;
+};
 
 class StudyServiceTest : public ::testing::Test {
  protected:
@@ -186,6 +204,35 @@ TEST_F(StudyServiceTest, ARestartedServiceShowsWhatAnUninterruptedOneShows) {
   EXPECT_EQ(body(restarted->begin("P-2")), uninterrupted);
 }
 
+TEST_F(StudyServiceTest, AProfileVersionLostToAKilledServerIsWrittenWhenTheSessionIsRebuilt) {
+  // The records of a participant who answered meal 1, as a server that was killed before it stored the profile
+  // version left them (the replay reads only the four answers of an answers record).
+  {
+    StudyRecords records(db_);
+    records.begin("P-7", 0, R"({"study_seed": 0, "exploring_view": true})");
+    const std::pair<const char*, const char*> pages[] = {
+        {"consent", R"({"agree": true})"},
+        {"demographics",
+         R"({"age": null, "fed_experience": false, "gender": "male", "gender_other": "", "robot_experience": true})"},
+        {"rating", R"({"likert": 3})"},
+        {"answers", R"({"dip": "noDip", "signal": "button", "verbosity": "silent", "blocked": [false, false]})"}};
+    for (std::int64_t t = 0; t < 4; ++t)
+      records.record({"P-7", t, pages[t].first, t < 2 ? 0 : 1, 100 * t, 50, pages[t].second});
+  }
+  ASSERT_TRUE(profile::ProfileStore(db_).versions("P-7", "feeding").empty());
+  auto s = service(db_);
+  const json state = body(s->state("P-7"));
+  EXPECT_EQ(state["page"], "rating");
+  EXPECT_EQ(state["meal"], 2);
+  const auto versions = profile::ProfileStore(db_).versions("P-7", "feeding");
+  ASSERT_EQ(versions.size(), 1u);
+  EXPECT_EQ(versions[0].reason, "study: meal 1");
+  // Rebuilt again (another start), nothing is written twice.
+  auto again = service(db_);
+  EXPECT_EQ(body(again->state("P-7")), state);
+  EXPECT_EQ(profile::ProfileStore(db_).versions("P-7", "feeding").size(), 1u);
+}
+
 TEST_F(StudyServiceTest, AResentRecordIsReplayedAndADifferentAnswerToAnAnsweredPageConflicts) {
   auto s = service(db_);
   json state = answerUntil(*s, "P-3", body(s->begin("P-3")), "answers", 1);
@@ -267,30 +314,27 @@ TEST_F(StudyServiceTest, PicturesAreTheCurrentMealsOnly) {
   EXPECT_EQ(be32(20), 48u);
   // The second picture through the server: rendered on one of its request threads, not the thread that made the
   // renderer (an OpenGL context is current in one thread at a time; a black picture would say it was not).
-  StudyHttpServer server(*s);
-  std::string error;
-  const int port = server.bind("127.0.0.1", 0, error);
-  ASSERT_GT(port, 0) << error;
-  std::thread listening([&] { server.listen(); });
-  httplib::Client client("127.0.0.1", port);
-  auto second = client.Get(atAnswers["views"][1].get<std::string>());
-  server.stop();
-  listening.join();
-  ASSERT_TRUE(second);
-  ASSERT_EQ(second->status, 200) << second->body;
-  EXPECT_NE(second->body, picture.body) << "the two configurations look different";
+  std::optional<httplib::Result> second;
+  {
+    ServerOnLoopback loopback(*s);
+    ASSERT_GT(loopback.port, 0) << loopback.error;
+    httplib::Client client("127.0.0.1", loopback.port);
+    second = client.Get(atAnswers["views"][1].get<std::string>());
+  }
+  ASSERT_TRUE(*second);
+  const httplib::Response& viaServer = **second;
+  ASSERT_EQ(viaServer.status, 200) << viaServer.body;
+  EXPECT_NE(viaServer.body, picture.body) << "the two configurations look different";
   // The PNG's pixels are stored uncompressed (PngWriter.h): a lit scene has mostly non-zero bytes.
-  const auto lit = std::count_if(second->body.begin(), second->body.end(), [](char c) { return c != 0; });
-  EXPECT_GT(lit, static_cast<std::ptrdiff_t>(second->body.size() / 4)) << "a black picture";
+  const auto lit = std::count_if(viaServer.body.begin(), viaServer.body.end(), [](char c) { return c != 0; });
+  EXPECT_GT(lit, static_cast<std::ptrdiff_t>(viaServer.body.size() / 4)) << "a black picture";
 }
 
 TEST_F(StudyServiceTest, TheHttpServerServesThePagesAndTheApiOnLoopback) {
   auto s = service(db_);
-  StudyHttpServer server(*s);
-  std::string error;
-  const int port = server.bind("127.0.0.1", 0, error);
-  ASSERT_GT(port, 0) << error;
-  std::thread listening([&] { server.listen(); });
+  ServerOnLoopback loopback(*s);
+  ASSERT_GT(loopback.port, 0) << loopback.error;
+  const int port = loopback.port;
   httplib::Client client("127.0.0.1", port);
   client.set_read_timeout(std::chrono::seconds(60));
 
@@ -328,10 +372,9 @@ TEST_F(StudyServiceTest, TheHttpServerServesThePagesAndTheApiOnLoopback) {
   EXPECT_EQ(badId->status, 400);
   // A second server cannot take a port the first one listens on (it would share its connections).
   StudyHttpServer second(*s);
+  std::string error;
   EXPECT_EQ(second.bind("127.0.0.1", port, error), -1);
   EXPECT_NE(error.find("cannot listen"), std::string::npos) << error;
-  server.stop();
-  listening.join();
 }
 
 }  // namespace

@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# `cbtl study serve` as a process: the first stdout line names the port it got (--port 0), a participant's answers
+# survive kill -9 (the restarted server continues at the page after the last answer), a second server cannot take
+# the port of one that listens, SIGTERM stops it with exit 0, a database that is not one is refused.
+# usage: study_serve.sh CBTL DOMAINS_DIR
+set -u
+cbtl=$1
+program=$2/feeding/feeding.cbtl
+work=$(mktemp -d)
+pids=()
+cleanup() {
+  for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null; done
+  rm -rf "$work"
+}
+trap cleanup EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# Starts a server on $1 (a port, 0 for any) over $work/study.sqlite; sets $pid and $port.
+start() {
+  "$cbtl" study serve "$program" --db "$work/study.sqlite" --port "$1" --no-pictures >"$work/out" 2>"$work/err" &
+  pid=$!
+  pids+=("$pid")
+  port=""
+  for _ in $(seq 1 600); do
+    port=$(sed -n 's|^listening on http://127.0.0.1:\([0-9]*\)/$|\1|p' "$work/out" | head -1)
+    [[ -n $port ]] && return 0
+    kill -0 "$pid" 2>/dev/null || break
+    sleep 0.1
+  done
+  fail "no 'listening on' line: $(cat "$work/out" "$work/err")"
+  return 1
+}
+
+# HTTP through python3 (no curl on a fresh machine): METHOD PATH [BODY] -> "status body"
+http() {
+  python3 - "$port" "$@" <<'PY'
+import sys, urllib.request, urllib.error
+port, method, path = sys.argv[1], sys.argv[2], sys.argv[3]
+body = sys.argv[4].encode() if len(sys.argv) > 4 else b""
+req = urllib.request.Request(f"http://127.0.0.1:{port}{path}", data=body if method == "POST" else None, method=method,
+                             headers={"Content-Type": "application/json"})
+try:
+    with urllib.request.urlopen(req, timeout=120) as r:
+        print(r.status, r.read().decode())
+except urllib.error.HTTPError as e:
+    print(e.code, e.read().decode())
+PY
+}
+
+record() {  # TRIAL KIND MEAL RESPONSE
+  http POST /api/participants/p1/records \
+    "{\"trial_index\": $1, \"kind\": \"$2\", \"meal\": $3, \"elapsed_ms\": $((1000 * $1)), \"rt_ms\": 500, \"response\": $4}"
+}
+
+start 0 || exit 1
+[[ $(http POST /api/participants/p1 '{}') == "200 "*'"page":"consent"'* ]] || fail "begin"
+record 0 consent 0 '{"agree": true}' | grep -q '^200 ' || fail "consent"
+record 1 demographics 0 \
+  '{"age": null, "gender": "prefer-not-to-say", "gender_other": "", "robot_experience": false, "fed_experience": false}' \
+  | grep -q '^200 ' || fail "demographics"
+record 2 rating 1 '{"likert": 4}' | grep -q '^200 ' || fail "rating"
+answered=$(record 3 answers 1 '{"dip": "noDip", "signal": "button", "verbosity": "silent", "blocked": [false, true]}')
+[[ $answered == "200 "* && $answered == *'"meal":2,'* && $answered == *'"page":"rating"'* ]] ||
+  fail "answers of meal 1: $answered"
+before=$(http GET /api/participants/p1)
+
+# A second server on the same port is refused, and the first keeps answering.
+"$cbtl" study serve "$program" --db "$work/other.sqlite" --port "$port" --no-pictures >"$work/out2" 2>&1 &
+second=$!
+pids+=("$second")
+for _ in $(seq 1 600); do kill -0 "$second" 2>/dev/null || break; sleep 0.1; done
+if kill -0 "$second" 2>/dev/null; then
+  fail "a second server took port $port: $(cat "$work/out2")"
+else
+  wait "$second"
+  rc=$?
+  [[ $rc -eq 1 ]] && grep -q "cannot listen" "$work/out2" || fail "second server (exit $rc): $(cat "$work/out2")"
+fi
+[[ $(http GET /api/participants/p1) == "$before" ]] || fail "the first server after the second's attempt"
+
+kill -9 "$pid"
+wait "$pid" 2>/dev/null
+start 0 || exit 1
+after=$(http GET /api/participants/p1)
+[[ $after == "$before" ]] || fail "after kill -9 and a restart the state differs:
+before: $before
+after:  $after"
+
+kill -TERM "$pid"
+wait "$pid"
+rc=$?
+[[ $rc -eq 0 ]] && grep -q "^stopped$" "$work/out" || fail "SIGTERM: exit $rc, $(cat "$work/out" "$work/err")"
+
+echo "not a database" >"$work/bad.sqlite"
+out=$("$cbtl" study serve "$program" --db "$work/bad.sqlite" --port 0 2>&1)
+rc=$?
+[[ $rc -eq 1 ]] && grep -q "bad.sqlite: not a SQLite database" <<<"$out" || fail "bad database (exit $rc): $out"
+
+[[ $failures -eq 0 ]] && echo "study_serve: all ok"
+exit $((failures > 0))

@@ -70,7 +70,20 @@ void StudyHttpServer::routes() {
   httplib::Server& s = *server_;
   // The id pattern is wider than a valid id on purpose: an invalid one gets the records' explanation, not a 404.
   const std::string id = R"(/api/participants/([^/]{1,200}))";
-  s.Get("/", [](const httplib::Request&, httplib::Response& res) {
+  // Recruiting sites pass the id as a query parameter: /?participant=<id> (or PROLIFIC_PID, workerId) goes to the
+  // participant's page.
+  s.Get("/", [](const httplib::Request& req, httplib::Response& res) {
+    for (const char* key : {"participant", "PROLIFIC_PID", "workerId"}) {
+      if (!req.has_param(key)) continue;
+      const std::string given = req.get_param_value(key);
+      if (!isParticipantId(given)) {
+        send(res, errorReply(400, "the participant id " + quotedText(given) +
+                                      " is not 1 to 64 characters of A-Z, a-z, 0-9, '_', '.', '-'"));
+        return;
+      }
+      res.set_redirect("/p/" + given, 302);
+      return;
+    }
     send(res, HttpReply{200, "text/html; charset=utf-8", kIndexPage});
   });
   s.Get(R"(/p/([^/]{1,200}))", [](const httplib::Request& req, httplib::Response& res) {

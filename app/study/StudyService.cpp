@@ -22,6 +22,7 @@ struct StudyService::Session {
   std::string broken;                            // why it could not be built or continued; empty when fine
   std::size_t picturesMeal = static_cast<std::size_t>(-1);
   std::vector<std::vector<std::uint8_t>> pictures;  // the current meal's, PNG bytes, rendered on first request
+  std::uint64_t lastUse = 0;                        // StudyService::uses_ when a request last touched it
 };
 
 namespace {
@@ -64,9 +65,24 @@ StudyService::StudyService(const approach::PreparedProgram& lp, const domains::P
 
 StudyService::~StudyService() = default;
 
+std::size_t StudyService::sessionsInMemory() {
+  std::lock_guard<std::mutex> lock(programMutex_);
+  return sessions_.size();
+}
+
 StudyService::Session& StudyService::sessionOf(const Participant& p) {
   auto& slot = sessions_[p.id];
   if (!slot) slot = std::make_unique<Session>();
+  slot->lastUse = ++uses_;
+  // Over the cap, the session touched longest ago is let go (it is rebuilt from the records when its participant
+  // comes back). Requests run one at a time, so no other request holds it.
+  if (sessions_.size() > options_.maxSessions) {
+    auto oldest = sessions_.end();
+    for (auto it = sessions_.begin(); it != sessions_.end(); ++it)
+      if (it->first != p.id && (oldest == sessions_.end() || it->second->lastUse < oldest->second->lastUse))
+        oldest = it;
+    if (oldest != sessions_.end()) sessions_.erase(oldest);
+  }
   return *slot;
 }
 

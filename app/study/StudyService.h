@@ -24,6 +24,7 @@
 #include "app/study/StudyRecords.h"
 #include "domains/feeding/StudySession.h"
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -44,6 +45,9 @@ struct StudyServiceOptions {
   domains::feeding::StudyOptions study;         // seed, exploring view, solver, text backend
   bool pictures = true;                         // false: no renderer (pictures are answered 503)
   int pictureWidth = 480, pictureHeight = 360;  // pixels
+  // Sessions kept at most (each holds two simulated worlds and a model, about 27 MB); beyond, the one used longest
+  // ago is let go and rebuilt from the records when needed. A completed participant's is let go at once.
+  std::size_t maxSessions = 64;
 };
 
 class StudyService : public StudyApi {
@@ -62,6 +66,8 @@ class StudyService : public StudyApi {
   HttpReply viewMeasure(const std::string& participant, int meal, int picture) override;
 
   const std::string& pictureProblem() const { return noRendererReason_; }
+  // Sessions held in memory now (StudyServiceOptions::maxSessions).
+  std::size_t sessionsInMemory();
 
  private:
   struct Session;
@@ -87,6 +93,7 @@ class StudyService : public StudyApi {
   profile::ProfileStore profiles_;
   std::mutex programMutex_;  // over sessions_ and everything a session does
   std::map<std::string, std::unique_ptr<Session>> sessions_;
+  std::uint64_t uses_ = 0;  // requests that touched a session, for letting the least recently used go
   std::mutex rendererMutex_;
   std::shared_ptr<const world::Scene> scene_;
   std::unique_ptr<world::OffscreenRenderer> renderer_;

@@ -226,6 +226,12 @@ void addStudy(CLI::App& app, int& exitCode) {
       ->check(CLI::Range(0, 65535))
       ->capture_default_str();
   serve->add_flag("--no-pictures", args->noPictures, "do not render the view pictures (they are answered 503)");
+  serve
+      ->add_option("--max-sessions", args->maxSessions,
+                   "participants' sessions kept in memory (about 27 MB each); the least recently used beyond are "
+                   "rebuilt from the database when needed")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   serve->add_option("--picture-width", args->width, "picture width in pixels")
       ->check(CLI::Range(16, 1280))
       ->capture_default_str();

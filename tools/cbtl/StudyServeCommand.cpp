@@ -56,6 +56,7 @@ int runStudyServe(const StudyArgs& a) {
   options.pictures = !a.noPictures;
   options.pictureWidth = a.width;
   options.pictureHeight = a.height;
+  options.maxSessions = static_cast<std::size_t>(a.maxSessions);
   const domains::ProgramFacts facts = app::simulatorFacts(*lp);
   app::study::StudyService service(*lp, facts, options, a.db);
   if (!service.pictureProblem().empty() && !a.noPictures)

@@ -233,6 +233,25 @@ TEST_F(StudyServiceTest, AProfileVersionLostToAKilledServerIsWrittenWhenTheSessi
   EXPECT_EQ(profile::ProfileStore(db_).versions("P-7", "feeding").size(), 1u);
 }
 
+TEST_F(StudyServiceTest, SessionsBeyondTheCapAreLetGoAndRebuiltAsTheyWere) {
+  StudyServiceOptions capped = serviceOptions();
+  capped.maxSessions = 1;
+  StudyService one(feedingProgram(), test::programFacts("feeding"), capped, db_);
+  auto many = service((dir_ / "uncapped.sqlite").string());
+  // Two participants taking turns: with a cap of one, each turn lets the other's session go, and it is rebuilt from
+  // the records when they come back.
+  json a = answerUntil(one, "P-8", body(one.begin("P-8")), "rating", 2);
+  json b = answerUntil(one, "P-9", body(one.begin("P-9")), "answers", 2);
+  a = answerUntil(one, "P-8", body(one.state("P-8")), "rating", 3);
+  b = body(one.state("P-9"));
+  EXPECT_EQ(one.sessionsInMemory(), 1u);
+  const json a2 = answerUntil(*many, "P-8", body(many->begin("P-8")), "rating", 3);
+  const json b2 = answerUntil(*many, "P-9", body(many->begin("P-9")), "answers", 2);
+  EXPECT_EQ(a, a2);
+  EXPECT_EQ(b, b2);
+  EXPECT_EQ(many->sessionsInMemory(), 2u);
+}
+
 TEST_F(StudyServiceTest, AResentRecordIsReplayedAndADifferentAnswerToAnAnsweredPageConflicts) {
   auto s = service(db_);
   json state = answerUntil(*s, "P-3", body(s->begin("P-3")), "answers", 1);
@@ -350,6 +369,13 @@ TEST_F(StudyServiceTest, TheHttpServerServesThePagesAndTheApiOnLoopback) {
     EXPECT_EQ(f->status, 200) << file;
     EXPECT_FALSE(f->body.empty());
   }
+  auto fromRecruiter = client.Get("/?PROLIFIC_PID=5f3a9c&STUDY_ID=x");
+  ASSERT_TRUE(fromRecruiter);
+  EXPECT_EQ(fromRecruiter->status, 302);
+  EXPECT_EQ(fromRecruiter->get_header_value("Location"), "/p/5f3a9c");
+  auto badFromRecruiter = client.Get("/?participant=a%20b");
+  ASSERT_TRUE(badFromRecruiter);
+  EXPECT_EQ(badFromRecruiter->status, 400);
   auto missing = client.Get("/static/other.js");
   ASSERT_TRUE(missing);
   EXPECT_EQ(missing->status, 404);

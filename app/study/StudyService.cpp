@@ -265,8 +265,10 @@ HttpReply StudyService::record(const std::string& participant, const std::string
     const bool same = earlier->kind == r.kind && earlier->meal == r.meal &&
                       sentPart(r.kind, json::parse(earlier->response)) == req.response;
     if (!same)
+      // Only what the participant sent is echoed: the stored response also names the approaches behind the options.
       return errorReply(409, fmt::format("trial {} was already answered, differently: it is {}, answered {}",
-                                         r.trialIndex, pageName(pageOfTrial(r.trialIndex)), earlier->response));
+                                         r.trialIndex, pageName(pageOfTrial(r.trialIndex)),
+                                         sentPart(earlier->kind, json::parse(earlier->response)).dump()));
     return stateReply(s, *p, "replayed");
   }
   const StudyPage page = pageOfTrial(next);
@@ -275,8 +277,8 @@ HttpReply StudyService::record(const std::string& participant, const std::string
     return errorReply(409, fmt::format("trial {} is not this participant's next page: that is trial {}, {}",
                                        r.trialIndex, next, pageName(page)));
   if (r.kind != page.kind || r.meal != page.meal)
-    return errorReply(409,
-                      fmt::format("trial {} is {}, not kind '{}' of meal {}", next, pageName(page), r.kind, r.meal));
+    return errorReply(
+        409, fmt::format("trial {} is {}, not kind {} of meal {}", next, pageName(page), quotedText(r.kind), r.meal));
   if (auto problem = checkResponse(r.kind, req.response)) return errorReply(400, *problem);
   if (page.meal > 0) {
     if (auto error = ensureBuilt(s, *p)) return *error;

@@ -263,6 +263,8 @@ TEST_F(StudyServiceTest, AResentRecordIsReplayedAndADifferentAnswerToAnAnsweredP
   HttpReply other = s->record("P-3", recordBody(2, "rating", 1, {{"likert", 4}}).dump());
   EXPECT_EQ(other.status, 409);
   EXPECT_NE(body(other)["error"].get<std::string>().find("already answered"), std::string::npos) << other.body;
+  EXPECT_EQ(body(other)["error"].get<std::string>().find("cbtl"), std::string::npos)
+      << "a conflict must not say which option was CBTL: " << other.body;
   const json answers = recordBody(3, "answers", 1, answerFor(state));
   ASSERT_EQ(s->record("P-3", answers.dump()).status, 200);
   HttpReply replayedAnswers = s->record("P-3", answers.dump());

@@ -390,7 +390,6 @@ HttpReply StudyService::renderPicture(Session& s, std::size_t picture) {
   }
   std::vector<std::uint8_t>& png = s.pictures[picture];
   if (png.empty()) {
-    std::lock_guard<std::mutex> lock(rendererMutex_);
     if (pictureWorkspace_->setState(m.views[picture].state) != world::StateStatus::Ok)
       return errorReply(500, "the picture's scene could not be set up");
     world::CameraSpec camera;

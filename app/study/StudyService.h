@@ -15,8 +15,9 @@
 // Every request is checked completely before anything changes; a refused one changes nothing. Concurrency: the
 // requests that touch a session run one at a time, whoever's they are, because every session plans with the one
 // loaded program, which is not thread-safe (its built-ins are bound to the world being planned in); a page takes
-// well under a second, and a participant minutes to answer it. The database and the renderer have locks of their
-// own, taken inside that one.
+// well under a second, and a participant minutes to answer it. The database has a lock of its own (taken inside
+// that one, and alone by begin() and look-ups); the renderer and its workspace need none, as pictures are made
+// under that one.
 #pragma once
 
 #include "app/profile/ProfileStore.h"
@@ -94,7 +95,6 @@ class StudyService : public StudyApi {
   std::mutex programMutex_;  // over sessions_ and everything a session does
   std::map<std::string, std::unique_ptr<Session>> sessions_;
   std::uint64_t uses_ = 0;  // requests that touched a session, for letting the least recently used go
-  std::mutex rendererMutex_;
   std::shared_ptr<const world::Scene> scene_;
   std::unique_ptr<world::OffscreenRenderer> renderer_;
   std::unique_ptr<world::Workspace> pictureWorkspace_;

@@ -109,10 +109,20 @@ actions::RobotActionResult FeedingActions::graspDrink(world::World& w, actions::
   ws.setState(closed);
   Pose3 lifted = ws.toolPose();
   lifted.position.z() += kDrinkLift;
-  const world::IkResult up = world::solveIk(ws, lifted, ws.state().arm, rng, w.ik);
+  // The lift starts with the drink on the table: that contact, and only that, is allowed, and the joint move up
+  // is certified like every other motion.
+  world::IkOptions liftIk = w.ik;
+  for (const auto& a : actions::restingContacts(w)) liftIk.collision.allowances.push_back(a);
+  const world::ArmConfig grasped = ws.state().arm;
+  const world::IkResult up = world::solveIk(ws, lifted, grasped, rng, liftIk);
+  ws.setArm(grasped);
   if (!up.solved()) {
     ws.setState(before);
     return failed(ActionStatus::NoIk, fmt::format("grasp(drink): lift: {}", world::toString(up.status)));
+  }
+  if (mode == actions::ExecutionMode::Execute && !world::armSegmentFree(ws, grasped, up.q, liftIk.collision)) {
+    ws.setState(before);
+    return failed(ActionStatus::NoPath, "grasp(drink): the lift is not certified free");
   }
   ws.setArm(up.q);
   actions::RobotActionResult r;

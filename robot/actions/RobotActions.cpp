@@ -4,6 +4,7 @@
 #include "robot/world/MotionPlanner.h"
 #include "robot/world/MotionQuery.h"
 #include "robot/world/NamedConfigurations.h"
+#include "robot/world/Separation.h"
 #include "robot/world/Support.h"
 
 #include "robot/actions/CallArguments.h"
@@ -63,6 +64,29 @@ class Restore {
   world::World& w_;
   world::WorldState saved_;
   bool committed_ = false;
+};
+
+// Contacts an action allows for the motions it makes while this lives (world/Collision.h ContactAllowance): added
+// to the World's planning and IK options, taken back at the end of the scope.
+class ScopedAllowances {
+ public:
+  ScopedAllowances(world::World& w, const std::vector<world::ContactAllowance>& allowed)
+      : w_(w), planning_(w.planning.collision), ik_(w.ik.collision) {
+    for (const auto& a : allowed) {
+      w.planning.collision.allowances.push_back(a);
+      w.ik.collision.allowances.push_back(a);
+    }
+  }
+  ~ScopedAllowances() {
+    w_.planning.collision = planning_;
+    w_.ik.collision = ik_;
+  }
+  ScopedAllowances(const ScopedAllowances&) = delete;
+  ScopedAllowances& operator=(const ScopedAllowances&) = delete;
+
+ private:
+  world::World& w_;
+  world::CollisionOptions planning_, ik_;
 };
 
 bool posesClose(const world::Pose3& a, const world::Pose3& b, double position, double angle) {
@@ -140,14 +164,13 @@ ActionResult moveToolIn(world::World& w, const world::Pose3& target, ExecutionMo
   // The straight joint segment first; where it bows off the tool's line into something, the line itself;
   // the planner last.
   ActionResult r;
-  if (world::armSegmentFree(ws, start, ik.q, w.planning.resolution, w.planning.collision)) {
+  if (world::armSegmentFree(ws, start, ik.q, w.planning.collision)) {
     r.armPath = {start, ik.q};
     ws.setArm(ik.q);
     return r;
   }
   ws.setArm(start);
   world::CartesianPathOptions line;
-  line.resolution = w.planning.resolution;
   line.collision = w.planning.collision;
   if (auto path = world::cartesianToolPath(ws, target, w.ik, line)) {
     r.armPath = std::move(*path);
@@ -155,6 +178,24 @@ ActionResult moveToolIn(world::World& w, const world::Pose3& target, ExecutionMo
     return r;
   }
   return moveArmIn(w, ik.q, mode);
+}
+
+std::vector<world::ContactAllowance> restingContacts(world::World& w) {
+  world::Workspace& ws = w.workspace();
+  std::vector<world::ContactAllowance> out;
+  const int held = ws.heldObject();
+  if (held < 0) return out;
+  for (const auto& p : ws.scene().objectPairs(held)) {
+    const bool firstHeld = ws.scene().objectOfBody(ws.model()->geom_bodyid[p.g1]) == held;
+    const int other = firstHeld ? p.g2 : p.g1;
+    if (world::exactSeparation(ws, p.g1, p.g2, kRestingContact, false) > kRestingContact) continue;
+    world::ContactAllowance a;
+    a.part = world::ContactAllowance::Part::HeldObject;
+    a.geom = other;
+    a.depth = kRestingContact;
+    if (std::find(out.begin(), out.end(), a) == out.end()) out.push_back(a);
+  }
+  return out;
 }
 
 std::optional<RobotActionResult> RobotActions::execute(world::World& w, const sim::ActionCall& call,
@@ -293,6 +334,8 @@ RobotActionResult RobotActions::grasp(world::World& w, const std::string& body, 
   if (!attach.done()) return failed(attach.status, attach.detail);
   world::Pose3 lifted = ws.toolPose();
   lifted.position.z() += kLift;
+  // The body leaves the surface it rested on: the lift starts in contact with it.
+  const ScopedAllowances leaving(w, restingContacts(w));
   ActionResult lift = moveToolIn(w, lifted, mode);
   if (!lift.done()) return failed(lift.status, "lifting " + body + ": " + lift.detail);
   r.armPath.insert(r.armPath.end(), lift.armPath.begin(), lift.armPath.end());
@@ -377,6 +420,11 @@ RobotActionResult RobotActions::place(world::World& w, const std::string& surfac
   RobotActionResult r;
   const world::Pose3 tool = pose * held.toolToObject.inverse();
   if (!posesClose(ws.toolPose(), tool, 1e-3, 0.01)) {
+    // The body comes to rest on the surface's face: that contact (and only that) is part of the motion.
+    world::ContactAllowance onFace;
+    onFace.geom = ws.scene().geomId(surface);
+    onFace.depth = kRestingContact;
+    const ScopedAllowances resting(w, {onFace});
     ActionResult moved = moveToolIn(w, tool, mode);
     if (!moved.done()) return failed(moved.status, "carrying " + held.object + ": " + moved.detail);
     r.armPath = std::move(moved.armPath);

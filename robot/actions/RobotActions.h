@@ -85,6 +85,9 @@ namespace cbtl::actions {
 inline constexpr double kLift = 0.01;        // metres the tool rises after a grasp
 inline constexpr double kRetract = 0.05;     // metres the tool backs off along its -z after a place
 inline constexpr double kDropHeight = 0.03;  // metres a released body may fall onto a surface
+// Metres a held body may sink into the surface it is lifted from or placed on (contact compliance): the only
+// contact grasp and place allow their motions (world/Collision.h ContactAllowance).
+inline constexpr double kRestingContact = 0.001;
 
 struct RobotActionResult {
   bool wellFormed = true;  // false: the call does not fit its declaration (detail says why)
@@ -142,6 +145,9 @@ class RobotActions {
 // Moves the arm to q: in Execute mode world::builtins::moveArm (planned, cached); in Effects mode it teleports
 // (q must be finite and within limits). For domain actions built on the standard motions.
 world::builtins::ActionResult moveArmIn(world::World& w, const world::ArmConfig& q, ExecutionMode mode);
+// The contacts a lift may start in: each geom the held object touches now (within kRestingContact: the surface it is
+// lifted from) may be touched by it up to kRestingContact deep. Empty when nothing is held.
+std::vector<world::ContactAllowance> restingContacts(world::World& w);
 // Moves the tool to `target` from the current joints: IK seeded there (so the arm stays in its branch; restarts
 // seeded from the state and target), then moveArmIn.
 world::builtins::ActionResult moveToolIn(world::World& w, const world::Pose3& target, ExecutionMode mode);

@@ -1,5 +1,7 @@
 #include "robot/actions/WipeSweep.h"
 
+#include "robot/world/SegmentCertificate.h"
+
 #include "robot/actions/SurfaceGeometry.h"
 
 #include <fmt/core.h>
@@ -83,23 +85,26 @@ ActionResult sweepSurface(world::World& w, const std::string& surface, const wor
   std::vector<Eigen::Vector2d> targets = strokeWaypoints(*face, s);
   targets.push_back(s);  // back to where the sweep began, i.e. the base back at `base`
 
+  // The duster is meant to touch the face it wipes, up to kSweepPenetration; nothing else may be touched.
   world::CollisionOptions contact = w.planning.collision;
-  contact.tolerance = std::max(contact.tolerance, kSweepPenetration);
+  world::ContactAllowance wiping;
+  wiping.geom = ws.scene().geomId(surface);
+  wiping.depth = kSweepPenetration;
+  contact.allowances.push_back(wiping);
   Eigen::Vector2d from = s;
   for (const Eigen::Vector2d& to : targets) {
-    const double length = (to - from).norm();
-    const int n = std::max(1, static_cast<int>(std::ceil(length / kSweepResolution)));
-    for (int i = 1; i <= n; ++i) {
-      const Eigen::Vector2d o = from + (to - from) * (static_cast<double>(i) / n) - s;
-      ws.setBase(world::Pose2{base.x + o.x(), base.y + o.y(), base.yaw});
-      const world::CollisionReport c = world::checkRobotCollisions(ws, contact);
-      if (!c.free()) {
-        ws.setState(saved);
-        return fail(ActionStatus::NoPath, fmt::format("the sweep over {} collides: {} ({}) with {}, {:.4f} m deep",
-                                                      surface, c.first, world::toString(c.status), c.second, c.depth));
-      }
+    const world::Pose2 a{base.x + (from - s).x(), base.y + (from - s).y(), base.yaw};
+    const world::Pose2 b{base.x + (to - s).x(), base.y + (to - s).y(), base.yaw};
+    const world::SegmentReport c = world::certifyBaseSegment(ws, a, b, contact);
+    if (!c.free()) {
+      ws.setState(saved);
+      return fail(ActionStatus::NoPath,
+                  fmt::format("the sweep over {} {}: {} ({}) with {}, {:.4f} m inside its separation", surface,
+                              world::toString(c.status), c.contact.first, world::toString(c.contact.status),
+                              c.contact.second, c.contact.depth));
     }
-    r.basePath.push_back(ws.state().base);
+    ws.setBase(b);
+    r.basePath.push_back(b);
     from = to;
   }
   ws.setBase(base);

@@ -10,9 +10,10 @@
 //      shorter side, each covering kStrokeCoverage of the length; boustrophedon order starting with the
 //      stroke and end nearest to the object's start position; the object's height never changes;
 //   3. the base translates by the same offsets as the object (yaw kept) and finally returns to `base`;
-//      every straight base segment is checked at kSweepResolution for collisions of the robot and the held
-//      object, tolerating kSweepPenetration of contact (the duster is meant to touch the surface, and the
-//      pre-wipe pose is only accurate to the CSP's 1 mm / 0.01 rad).
+//      every straight base segment is certified free along its whole length (world/SegmentCertificate.h) for
+//      the robot and the held object, which may touch the wiped face (and nothing else) up to kSweepPenetration
+//      deep (the duster is meant to touch the surface, and the pre-wipe pose is only accurate to the CSP's
+//      1 mm / 0.01 rad).
 // Failures (the world is left as it was): NotHolding; InvalidArgument (no box surface of that name);
 // OutOfReach (the held object is not on the surface); NoPath (base planning to `base`, or a sweep segment
 // collides: the detail names the geoms).
@@ -28,7 +29,6 @@ namespace cbtl::actions {
 
 inline constexpr double kStrokeSpacing = 0.15;      // metres between strokes (the duster head's length)
 inline constexpr double kStrokeCoverage = 0.8;      // share of the face length a stroke covers
-inline constexpr double kSweepResolution = 0.01;    // metres between collision checks along the base path
 inline constexpr double kSweepPenetration = 0.005;  // metres of contact tolerated during the sweep
 inline constexpr double kContactBelow = 0.01;       // the held object's bottom may be this far into the face...
 inline constexpr double kContactAbove = 0.03;       // ...or this far above it

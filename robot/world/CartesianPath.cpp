@@ -19,6 +19,7 @@ std::optional<std::vector<ArmConfig>> cartesianToolPath(Workspace& ws, const Pos
   IkOptions stepIk = ik;
   stepIk.maxAttempts = 1;  // from the previous configuration only: a restart would leave the line's branch
   stepIk.requireCollisionFree = true;
+  stepIk.collision = options.collision;
   const JointSpace space = armSpace(ws.scene());
   std::vector<ArmConfig> path{saved.arm};
   Rng unused(0);  // one attempt draws nothing
@@ -32,7 +33,7 @@ std::optional<std::vector<ArmConfig>> cartesianToolPath(Workspace& ws, const Pos
     ok = r.solved() &&
          linfDistance(space, Waypoint(previous.begin(), previous.end()), Waypoint(r.q.begin(), r.q.end())) <=
              options.maxJointStep &&
-         armSegmentFree(ws, previous, r.q, options.resolution, options.collision);
+         armSegmentFree(ws, previous, r.q, options.collision);
     if (ok) path.push_back(r.q);
   }
   ws.setState(saved);

@@ -8,8 +8,8 @@
 //
 // Contract: positions are interpolated linearly and orientations by slerp, in at most `maxStep` metres and
 // `maxAngle` radians per step (world frame). Each step's configuration is IK seeded at the previous one (one
-// attempt, no random restart, collision-free), must lie within `maxJointStep` radians (L∞) of it, and the
-// joint segment between the two is checked every `resolution` radians (L∞) with `collision`. The result
+// attempt, no random restart, collision-free with `collision`), must lie within `maxJointStep` radians (L∞) of
+// it, and the joint segment between the two must be certified free with `collision` (SegmentCertificate.h). The result
 // starts at the current configuration and ends at an IK solution of `target`; the Workspace is left in the
 // state it had. Deterministic: no random draws.
 #pragma once
@@ -26,7 +26,6 @@ struct CartesianPathOptions {
   double maxStep = 0.01;       // m of tool travel per step
   double maxAngle = 0.05;      // rad of tool rotation per step
   double maxJointStep = 0.25;  // rad (L∞) between consecutive configurations: larger is a branch jump
-  double resolution = 0.005;   // rad (L∞) between collision checks along each step
   int maxSteps = 500;          // a longer move takes larger steps (bounded work; the joint checks still hold)
   CollisionOptions collision;
 };

@@ -1,5 +1,7 @@
-// The only translation unit that includes FCL (slow to compile).
+// One of the two translation units that include FCL (slow to compile); GeomDistance.cpp is the other.
 #include "robot/world/Clearance.h"
+
+#include "robot/world/FclShapes.h"
 
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
@@ -67,32 +69,8 @@ ClearanceChecker::ClearanceChecker(std::shared_ptr<const Scene> scene) : impl_(s
     const BodyKind kind = impl_->scene->bodyKind(m->geom_bodyid[g]);
     if (kind == BodyKind::Robot || kind == BodyKind::Gripper) continue;
     if (m->geom_contype[g] == 0 && m->geom_conaffinity[g] == 0) continue;
-    const mjtNum* s = m->geom_size + 3 * g;
-    std::shared_ptr<fcl::CollisionGeometryd> shape;
-    switch (m->geom_type[g]) {
-      case mjGEOM_BOX:
-        shape = std::make_shared<fcl::Boxd>(2 * s[0], 2 * s[1], 2 * s[2]);
-        break;
-      case mjGEOM_SPHERE:
-        shape = std::make_shared<fcl::Sphered>(s[0]);
-        break;
-      case mjGEOM_CAPSULE:
-        shape = std::make_shared<fcl::Capsuled>(s[0], 2 * s[1]);
-        break;
-      case mjGEOM_CYLINDER:
-        shape = std::make_shared<fcl::Cylinderd>(s[0], 2 * s[1]);
-        break;
-      case mjGEOM_ELLIPSOID:
-        shape = std::make_shared<fcl::Ellipsoidd>(s[0], s[1], s[2]);
-        break;
-      case mjGEOM_PLANE:
-        shape = std::make_shared<fcl::Halfspaced>(Eigen::Vector3d::UnitZ(), 0.0);
-        break;
-      default:
-        break;  // meshes and height fields are not used by our scenes
-    }
+    std::shared_ptr<fcl::CollisionGeometryd> shape = fclShapeOf(m, g);
     if (!shape) continue;
-    shape->computeLocalAABB();
     impl_->shapes[static_cast<size_t>(g)] = shape;
     fcl::Transform3d t = fcl::Transform3d::Identity();
     t.translation() = Eigen::Vector3d(m->geom_pos[3 * g], m->geom_pos[3 * g + 1], m->geom_pos[3 * g + 2]);

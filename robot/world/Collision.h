@@ -1,17 +1,19 @@
 // Collision.h — collision checks of the robot (arm, gripper, mobile base, held object) against the world
-// and itself, using MuJoCo's collision detection at the Workspace's current state.
+// and itself at the Workspace's current state, with exact geometry (GeomDistance.h): contact is contact.
 //
-// A contact counts when its penetration is deeper than `tolerance` (metres). A geom's MJCF `margin` is a keep-out
-// distance: the robot (or what it holds) closer to it than the margin counts as penetrating by the difference (the
-// feeding scene keeps the robot 2 cm from the user's head this way); geoms without a margin count only when they
-// touch. Contacts between the held
-// object and the gripper (end_effector_link and fingers) are ignored, as are contacts that involve no
-// robot body and no held object (an object resting on a table is not the robot's concern).
+// Each checked pair must keep a separation: a geom's MJCF `margin`, or a <contact><pair> margin, is a keep-out
+// distance (the feeding scene keeps the robot 2 cm from the user's head this way); without one the pair only must
+// not touch (a separation of 0 — touching counts). A ContactAllowance, declared by the action that needs it, lets a
+// part of the robot touch one body or geom up to a bounded depth instead (the held object resting on the surface
+// it is placed on, the duster on the surface it wipes). Contacts between the held object and the gripper
+// (end_effector_link and fingers) are not checked (the grasp is the gripper's business), nor are contacts that
+// involve no robot body and no held object (an object resting on a table is not the robot's concern).
 #pragma once
 
 #include "robot/world/Workspace.h"
 
 #include <string>
+#include <vector>
 
 namespace cbtl::world {
 
@@ -27,22 +29,25 @@ const char* toString(CollisionStatus s);
 struct CollisionReport {
   CollisionStatus status = CollisionStatus::Free;
   std::string first, second;  // geom names of the first counted contact (empty when Free)
-  double depth = 0.0;         // its penetration depth, metres (positive)
+  double depth =
+      0.0;  // how far inside the pair's required separation, metres (positive; penetration when 0 is required)
   bool free() const { return status == CollisionStatus::Free; }
 };
 
-enum class CollisionMethod {
-  // Only the geom pairs that can involve the robot or the held object (precomputed by the Scene with
-  // MuJoCo's filters), a bounding-sphere test, then MuJoCo's narrow-phase functions. Several times faster
-  // than a full mj_collision because static-static and object-scenery pairs are never visited.
-  RobotPairs,
-  // MuJoCo's full mj_collision over the whole scene, contacts classified afterwards (the reference).
-  FullScene,
+// An exception to "contact is contact", declared by an action: `part` may touch the geom `geom` (or any geom of
+// body `body`, when geom is -1) and sink into it by at most `depth` metres.
+struct ContactAllowance {
+  enum class Part : unsigned char { HeldObject, Gripper };
+  Part part = Part::HeldObject;
+  int geom = -1;
+  int body = -1;
+  double depth = 0.0;  // metres, >= 0
+  bool operator==(const ContactAllowance&) const = default;
 };
 
 struct CollisionOptions {
-  double tolerance = 1e-4;  // penetration depth below which contacts are ignored
-  CollisionMethod method = CollisionMethod::RobotPairs;
+  std::vector<ContactAllowance> allowances;
+  bool operator==(const CollisionOptions&) const = default;
 };
 
 // Checks the current state of `ws`.

@@ -106,7 +106,7 @@ IkResult solveIk(Workspace& ws, const Pose3& target, const ArmConfig& seed, Rng&
       }
       if (err.pos <= o.positionTolerance && err.rot <= o.rotationTolerance) {
         if (o.requireCollisionFree) {
-          const CollisionReport rep = checkRobotCollisions(ws);
+          const CollisionReport rep = checkRobotCollisions(ws, o.collision);
           if (!rep.free()) {
             anyConverged = true;
             result.q = q;

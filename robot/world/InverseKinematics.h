@@ -34,7 +34,8 @@ struct IkOptions {
   double nullspaceGain = 0.05;         // k; 0 disables the posture term
   ArmConfig rest = configs::kRetract;  // posture the null-space term pulls toward
   bool requireCollisionFree = true;
-  int site = -1;  // -1: the tool_frame site
+  CollisionOptions collision;  // what collision-free means (the contacts an action allows)
+  int site = -1;               // -1: the tool_frame site
 };
 
 struct IkResult {

@@ -30,37 +30,16 @@ Waypoint interpolate(const JointSpace& space, const Waypoint& a, const Waypoint&
   return r;
 }
 
-bool segmentValid(const JointSpace& space, const Waypoint& a, const Waypoint& b, double resolution,
-                  const ValidityFn& valid, long* checks) {
-  const double dist = linfDistance(space, a, b);
-  const long n = std::max(1L, static_cast<long>(std::ceil(dist / resolution)));
-  long count = 1;
-  bool ok = valid(b);
-  // Interior states k/n for k = 1..n-1, grouped by the lowest set bit of k, largest first: a coarse
-  // pass over the whole segment before finer ones.
-  long top = 1;
-  while (top * 2 < n) top *= 2;
-  for (long step = top; ok && step >= 1; step /= 2) {
-    for (long k = step; ok && k < n; k += 2 * step) {
-      ok = valid(interpolate(space, a, b, static_cast<double>(k) / static_cast<double>(n)));
-      ++count;
-    }
-  }
-  if (checks) *checks += count;
-  return ok;
-}
-
 namespace {
 
-void greedyPass(const JointSpace& space, std::vector<Waypoint>& path, double resolution, const ValidityFn& valid,
-                long* checks) {
+void greedyPass(std::vector<Waypoint>& path, const SegmentFn& free) {
   if (path.size() < 3) return;
   std::vector<Waypoint> out{path.front()};
   std::size_t i = 0;
   while (i + 1 < path.size()) {
     // The farthest waypoint reachable directly from path[i]; path[i+1] always is.
     std::size_t j = path.size() - 1;
-    while (j > i + 1 && !segmentValid(space, path[i], path[j], resolution, valid, checks)) --j;
+    while (j > i + 1 && !free(path[i], path[j])) --j;
     out.push_back(path[j]);
     i = j;
   }
@@ -74,9 +53,8 @@ Waypoint pointOn(const JointSpace& space, const std::vector<Waypoint>& path, std
 
 }  // namespace
 
-void shortcutPath(const JointSpace& space, std::vector<Waypoint>& path, double resolution, const ValidityFn& valid,
-                  int attempts, Rng& rng, long* checks) {
-  greedyPass(space, path, resolution, valid, checks);
+void shortcutPath(const JointSpace& space, std::vector<Waypoint>& path, const SegmentFn& free, int attempts, Rng& rng) {
+  greedyPass(path, free);
   for (int a = 0; a < attempts && path.size() >= 2; ++a) {
     const std::size_t segments = path.size() - 1;
     std::size_t s1 = rng.index(segments), s2 = rng.index(segments);
@@ -90,15 +68,14 @@ void shortcutPath(const JointSpace& space, std::vector<Waypoint>& path, double r
     double before = l1Distance(space, p1, path[s1 + 1]) + l1Distance(space, path[s2], p2);
     for (std::size_t k = s1 + 1; k < s2; ++k) before += l1Distance(space, path[k], path[k + 1]);
     if (l1Distance(space, p1, p2) >= before - 1e-9) continue;
-    // p1 is valid because it lies on a checked segment; check p1 -> p2 at full resolution.
-    if (!segmentValid(space, p1, p2, resolution, valid, checks)) continue;
+    if (!free(p1, p2)) continue;
     std::vector<Waypoint> out(path.begin(), path.begin() + static_cast<std::ptrdiff_t>(s1) + 1);
     out.push_back(p1);
     out.push_back(p2);
     out.insert(out.end(), path.begin() + static_cast<std::ptrdiff_t>(s2) + 1, path.end());
     path = std::move(out);
   }
-  greedyPass(space, path, resolution, valid, checks);
+  greedyPass(path, free);
 }
 
 }  // namespace cbtl::world

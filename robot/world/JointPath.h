@@ -1,9 +1,9 @@
 // JointPath.h — paths in a joint space whose coordinates are either bounded reals or angles (circular,
-// wrapped to [-pi, pi)): interpolation, fine-resolution segment checking and shortcutting.
+// wrapped to [-pi, pi)): distances, interpolation and shortcutting.
 //
-// Distances between waypoints are L∞ (the largest per-coordinate change, angles taken the short way
-// round), so a `resolution` of 0.005 means no coordinate moves more than 0.005 (rad or m) between two
-// checked states. Validity callbacks are called from the caller's thread only.
+// Segments are straight lines in the space (angles taken the short way round); whether one is free is the
+// caller's SegmentFn (the planners certify it whole: SegmentCertificate.h). Callbacks are called from the
+// caller's thread only.
 #pragma once
 
 #include "robot/world/Pose.h"
@@ -15,6 +15,8 @@ namespace cbtl::world {
 
 using Waypoint = std::vector<double>;
 using ValidityFn = std::function<bool(const Waypoint&)>;
+// Whether the straight segment a→b is free (both ends included).
+using SegmentFn = std::function<bool(const Waypoint&, const Waypoint&)>;
 
 struct JointSpace {
   std::vector<bool> circular;  // per coordinate
@@ -26,15 +28,9 @@ double linfDistance(const JointSpace& space, const Waypoint& a, const Waypoint& 
 double l1Distance(const JointSpace& space, const Waypoint& a, const Waypoint& b);
 Waypoint interpolate(const JointSpace& space, const Waypoint& a, const Waypoint& b, double t);
 
-// Checks b and every interior state of the segment a→b at spacing <= resolution, coarse-to-fine
-// (bisection order) so that blocked segments fail early. `a` is assumed valid. Adds to *checks.
-bool segmentValid(const JointSpace& space, const Waypoint& a, const Waypoint& b, double resolution,
-                  const ValidityFn& valid, long* checks = nullptr);
-
 // Shortens a valid path in place: a greedy pass that skips waypoints whose neighbours connect directly,
 // then `attempts` random shortcuts between points on the path (drawn from rng), then a final greedy pass.
-// Every accepted shortcut is checked with segmentValid at `resolution`, so the result stays valid.
-void shortcutPath(const JointSpace& space, std::vector<Waypoint>& path, double resolution, const ValidityFn& valid,
-                  int attempts, Rng& rng, long* checks = nullptr);
+// Every accepted shortcut is a segment `free` accepted, so the result stays valid.
+void shortcutPath(const JointSpace& space, std::vector<Waypoint>& path, const SegmentFn& free, int attempts, Rng& rng);
 
 }  // namespace cbtl::world

@@ -1,6 +1,8 @@
 // The only translation unit that includes OMPL (slow to compile).
 #include "robot/world/MotionPlanner.h"
 
+#include "robot/world/SegmentCertificate.h"
+
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/ProblemDefinition.h>
@@ -122,75 +124,54 @@ class SeededSampler : public ob::StateSampler {
   Rng rng_;
 };
 
-// Edge checking at a fixed L∞ resolution, coarse-to-fine (JointPath.h).
-class FineMotionValidator : public ob::MotionValidator {
+// Edges are accepted only when certified whole (SegmentCertificate.h through the planner's SegmentFn).
+class CertifiedMotionValidator : public ob::MotionValidator {
  public:
-  FineMotionValidator(const ob::SpaceInformationPtr& si, std::vector<Dim> dims, JointSpace space, double resolution,
-                      ValidityFn valid, long* checks)
-      : ob::MotionValidator(si),
-        dims_(std::move(dims)),
-        space_(std::move(space)),
-        resolution_(resolution),
-        valid_fn_(std::move(valid)),
-        checks_(checks) {}
+  CertifiedMotionValidator(const ob::SpaceInformationPtr& si, std::vector<Dim> dims, SegmentFn free)
+      : ob::MotionValidator(si), dims_(std::move(dims)), free_(std::move(free)) {}
 
   bool checkMotion(const ob::State* s1, const ob::State* s2) const override {
-    const bool ok = segmentValid(space_, toWaypoint(dims_, s1), toWaypoint(dims_, s2), resolution_, valid_fn_, checks_);
+    const bool ok = free_(toWaypoint(dims_, s1), toWaypoint(dims_, s2));
     (ok ? valid_ : invalid_)++;
     return ok;
   }
 
+  // Planners that want the last valid state of a blocked edge get its start: certification proves a whole
+  // segment, not where a blocked one stops being free (RRTConnect never asks).
   bool checkMotion(const ob::State* s1, const ob::State* s2, std::pair<ob::State*, double>& lastValid) const override {
-    const Waypoint a = toWaypoint(dims_, s1), b = toWaypoint(dims_, s2);
-    const long n = std::max(1L, static_cast<long>(std::ceil(linfDistance(space_, a, b) / resolution_)));
-    for (long k = 1; k <= n; ++k) {
-      const double t = static_cast<double>(k) / static_cast<double>(n);
-      ++*checks_;
-      if (!valid_fn_(interpolate(space_, a, b, t))) {
-        const double good = static_cast<double>(k - 1) / static_cast<double>(n);
-        if (lastValid.first) fromWaypoint(dims_, interpolate(space_, a, b, good), lastValid.first);
-        lastValid.second = good;
-        invalid_++;
-        return false;
-      }
-    }
-    valid_++;
-    return true;
+    if (checkMotion(s1, s2)) return true;
+    if (lastValid.first) si_->copyState(lastValid.first, s1);
+    lastValid.second = 0.0;
+    return false;
   }
 
  private:
   std::vector<Dim> dims_;
-  JointSpace space_;
-  double resolution_;
-  ValidityFn valid_fn_;
-  long* checks_;
+  SegmentFn free_;
 };
 
 struct GenericResult {
   PlanStatus status = PlanStatus::BudgetExhausted;
   std::vector<Waypoint> path;
   int iterations = 0;
-  long checks = 0;
 };
 
-GenericResult planGeneric(const std::vector<Dim>& dims, const ValidityFn& valid, const Waypoint& start,
-                          const Waypoint& goal, Rng& rng, const PlanOptions& o) {
+GenericResult planGeneric(const std::vector<Dim>& dims, const ValidityFn& valid, const SegmentFn& free,
+                          const Waypoint& start, const Waypoint& goal, Rng& rng, const PlanOptions& o) {
   initialiseOmpl();
   GenericResult result;
   JointSpace js;
   for (const Dim& d : dims) js.circular.push_back(d.circular);
-  ++result.checks;
   if (!valid(start)) {
     result.status = PlanStatus::InvalidStart;
     return result;
   }
-  ++result.checks;
   if (!valid(goal)) {
     result.status = PlanStatus::InvalidGoal;
     return result;
   }
   // Try the straight segment first: in open space it is the whole answer.
-  if (o.tryDirectFirst && segmentValid(js, start, goal, o.resolution, valid, &result.checks)) {
+  if (o.tryDirectFirst && free(start, goal)) {
     result.status = PlanStatus::Solved;
     result.path = {start, goal};
     return result;
@@ -202,11 +183,8 @@ GenericResult planGeneric(const std::vector<Dim>& dims, const ValidityFn& valid,
     return std::make_shared<SeededSampler>(s, dims, samplerSeed);
   });
   auto si = std::make_shared<ob::SpaceInformation>(space);
-  si->setStateValidityChecker([&dims, &valid, &result](const ob::State* s) {
-    ++result.checks;
-    return valid(toWaypoint(dims, s));
-  });
-  si->setMotionValidator(std::make_shared<FineMotionValidator>(si, dims, js, o.resolution, valid, &result.checks));
+  si->setStateValidityChecker([&dims, &valid](const ob::State* s) { return valid(toWaypoint(dims, s)); });
+  si->setMotionValidator(std::make_shared<CertifiedMotionValidator>(si, dims, free));
   si->setup();
 
   ob::ScopedState<> s(space), g(space);
@@ -231,7 +209,7 @@ GenericResult planGeneric(const std::vector<Dim>& dims, const ValidityFn& valid,
   // OMPL's wrapped SO(2) values can differ from the caller's by 2π; keep the caller's exact endpoints.
   result.path.front() = start;
   result.path.back() = goal;
-  shortcutPath(js, result.path, o.resolution, valid, o.shortcutAttempts, rng, &result.checks);
+  shortcutPath(js, result.path, free, o.shortcutAttempts, rng);
   result.status = PlanStatus::Solved;
   return result;
 }
@@ -257,28 +235,32 @@ JointSpace armSpace(const Scene& scene) {
   return js;
 }
 
-bool armSegmentFree(Workspace& ws, const ArmConfig& a, const ArmConfig& b, double resolution,
-                    const CollisionOptions& options) {
+bool armSegmentFree(Workspace& ws, const ArmConfig& a, const ArmConfig& b, const CollisionOptions& options,
+                    long* states) {
   const Scene& s = ws.scene();
-  const ValidityFn valid = [&](const Waypoint& w) {
-    const ArmConfig q = toArm(w);
-    return s.withinLimits(q) && checkArm(ws, q, options).free();
-  };
-  return valid(toWp(a)) && segmentValid(armSpace(s), toWp(a), toWp(b), resolution, valid);
+  if (!s.withinLimits(a) || !s.withinLimits(b)) return false;
+  const SegmentReport r = certifyArmSegment(ws, a, b, options);
+  if (states) *states += r.states;
+  return r.free();
 }
 
 ArmPlan planArm(Workspace& ws, const ArmConfig& start, const ArmConfig& goal, Rng& rng, const PlanOptions& o) {
   const Scene& s = ws.scene();
+  long checks = 0;
   const ValidityFn valid = [&](const Waypoint& w) {
     const ArmConfig q = toArm(w);
+    ++checks;
     return s.withinLimits(q) && checkArm(ws, q, o.collision).free();
   };
-  GenericResult r = planGeneric(armDims(s), valid, toWp(start), toWp(goal), rng, o);
+  const SegmentFn free = [&](const Waypoint& a, const Waypoint& b) {
+    return armSegmentFree(ws, toArm(a), toArm(b), o.collision, &checks);
+  };
+  GenericResult r = planGeneric(armDims(s), valid, free, toWp(start), toWp(goal), rng, o);
   ws.setArm(start);
   ArmPlan plan;
   plan.status = r.status;
   plan.iterations = r.iterations;
-  plan.validityChecks = r.checks;
+  plan.validityChecks = checks;
   const JointSpace js = armSpace(s);
   for (std::size_t i = 0; i < r.path.size(); ++i) {
     plan.path.push_back(toArm(r.path[i]));
@@ -302,16 +284,26 @@ BasePlan planBase(Workspace& ws, const Pose2& goal, Rng& rng, const PlanOptions&
     b[3] = std::max(start.y, goal.y) + 0.5;
   }
   const std::vector<Dim> dims{{false, b[0], b[1]}, {false, b[2], b[3]}, {true, -std::numbers::pi, std::numbers::pi}};
+  auto inBounds = [&](const Waypoint& w) { return w[0] >= b[0] && w[0] <= b[1] && w[1] >= b[2] && w[1] <= b[3]; };
+  long checks = 0;
   const ValidityFn valid = [&](const Waypoint& w) {
-    if (w[0] < b[0] || w[0] > b[1] || w[1] < b[2] || w[1] > b[3]) return false;
+    ++checks;
+    if (!inBounds(w)) return false;
     ws.setBase({w[0], w[1], w[2]});
     return checkRobotCollisions(ws, o.collision).free();
   };
-  GenericResult r = planGeneric(dims, valid, {start.x, start.y, start.yaw}, {goal.x, goal.y, goal.yaw}, rng, o);
+  // The bounds are a box, so a segment between two in-bounds ends stays in bounds.
+  const SegmentFn free = [&](const Waypoint& a, const Waypoint& e) {
+    if (!inBounds(a) || !inBounds(e)) return false;
+    const SegmentReport r = certifyBaseSegment(ws, {a[0], a[1], a[2]}, {e[0], e[1], e[2]}, o.collision);
+    checks += r.states;
+    return r.free();
+  };
+  GenericResult r = planGeneric(dims, valid, free, {start.x, start.y, start.yaw}, {goal.x, goal.y, goal.yaw}, rng, o);
   ws.setBase(start);
   plan.status = r.status;
   plan.iterations = r.iterations;
-  plan.validityChecks = r.checks;
+  plan.validityChecks = checks;
   for (const auto& w : r.path) plan.path.push_back({w[0], w[1], w[2]});
   return plan;
 }

@@ -3,9 +3,9 @@
 //
 // Spaces: the arm space is SO(2) for the continuous joints 1, 3, 5, 7 and bounded R for joints 2, 4, 6; the
 // base space is R x R x SO(2) (x, y in metres within `baseBounds`, yaw) with the arm held at its current
-// joints. Every edge, including shortcuts, is checked at `resolution` (L∞: rad for joints, m/rad for the
-// base). States are valid when the robot (and held object) is collision-free (Collision.h) and joints are
-// within limits.
+// joints. States are valid when the robot (and held object) is collision-free (Collision.h) and joints are
+// within limits; edges, the straight segment tried first and every shortcut are accepted only when certified
+// free along their whole length (SegmentCertificate.h), so a plan's path is free between its waypoints too.
 // Determinism: a plan depends only on its inputs and the state of the Rng passed in, never on what the
 // process planned before. Every random choice comes from that Rng: each planning call draws one word from it
 // to seed the state sampler that replaces OMPL's (all sampler instances of one call share that seed; uniform,
@@ -41,7 +41,6 @@ const char* toString(PlanStatus s);
 
 struct PlanOptions {
   int maxIterations = 20000;   // RRTConnect iterations
-  double resolution = 0.005;   // L∞ spacing of validity checks along every edge
   int shortcutAttempts = 60;   // random shortcuts after planning (0: greedy vertex pruning only)
   double range = 0.0;          // RRTConnect step (L1 over coordinates); 0: OMPL's default
   bool tryDirectFirst = true;  // check the straight segment before running RRTConnect
@@ -55,8 +54,8 @@ struct ArmPlan {
   PlanStatus status = PlanStatus::BudgetExhausted;
   std::vector<ArmConfig> path;  // start ... goal (vertices; consecutive ones connect by interpolation)
   int iterations = 0;           // RRTConnect iterations (0 when the straight segment was free)
-  long validityChecks = 0;
-  double length = 0.0;  // sum of |Δq| over joints and segments, rad
+  long validityChecks = 0;      // states checked (sampled states and the states certification evaluated)
+  double length = 0.0;          // sum of |Δq| over joints and segments, rad
   bool solved() const { return status == PlanStatus::Solved; }
 };
 
@@ -79,9 +78,9 @@ BasePlan planBase(Workspace& ws, const Pose2& goal, Rng& rng, const PlanOptions&
 
 // The joint space of the arm (continuous joints circular).
 JointSpace armSpace(const Scene& scene);
-// Whether the straight joint-space segment a→b is collision-free at `resolution` (rad, L∞), endpoints
-// included. Leaves the arm at an unspecified configuration of the segment.
-bool armSegmentFree(Workspace& ws, const ArmConfig& a, const ArmConfig& b, double resolution,
-                    const CollisionOptions& options = {});
+// Whether the straight joint-space segment a→b is within limits and certified free (SegmentCertificate.h), ends
+// included. Adds the states it evaluated to *states. Leaves the arm at an unspecified configuration of the segment.
+bool armSegmentFree(Workspace& ws, const ArmConfig& a, const ArmConfig& b, const CollisionOptions& options = {},
+                    long* states = nullptr);
 
 }  // namespace cbtl::world

@@ -30,8 +30,10 @@ std::vector<double> stateKey(const Workspace& ws, MotionKind kind, const PlanOpt
     if (it != s.objects.end()) appendPose(k, it->second);
   }
   for (const auto& [name, pose] : s.fixtures) appendPose(k, pose);
-  k.insert(k.end(), {o.resolution, static_cast<double>(o.shortcutAttempts), o.range, o.tryDirectFirst ? 1.0 : 0.0,
-                     o.collision.tolerance, static_cast<double>(o.collision.method)});
+  k.insert(k.end(), {static_cast<double>(o.shortcutAttempts), o.range, o.tryDirectFirst ? 1.0 : 0.0});
+  k.push_back(static_cast<double>(o.collision.allowances.size()));
+  for (const ContactAllowance& a : o.collision.allowances)
+    k.insert(k.end(), {static_cast<double>(a.part), static_cast<double>(a.geom), static_cast<double>(a.body), a.depth});
   k.insert(k.end(), std::begin(o.baseBounds), std::end(o.baseBounds));
   return k;
 }

@@ -9,8 +9,8 @@
 //
 // The key is every input of the plan, as the exact bits of its doubles: the kind (arm or base), the start (arm
 // joints and base pose), the goal, the gripper opening, the held object and its grasp, every movable object's
-// and every fixture's pose, and the options that shape the result (resolution, shortcut attempts, RRTConnect range,
-// direct-segment first, collision tolerance and method, base bounds). The iteration budget is *not* in the key: with
+// and every fixture's pose, and the options that shape the result (shortcut attempts, RRTConnect range,
+// direct-segment first, the contact allowances, base bounds). The iteration budget is *not* in the key: with
 // the random stream fixed by the key, RRTConnect explores the same tree whatever its budget, so a plan found at
 // iteration k is found by every budget >= k, and a failure with budget B answers every budget <= B. An entry
 // records which budget it was computed with, and a lookup with a larger budget than a failed entry's plans

@@ -4,8 +4,8 @@
 // the MJCF margin or <pair> margin the collision checks apply). For safety reports (Feeding: the clearance to the
 // user per bite), not for planning: planners and IK keep out through those margins (Collision.h).
 //
-// Computed with MuJoCo's narrow-phase functions called with the cap as margin, so pairs farther apart than the
-// cap are not measured. Units: metres.
+// Measured exactly (GeomDistance.h, never above the true distance); pairs farther apart than the cap are not
+// measured. Units: metres.
 #pragma once
 
 #include "robot/world/Workspace.h"

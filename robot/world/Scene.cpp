@@ -1,11 +1,14 @@
 #include "robot/world/Scene.h"
 
+#include "robot/world/GeomDistance.h"
+#include "robot/world/MotionBound.h"
 #include "robot/world/MotionQuery.h"
 #include "robot/world/MujocoErrors.h"
 
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -48,7 +51,10 @@ SceneLoadResult Scene::loadFile(const std::string& path) {
   return {LoadStatus::Ok, {}, std::move(scene)};
 }
 
-Scene::Scene(mjModel* m) : model_(m), motionCache_(std::make_unique<MotionCache>()) {}
+Scene::Scene(mjModel* m) : model_(m), motionCache_(std::make_unique<MotionCache>()) {
+  static std::atomic<std::uint64_t> next{1};
+  serial_ = next.fetch_add(1);
+}
 
 Scene::~Scene() { mj_deleteModel(model_); }
 
@@ -125,6 +131,13 @@ std::string Scene::initialise() {
     if (m->body_mocapid[b] >= 0) fixtures_.push_back({bodyName(b), b, m->body_mocapid[b]});
   for (const ObjectInfo& o : objects_) objectSubtrees_.emplace_back(m, o.body);
   buildPairs();
+  endEffector_ = ee;
+  geomDistance_ = std::make_unique<GeomDistance>(m);
+  std::vector<bool> robotBody(static_cast<size_t>(m->nbody), false);
+  for (int b = 0; b < m->nbody; ++b)
+    robotBody[static_cast<size_t>(b)] =
+        kinds_[static_cast<size_t>(b)] == BodyKind::Robot || kinds_[static_cast<size_t>(b)] == BodyKind::Gripper;
+  motionBound_ = std::make_unique<MotionBound>(m, robotBody);
   return {};
 }
 

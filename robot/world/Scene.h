@@ -16,6 +16,7 @@
 #include <mujoco/mujoco.h>
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -34,6 +35,8 @@ enum class LoadStatus {
 
 class Scene;
 class MotionCache;
+class GeomDistance;
+class MotionBound;
 
 struct SceneLoadResult {
   LoadStatus status = LoadStatus::ParseError;
@@ -138,6 +141,15 @@ class Scene {
   // Scene: shared, locked, and transparent (a cached answer equals a fresh one).
   MotionCache& motionCache() const { return *motionCache_; }
 
+  // Exact distances between the scene's geoms (GeomDistance.h) and the speed bounds of the robot's joints
+  // (MotionBound.h): what the collision checks and certified segments measure with.
+  const GeomDistance& geomDistance() const { return *geomDistance_; }
+  const MotionBound& motionBound() const { return *motionBound_; }
+  // The body whose frame the held object follows (end_effector_link).
+  int endEffectorBody() const { return endEffector_; }
+  // A number no other Scene of this process has (per-thread caches key on it; addresses can be reused).
+  std::uint64_t serial() const { return serial_; }
+
  private:
   void buildPairs();
   bool mujocoWouldCollide(int g1, int g2) const;
@@ -165,6 +177,10 @@ class Scene {
   KinematicSubtree armSubtree_, baseSubtree_;
   std::vector<KinematicSubtree> objectSubtrees_;
   std::unique_ptr<MotionCache> motionCache_;
+  std::unique_ptr<const GeomDistance> geomDistance_;
+  std::unique_ptr<const MotionBound> motionBound_;
+  int endEffector_ = -1;
+  std::uint64_t serial_ = 0;
 };
 
 }  // namespace cbtl::world

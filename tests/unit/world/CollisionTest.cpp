@@ -55,7 +55,7 @@ TEST(WorldCollision, HeldObjectIsChecked) {
 // feeding.xml gives the fork a 5 mm keep-out distance from the head with a <pair>, where the head's own margin keeps
 // everything else 2 cm away. The utensil is held (robot at home, far from the user) with its fork tip `gap` metres
 // from the head sphere, the fork pointing away from the head.
-CollisionReport forkNearHead(double gap, CollisionMethod method) {
+CollisionReport forkNearHead(double gap) {
   Workspace ws(test::feedingScene());
   ws.setArm(configs::kHome);
   const Eigen::Vector3d head = ws.bodyPose(ws.scene().bodyId("user_head")).position;
@@ -65,20 +65,16 @@ CollisionReport forkNearHead(double gap, CollisionMethod method) {
   const Eigen::Vector3d tip = head + Eigen::Vector3d(headRadius + forkRadius + gap, 0, 0);
   EXPECT_EQ(ws.setObjectPose("utensil", Pose3{tip - yawPi * tipLocal, yawPi}), StateStatus::Ok);
   EXPECT_EQ(ws.setHeld(std::string("utensil")), StateStatus::Ok);
-  CollisionOptions o;
-  o.method = method;
-  return checkRobotCollisions(ws, o);
+  return checkRobotCollisions(ws);
 }
 
 TEST(WorldCollision, PairMarginGivesTheForkItsOwnKeepOutDistance) {
-  for (const auto method : {CollisionMethod::RobotPairs, CollisionMethod::FullScene}) {
-    EXPECT_TRUE(forkNearHead(0.008, method).free()) << forkNearHead(0.008, method).second;
-    const auto close = forkNearHead(0.003, method);
-    EXPECT_EQ(close.status, CollisionStatus::HeldObject);
-    EXPECT_EQ(std::minmax(close.first, close.second),
-              std::minmax(std::string("utensil_fork"), std::string("user_head_geom")));
-    EXPECT_NEAR(close.depth, 0.002, 2e-4);
-  }
+  EXPECT_TRUE(forkNearHead(0.008).free()) << forkNearHead(0.008).second;
+  const auto close = forkNearHead(0.003);
+  EXPECT_EQ(close.status, CollisionStatus::HeldObject);
+  EXPECT_EQ(std::minmax(close.first, close.second),
+            std::minmax(std::string("utensil_fork"), std::string("user_head_geom")));
+  EXPECT_NEAR(close.depth, 0.002, 2e-4);
 }
 
 TEST(WorldCollision, MobileBaseIntoShelfCollides) {
@@ -90,62 +86,6 @@ TEST(WorldCollision, MobileBaseIntoShelfCollides) {
   st.base = {0.0, 0.62, 0.0};
   ASSERT_EQ(ws.setState(st), StateStatus::Ok);
   EXPECT_EQ(checkRobotCollisions(ws).status, CollisionStatus::RobotWorld);
-}
-
-// The fast pair-list check agrees with MuJoCo's full collision pass on random states, with and without a
-// held object, in both scenes.
-void expectMethodsAgree(Workspace& ws, Rng& rng, int n) {
-  CollisionOptions full;
-  full.method = CollisionMethod::FullScene;
-  int colliding = 0;
-  for (int i = 0; i < n; ++i) {
-    const ArmConfig q = randomConfig(ws.scene(), rng);
-    const auto fast = checkArm(ws, q);
-    const auto ref = checkArm(ws, q, full);
-    ASSERT_EQ(fast.free(), ref.free()) << "config " << i << ": " << toString(ref.status) << " " << ref.first << "/"
-                                       << ref.second << " vs " << toString(fast.status);
-    colliding += ref.free() ? 0 : 1;
-  }
-  EXPECT_GT(colliding, 0);
-  EXPECT_LT(colliding, n);
-}
-
-TEST(WorldCollision, FastCheckAgreesWithFullScenePass) {
-  Rng rng(12);
-  Workspace feeding(test::feedingScene());
-  expectMethodsAgree(feeding, rng, 1500);
-  feeding.setArm(configs::kHome);
-  ASSERT_EQ(feeding.setObjectPose("drink", feeding.toolPose() * Pose3::fromPosition({0, 0, 0.05})), StateStatus::Ok);
-  ASSERT_EQ(feeding.setHeld(std::string("drink")), StateStatus::Ok);
-  expectMethodsAgree(feeding, rng, 1500);
-  // Holding the utensil: its fork and arm use the explicit <pair> margins near the head.
-  ASSERT_EQ(feeding.setHeld(std::nullopt), StateStatus::Ok);
-  ASSERT_EQ(feeding.setObjectPose("utensil", feeding.toolPose() * Pose3::fromPosition({0, 0, 0.06})), StateStatus::Ok);
-  ASSERT_EQ(feeding.setHeld(std::string("utensil")), StateStatus::Ok);
-  expectMethodsAgree(feeding, rng, 1500);
-  Workspace home(test::homeScene());
-  WorldState st;
-  st.base = {0.0, -0.1, 0.0};
-  ASSERT_EQ(home.setState(st), StateStatus::Ok);
-  expectMethodsAgree(home, rng, 1500);
-  // In front of the bookshelf, holding a book (the broad phase must keep the held object's neighbours).
-  st.base = {0.0, 0.3, 1.5708};
-  ASSERT_EQ(home.setState(st), StateStatus::Ok);
-  expectMethodsAgree(home, rng, 1500);
-  home.setArm(configs::kHome);
-  ASSERT_EQ(home.setObjectPose("book_4", home.toolPose() * Pose3::fromPosition({0, 0, 0.06})), StateStatus::Ok);
-  ASSERT_EQ(home.setHeld(std::string("book_4")), StateStatus::Ok);
-  expectMethodsAgree(home, rng, 1500);
-}
-
-TEST(WorldCollision, UnknownObjectInStateIsRejected) {
-  Workspace ws(test::feedingScene());
-  WorldState st;
-  st.objects["teapot"] = Pose3{};
-  EXPECT_EQ(ws.setState(st), StateStatus::UnknownObject);
-  WorldState limits;
-  limits.arm = {0, 3.0, 0, 0, 0, 0, 0};
-  EXPECT_EQ(ws.setState(limits), StateStatus::OutOfLimits);
 }
 
 }  // namespace

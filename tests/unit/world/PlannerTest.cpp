@@ -1,5 +1,5 @@
-// Motion planning: solved paths are re-checked at a finer resolution than the planner used; statuses for
-// invalid endpoints; the SE(2) base planner; determinism.
+// Motion planning: solved paths are re-checked densely with exact state checks (an independent look at what the
+// certificates proved); statuses for invalid endpoints; the SE(2) base planner; determinism.
 #include "robot/world/InverseKinematics.h"
 #include "robot/world/JointPath.h"
 #include "robot/world/MotionPlanner.h"
@@ -50,7 +50,7 @@ std::pair<ArmConfig, ArmConfig> blockedPair(Workspace& ws, Rng& rng) {
     while (!checkArm(ws, a).free());
     do b = randomConfig(ws.scene(), rng);
     while (!checkArm(ws, b).free());
-  } while (armSegmentFree(ws, a, b, 0.005));
+  } while (armSegmentFree(ws, a, b));
   return {a, b};
 }
 

@@ -1,0 +1,358 @@
+// One of the two translation units that include FCL (slow to compile); Clearance.cpp is the other.
+#include "robot/world/GeomDistance.h"
+
+#include "robot/world/FclShapes.h"
+
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+#include <vector>
+
+namespace cbtl::world {
+
+namespace {
+
+double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// Segment endpoints of a sphere (both at the centre) or a capsule (the centre ± half-length along the geom's z).
+void axisEnds(const mjModel* m, const mjData* d, int g, double* a, double* b) {
+  const double* c = d->geom_xpos + 3 * g;
+  const double* r = d->geom_xmat + 9 * g;
+  const double h = m->geom_type[g] == mjGEOM_CAPSULE ? m->geom_size[3 * g + 1] : 0.0;
+  for (int k = 0; k < 3; ++k) {
+    a[k] = c[k] + h * r[3 * k + 2];
+    b[k] = c[k] - h * r[3 * k + 2];
+  }
+}
+
+bool roundShape(int type) { return type == mjGEOM_SPHERE || type == mjGEOM_CAPSULE; }
+
+fcl::Transform3d worldTransform(const mjData* d, int g) {
+  fcl::Transform3d t = fcl::Transform3d::Identity();
+  const double* r = d->geom_xmat + 9 * g;
+  Eigen::Matrix3d rot;
+  rot << r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8];
+  t.linear() = rot;
+  t.translation() = Eigen::Vector3d(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]);
+  return t;
+}
+
+}  // namespace
+
+namespace {
+
+// Parameters s, t in [0, 1] of the nearest points of segments [p0, p1] and [q0, q1] (the classic clamped
+// solution of the 2x2 system).
+void nearestParameters(const double* p0, const double* p1, const double* q0, const double* q1, double& s, double& t) {
+  double d1[3], d2[3], r[3];
+  for (int k = 0; k < 3; ++k) {
+    d1[k] = p1[k] - p0[k];
+    d2[k] = q1[k] - q0[k];
+    r[k] = p0[k] - q0[k];
+  }
+  const double a = dot3(d1, d1), e = dot3(d2, d2), f = dot3(d2, r);
+  constexpr double kTiny = 1e-18;
+  s = t = 0;
+  if (a <= kTiny && e <= kTiny) return;
+  if (a <= kTiny) {
+    t = std::clamp(f / e, 0.0, 1.0);
+    return;
+  }
+  const double c = dot3(d1, r);
+  if (e <= kTiny) {
+    s = std::clamp(-c / a, 0.0, 1.0);
+    return;
+  }
+  const double b = dot3(d1, d2);
+  const double denom = a * e - b * b;
+  s = denom > kTiny ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+  t = (b * s + f) / e;
+  if (t < 0) {
+    t = 0;
+    s = std::clamp(-c / a, 0.0, 1.0);
+  } else if (t > 1) {
+    t = 1;
+    s = std::clamp((b - c) / a, 0.0, 1.0);
+  }
+}
+
+}  // namespace
+
+double segmentSegmentDistance(const double* p0, const double* p1, const double* q0, const double* q1) {
+  double s = 0, t = 0;
+  nearestParameters(p0, p1, q0, q1, s, t);
+  double diff[3];
+  for (int k = 0; k < 3; ++k) diff[k] = (p0[k] + s * (p1[k] - p0[k])) - (q0[k] + t * (q1[k] - q0[k]));
+  return std::sqrt(dot3(diff, diff));
+}
+
+double pointBoxDistance(const double* x, const double* c, const double* r, const double* h) {
+  const double v[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
+  double outside = 0, deepest = -std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    const double local = r[k] * v[0] + r[3 + k] * v[1] + r[6 + k] * v[2];  // v in the box's frame
+    const double excess = std::abs(local) - h[k];
+    if (excess > 0) outside += excess * excess;
+    deepest = std::max(deepest, excess);
+  }
+  return outside > 0 ? std::sqrt(outside) : deepest;  // inside: minus the distance to the nearest face
+}
+
+namespace {
+
+// A convex geom at its world pose, for support functions: h(u) = max over the solid of u·x.
+struct Solid {
+  int type = mjGEOM_BOX;
+  Eigen::Vector3d centre;
+  Eigen::Matrix3d axes;  // columns: the geom's x, y, z axes in the world frame
+  Eigen::Vector3d size;  // MuJoCo's geom_size
+
+  Solid(const mjModel* m, const mjData* d, int g)
+      : type(m->geom_type[g]), centre(d->geom_xpos + 3 * g), size(m->geom_size + 3 * g) {
+    const double* r = d->geom_xmat + 9 * g;
+    axes << r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8];
+  }
+
+  // max over the solid of u·x (u a unit vector); +inf for a half-space unless u is its outward normal.
+  double support(const Eigen::Vector3d& u) const {
+    const double c = u.dot(centre);
+    switch (type) {
+      case mjGEOM_SPHERE:
+        return c + size[0];
+      case mjGEOM_CAPSULE:
+        return c + size[1] * std::abs(u.dot(axes.col(2))) + size[0];
+      case mjGEOM_CYLINDER: {
+        const double along = u.dot(axes.col(2));
+        return c + size[1] * std::abs(along) + size[0] * std::sqrt(std::max(0.0, 1.0 - along * along));
+      }
+      case mjGEOM_ELLIPSOID: {
+        double sum = 0;
+        for (int k = 0; k < 3; ++k) sum += std::pow(size[k] * u.dot(axes.col(k)), 2);
+        return c + std::sqrt(sum);
+      }
+      case mjGEOM_PLANE: {
+        const Eigen::Vector3d n = axes.col(2);
+        return u.dot(n) > 1.0 - 1e-12 ? c : std::numeric_limits<double>::infinity();
+      }
+      default: {  // box
+        double reach = 0;
+        for (int k = 0; k < 3; ++k) reach += size[k] * std::abs(u.dot(axes.col(k)));
+        return c + reach;
+      }
+    }
+  }
+};
+
+// The width of the empty slab between a and b across direction u (from a towards b): a lower bound on their
+// distance for every u, and, when they overlap, at most minus their penetration depth. The true signed distance
+// is the largest gap over all directions.
+double gap(const Solid& a, const Solid& b, Eigen::Vector3d u) {
+  const double n = u.norm();
+  if (!(n > 1e-12)) return -std::numeric_limits<double>::infinity();
+  u /= n;
+  return -b.support(-u) - a.support(u);
+}
+
+// A plane's separation from a solid: exact (the solid's lowest point above the plane's surface).
+double planeSeparation(const Solid& plane, const Solid& other) {
+  const Eigen::Vector3d n = plane.axes.col(2);
+  return -other.support(-n) - n.dot(plane.centre);
+}
+
+// The point of segment [p, q] nearest to the box `box` (golden-section search on the convex distance) and the box's
+// point nearest to it: their difference is the direction across which a round solid on that segment and the box
+// are farthest apart. Zero when the segment enters the box.
+Eigen::Vector3d segmentBoxDirection(const Solid& box, const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+  // In the box's frame the box is [-size, size]: the distance of a point is that of its clamped copy.
+  const Eigen::Vector3d lp = box.axes.transpose() * (p - box.centre);
+  const Eigen::Vector3d lq = box.axes.transpose() * (q - box.centre);
+  const Eigen::Vector3d h = box.size;
+  auto offset = [&](double t) {
+    const Eigen::Vector3d x = lp + t * (lq - lp);
+    return Eigen::Vector3d(x - x.cwiseMax(-h).cwiseMin(h));
+  };
+  constexpr double kInvPhi = 0.6180339887498949;
+  double lo = 0, hi = 1, x1 = hi - kInvPhi, x2 = kInvPhi;
+  double f1 = offset(x1).squaredNorm(), f2 = offset(x2).squaredNorm();
+  for (int i = 0; i < 30; ++i) {  // the bracket shrinks to 0.618^30 (1e-6) of the segment
+    if (f1 <= f2) {
+      hi = x2, x2 = x1, f2 = f1;
+      x1 = hi - kInvPhi * (hi - lo), f1 = offset(x1).squaredNorm();
+    } else {
+      lo = x1, x1 = x2, f1 = f2;
+      x2 = lo + kInvPhi * (hi - lo), f2 = offset(x2).squaredNorm();
+    }
+  }
+  return box.axes * offset(0.5 * (lo + hi));  // from the box towards the segment, in the world frame
+}
+
+bool axial(const Solid& s) { return s.type == mjGEOM_SPHERE || s.type == mjGEOM_CAPSULE || s.type == mjGEOM_CYLINDER; }
+
+// The separating-axis candidates: each solid's axes and their cross products (complete for two boxes: two boxes
+// are apart exactly when one of these separates them, and the smallest overlap among them is their depth).
+double axesGap(const Solid& a, const Solid& b, double enough) {
+  double best = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i)
+    best = std::max({best, gap(a, b, a.axes.col(i)), gap(a, b, -a.axes.col(i)), gap(a, b, b.axes.col(i)),
+                     gap(a, b, -b.axes.col(i))});
+  if (best > enough) return best;  // face normals first: they decide most pairs (faces facing each other)
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const Eigen::Vector3d c = a.axes.col(i).cross(b.axes.col(j));
+      best = std::max({best, gap(a, b, c), gap(a, b, -c)});
+    }
+  }
+  return best;
+}
+
+// The gap across the direction in which a sphere, capsule or cylinder's axis comes nearest to a box (exact for a
+// sphere or capsule apart from the box: the nearest points of its axis and the box give the witness direction).
+// -inf when neither is such a pair or the axis enters the box.
+double axisBoxGap(const Solid& a, const Solid& b) {
+  for (const auto& [box, other, sign] : {std::tuple{&a, &b, 1.0}, std::tuple{&b, &a, -1.0}}) {
+    if (box->type != mjGEOM_BOX || !axial(*other)) continue;
+    const double h = other->type == mjGEOM_SPHERE ? 0.0 : other->size[1];
+    const Eigen::Vector3d axis = other->axes.col(2);
+    const Eigen::Vector3d u = segmentBoxDirection(*box, other->centre + h * axis, other->centre - h * axis);
+    return std::max(gap(a, b, sign * u), gap(a, b, -sign * u));
+  }
+  return -std::numeric_limits<double>::infinity();
+}
+
+// The gap across the direction joining the nearest points of two sphere, capsule or cylinder axes (exact for two
+// round solids; a close lower bound when a cylinder is involved). -inf unless both are such solids.
+double axisAxisGap(const Solid& a, const Solid& b) {
+  if (!axial(a) || !axial(b)) return -std::numeric_limits<double>::infinity();
+  auto ends = [](const Solid& x, Eigen::Vector3d& p, Eigen::Vector3d& q) {
+    const double h = x.type == mjGEOM_SPHERE ? 0.0 : x.size[1];
+    p = x.centre + h * x.axes.col(2);
+    q = x.centre - h * x.axes.col(2);
+  };
+  Eigen::Vector3d p0, p1, q0, q1;
+  ends(a, p0, p1);
+  ends(b, q0, q1);
+  double s = 0, t = 0;
+  nearestParameters(p0.data(), p1.data(), q0.data(), q1.data(), s, t);
+  const Eigen::Vector3d u = (q0 + t * (q1 - q0)) - (p0 + s * (p1 - p0));
+  return std::max(gap(a, b, u), gap(a, b, -u));
+}
+
+// The cheap candidate directions, by pair kind, stopping as soon as a gap exceeds `enough`: the line between the
+// centres; for a round solid (sphere, capsule, cylinder) and a box or another round solid, the nearest-point
+// direction of their axes, taken as the answer when it shows them apart; the separating-axis candidates.
+// `settled` tells the caller that an iterative method would not improve the answer much.
+double cheapGap(const Solid& a, const Solid& b, double enough, bool& settled) {
+  settled = false;
+  double best = gap(a, b, b.centre - a.centre);
+  if (best > enough) return best;
+  if (axial(a) || axial(b)) {
+    best = std::max({best, axisBoxGap(a, b), axisAxisGap(a, b)});
+    if (best > enough || best > 0) {
+      settled = best > 0;
+      return best;
+    }
+  }
+  best = std::max(best, axesGap(a, b, enough));
+  // Two boxes: the separating-axis candidates decide overlap exactly and give its depth exactly; apart, their gap
+  // is the distance for faces or edges facing each other (books on shelves, a gripper over a table) and a lower
+  // bound otherwise, which the certificates can work with.
+  settled = a.type == mjGEOM_BOX && b.type == mjGEOM_BOX;
+  return best;
+}
+
+}  // namespace
+
+std::shared_ptr<fcl::CollisionGeometryd> fclShapeOf(const mjModel* m, int g) {
+  const mjtNum* s = m->geom_size + 3 * g;
+  std::shared_ptr<fcl::CollisionGeometryd> shape;
+  switch (m->geom_type[g]) {
+    case mjGEOM_BOX:
+      shape = std::make_shared<fcl::Boxd>(2 * s[0], 2 * s[1], 2 * s[2]);
+      break;
+    case mjGEOM_SPHERE:
+      shape = std::make_shared<fcl::Sphered>(s[0]);
+      break;
+    case mjGEOM_CAPSULE:
+      shape = std::make_shared<fcl::Capsuled>(s[0], 2 * s[1]);
+      break;
+    case mjGEOM_CYLINDER:
+      shape = std::make_shared<fcl::Cylinderd>(s[0], 2 * s[1]);
+      break;
+    case mjGEOM_ELLIPSOID:
+      shape = std::make_shared<fcl::Ellipsoidd>(s[0], s[1], s[2]);
+      break;
+    case mjGEOM_PLANE:
+      shape = std::make_shared<fcl::Halfspaced>(Eigen::Vector3d::UnitZ(), 0.0);
+      break;
+    default:
+      return nullptr;
+  }
+  shape->computeLocalAABB();
+  return shape;
+}
+
+struct GeomDistance::Impl {
+  const mjModel* model = nullptr;
+  std::vector<std::shared_ptr<fcl::CollisionGeometryd>> shapes;  // null: unsupported type
+
+  // FCL's GJK/EPA give only a direction, tried after the cheap ones: the answer is always a gap computed from
+  // exact support functions, so a wrong FCL result can only make it more cautious. (FCL 0.7's GJK was seen to
+  // report two boxes that overlap 0.4 mm as 2.3 mm apart.)
+  double convexSeparation(const mjData* d, int g1, int g2, double enough, bool needDepth) const {
+    const Solid a(model, d, g1), b(model, d, g2);
+    if (a.type == mjGEOM_PLANE) return planeSeparation(a, b);
+    if (b.type == mjGEOM_PLANE) return planeSeparation(b, a);
+    bool settled = false;
+    const double best = cheapGap(a, b, enough, settled);
+    if (best > enough || settled) return best;
+    const fcl::Transform3d t1 = worldTransform(d, g1), t2 = worldTransform(d, g2);
+    const fcl::CollisionGeometryd* s1 = shapes[static_cast<size_t>(g1)].get();
+    const fcl::CollisionGeometryd* s2 = shapes[static_cast<size_t>(g2)].get();
+    fcl::DistanceRequestd dreq(true);
+    dreq.gjk_solver_type = fcl::GST_INDEP;
+    fcl::DistanceResultd dres;
+    if (fcl::distance(s1, t1, s2, t2, dreq, dres) > 0) {
+      const Eigen::Vector3d u = dres.nearest_points[1] - dres.nearest_points[0];
+      return std::max({best, gap(a, b, u), gap(a, b, -u)});
+    }
+    if (!needDepth) return best;
+    fcl::CollisionRequestd creq(1, true);
+    creq.gjk_solver_type = fcl::GST_INDEP;
+    fcl::CollisionResultd cres;
+    fcl::collide(s1, t1, s2, t2, creq, cres);
+    if (cres.numContacts() == 0) return best;
+    const Eigen::Vector3d u = cres.getContact(0).normal;
+    return std::max({best, gap(a, b, u), gap(a, b, -u)});
+  }
+};
+
+GeomDistance::GeomDistance(const mjModel* m) : impl_(std::make_unique<Impl>()) {
+  impl_->model = m;
+  impl_->shapes.resize(static_cast<size_t>(m->ngeom));
+  for (int g = 0; g < m->ngeom; ++g) {
+    impl_->shapes[static_cast<size_t>(g)] = fclShapeOf(m, g);
+  }
+}
+
+GeomDistance::~GeomDistance() = default;
+
+bool GeomDistance::supports(int g) const { return impl_->shapes[static_cast<size_t>(g)] != nullptr; }
+
+double GeomDistance::separation(const mjData* d, int g1, int g2, double enough, bool needDepth) const {
+  const mjModel* m = impl_->model;
+  const int t1 = m->geom_type[g1], t2 = m->geom_type[g2];
+  if (roundShape(t1) && roundShape(t2)) {
+    // Exact in closed form: the distance between the axes minus both radii (negative: the overlap depth).
+    double a0[3], a1[3], b0[3], b1[3];
+    axisEnds(m, d, g1, a0, a1);
+    axisEnds(m, d, g2, b0, b1);
+    return segmentSegmentDistance(a0, a1, b0, b1) - m->geom_size[3 * g1] - m->geom_size[3 * g2];
+  }
+  return impl_->convexSeparation(d, g1, g2, enough, needDepth);
+}
+
+}  // namespace cbtl::world

@@ -125,6 +125,7 @@ actions::RobotActionResult FeedingActions::graspDrink(world::World& w, actions::
     return failed(ActionStatus::NoPath, "grasp(drink): the lift is not certified free");
   }
   ws.setArm(up.q);
+  if (mode == actions::ExecutionMode::Execute) w.noteArmMotion({grasped, up.q}, liftIk.collision);
   actions::RobotActionResult r;
   r.armPath = approach.armPath;
   r.armPath.push_back(up.q);

@@ -167,6 +167,7 @@ ActionResult moveToolIn(world::World& w, const world::Pose3& target, ExecutionMo
   if (world::armSegmentFree(ws, start, ik.q, w.planning.collision)) {
     r.armPath = {start, ik.q};
     ws.setArm(ik.q);
+    w.noteArmMotion(r.armPath, w.planning.collision);
     return r;
   }
   ws.setArm(start);
@@ -175,6 +176,7 @@ ActionResult moveToolIn(world::World& w, const world::Pose3& target, ExecutionMo
   if (auto path = world::cartesianToolPath(ws, target, w.ik, line)) {
     r.armPath = std::move(*path);
     ws.setArm(r.armPath.back());
+    w.noteArmMotion(r.armPath, line.collision);
     return r;
   }
   return moveArmIn(w, ik.q, mode);

@@ -14,6 +14,7 @@ RobotSimulator::RobotSimulator(Setup setup)
       actions_(std::move(setup.actions)),
       caregiverPatience_(setup.caregiverPatience) {
   scenePoses_ = world_->workspace().state().objects;
+  world_->setRecording(true);
 }
 
 void RobotSimulator::startEpisode(const world::WorldState& state) {
@@ -34,11 +35,15 @@ sim::StepResult RobotSimulator::failTask(sim::StepResult step) {
 sim::StepResult RobotSimulator::act(const sim::ActionCall& call) {
   idleRun_ = 0;
   if (auto own = actOnSimulatorState(call)) return std::move(*own);
+  world_->takeMotions();
   const auto result = actions_.execute(*world_, call);
+  // A failed action leaves the world as it was: the motions it tried were never carried out.
+  std::vector<world::ExecutedMotion> motions = world_->takeMotions();
   if (!result) return sim::unknownActionStep(domain_ + " has no action '" + call.name + "'");
   sim::StepResult step = result->toStepResult(call.name);
   if (!result->wellFormed) return step;
   if (!result->done()) return failTask(std::move(step));
+  for (const auto& m : motions) step.motions.push_back(world::motionToJson(*scene_, m));
   return afterApplied(call, *result, std::move(step));
 }
 

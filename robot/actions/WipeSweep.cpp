@@ -104,6 +104,7 @@ ActionResult sweepSurface(world::World& w, const std::string& surface, const wor
                               c.contact.second, c.contact.depth));
     }
     ws.setBase(b);
+    w.noteBaseMotion({a, b}, contact);
     r.basePath.push_back(b);
     from = to;
   }

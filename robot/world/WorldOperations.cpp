@@ -13,6 +13,28 @@ namespace cbtl::world {
 World::World(std::shared_ptr<const Scene> scene)
     : ws_(scene), clearance_(scene), occlusion_(occlusionSpecFor(*scene)) {}
 
+void World::noteArmMotion(const std::vector<ArmConfig>& path, const CollisionOptions& collision) {
+  if (!recording_ || path.size() < 2) return;
+  ExecutedMotion m;
+  m.kind = ExecutedMotion::Kind::Arm;
+  m.start = ws_.state();
+  m.start.arm = path.front();
+  m.arm = path;
+  m.allowances = collision.allowances;
+  motions_.push_back(std::move(m));
+}
+
+void World::noteBaseMotion(const std::vector<Pose2>& path, const CollisionOptions& collision) {
+  if (!recording_ || path.size() < 2) return;
+  ExecutedMotion m;
+  m.kind = ExecutedMotion::Kind::Base;
+  m.start = ws_.state();
+  m.start.base = path.front();
+  m.base = path;
+  m.allowances = collision.allowances;
+  motions_.push_back(std::move(m));
+}
+
 namespace builtins {
 
 const char* toString(ActionStatus s) {
@@ -74,6 +96,7 @@ bool moveArmInternal(World& w, const ArmConfig& q, std::vector<ArmConfig>& path,
   }
   path.insert(path.end(), plan.path.begin() + 1, plan.path.end());
   ws.setArm(q);
+  w.noteArmMotion(plan.path, w.planning.collision);
   return true;
 }
 
@@ -143,6 +166,7 @@ ActionResult moveBase(World& w, const Pose2& goal) {
   const BasePlan plan = planBaseCached(ws, goal, w.planning);
   if (!plan.solved()) return fail(ActionStatus::NoPath, toString(plan.status));
   ws.setBase(goal);
+  w.noteBaseMotion(plan.path, w.planning.collision);
   ActionResult r;
   r.basePath = plan.path;
   guard.commit();

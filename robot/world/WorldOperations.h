@@ -13,11 +13,13 @@
 #include "robot/world/Collision.h"
 #include "robot/world/InverseKinematics.h"
 #include "robot/world/MotionPlanner.h"
+#include "robot/world/MotionRecord.h"
 #include "robot/world/Occlusion.h"
 #include "robot/world/Workspace.h"
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace cbtl::world {
@@ -36,11 +38,23 @@ class World {
   IkOptions ik;          // used by the IK built-ins
   PlanOptions planning;  // used by the planning built-ins and actions
 
+  // The record of what the robot did (MotionRecord.h): while recording is on, the executors note every motion
+  // they carry out, with the contacts allowed for it. The simulators' worlds record; a dry run's world never does.
+  void setRecording(bool on) { recording_ = on; }
+  bool recording() const { return recording_; }
+  // `path` starts at the configuration the arm (base) moved from; the rest of the world is the Workspace's now.
+  void noteArmMotion(const std::vector<ArmConfig>& path, const CollisionOptions& collision);
+  void noteBaseMotion(const std::vector<Pose2>& path, const CollisionOptions& collision);
+  // The motions noted since the last call.
+  std::vector<ExecutedMotion> takeMotions() { return std::exchange(motions_, {}); }
+
  private:
   Workspace ws_;
   ClearanceChecker clearance_;
   std::optional<OcclusionSpec> occlusion_;
   std::vector<std::string> utterances_;
+  bool recording_ = false;
+  std::vector<ExecutedMotion> motions_;
 };
 
 namespace builtins {

@@ -234,7 +234,11 @@ json Checkpoint::toJson() const {
   return {{"format", "cbtl-checkpoint"},
           {"version", kVersion},
           {"step", step},
-          {"files", {{"train.csv", trainCsvBytes}, {"eval.csv", evalCsvBytes}, {"world-calls.jsonl", worldLogBytes}}},
+          {"files",
+           {{"train.csv", trainCsvBytes},
+            {"eval.csv", evalCsvBytes},
+            {"world-calls.jsonl", worldLogBytes},
+            {"motions.jsonl", motionsBytes}}},
           {"world_calls", worldCalls},
           {"train_solver", trainSolver},
           {"approach_rng", approachRng},
@@ -260,6 +264,7 @@ Checkpoint Checkpoint::fromJson(const json& j, const std::string& source) {
     cp.trainCsvBytes = j.at("files").at("train.csv").get<std::uint64_t>();
     cp.evalCsvBytes = j.at("files").at("eval.csv").get<std::uint64_t>();
     cp.worldLogBytes = j.at("files").at("world-calls.jsonl").get<std::uint64_t>();
+    cp.motionsBytes = j.at("files").value("motions.jsonl", std::uint64_t{0});
     cp.worldCalls = j.at("world_calls").get<std::uint64_t>();
     cp.trainSolver = j.at("train_solver");
     cp.profile = j.at("profile");
@@ -408,6 +413,14 @@ void RunOutput::openForResume(const json& config) {
   train_.open(path("train.csv"), checkpoint_->trainCsvBytes);
   eval_.open(path("eval.csv"), checkpoint_->evalCsvBytes);
   world_.open(worldLogPath(), checkpoint_->worldLogBytes);
+  if (checkpoint_->motionsBytes > 0 || fs::exists(path("motions.jsonl")))
+    motions_.open(path("motions.jsonl"), checkpoint_->motionsBytes);
+}
+
+void RunOutput::motionLine(const std::string& line) {
+  if (!enabled()) return;
+  if (!motions_.isOpen()) motions_.open(path("motions.jsonl"));
+  motions_.append(line);
 }
 
 std::string RunOutput::worldLog() const {
@@ -428,9 +441,11 @@ void RunOutput::checkpoint(Checkpoint& cp, const std::string& worldLines) {
   train_.sync();
   eval_.sync();
   world_.sync();
+  if (motions_.isOpen()) motions_.sync();
   cp.trainCsvBytes = train_.size();
   cp.evalCsvBytes = eval_.size();
   cp.worldLogBytes = world_.size();
+  cp.motionsBytes = motions_.isOpen() ? motions_.size() : 0;
   if (hook) hook("checkpoint", cp.step);
   writeFileAtomic(path("checkpoint.json"), cp.toJson().dump() + "\n");
 }
@@ -440,6 +455,7 @@ void RunOutput::finish(const std::string& profileJson, const ExperimentResult& r
   train_.close();
   eval_.close();
   world_.close();
+  if (motions_.isOpen()) motions_.close();
   writeFileAtomic(path("profile.json"), profileJson);
   if (hook) hook("finish", result.evals.empty() ? 0 : result.evals.back().step);
   const json marker = {{"format", "cbtl-run-complete"},

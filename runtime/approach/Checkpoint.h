@@ -2,13 +2,13 @@
 //
 // A checkpoint is taken at every evaluation point (every evalEvery steps, and at the end), after that point's
 // eval.csv row and models/<step>.json are written. Its order makes every prefix of it safe to be killed in:
-//   1. train.csv, eval.csv and world-calls.jsonl are flushed and fsynced;
+//   1. train.csv, eval.csv, world-calls.jsonl and motions.jsonl (when there is one) are flushed and fsynced;
 //   2. checkpoint.json is replaced atomically. It holds the step, the three files' byte lengths at that
 //      moment, the training solver's state (RNG and memory, Solver::saveState; every evaluation starts its
 //      own solver afresh, Experiment.h), the approach RNG, the program's
 //      interned texts, the profile learned so far, the pending calls of the current plan and their cursor,
 //      and the ExperimentResult so far.
-// `--resume` truncates the three files to the recorded lengths (dropping rows of steps after the checkpoint),
+// `--resume` truncates those files to the recorded lengths (dropping rows of steps after the checkpoint),
 // restores that state, and rebuilds the training world by replaying the logged calls into a fresh simulator
 // from the same seed — no CSP of a step before the checkpoint is solved again. A replayed call whose result
 // differs from the logged one (a simulator that is not deterministic from its seed) stops the resume with an
@@ -45,7 +45,7 @@ std::vector<std::string> differingKeys(const nlohmann::json& now, const nlohmann
 
 struct Checkpoint {
   std::int64_t step = 0;
-  std::uint64_t trainCsvBytes = 0, evalCsvBytes = 0, worldLogBytes = 0, worldCalls = 0;
+  std::uint64_t trainCsvBytes = 0, evalCsvBytes = 0, worldLogBytes = 0, worldCalls = 0, motionsBytes = 0;
   nlohmann::json trainSolver, profile;
   std::string approachRng;
   std::vector<std::string> strings;  // the program's interned texts, in id order
@@ -111,6 +111,8 @@ class RunOutput {
   std::string worldLogPath() const;
 
   void trainRow(const std::string& row) { train_.append(row); }
+  // One line of motions.jsonl (with its newline); the file is created by the first line.
+  void motionLine(const std::string& line);
   void evalRow(const std::string& row) { eval_.append(row); }
   void writeModel(std::int64_t step, const std::string& profileJson);
   // Completes `cp` with the files' lengths, makes the files durable, then replaces checkpoint.json.
@@ -127,7 +129,7 @@ class RunOutput {
 
   std::string dir_;
   std::unique_ptr<DirectoryLock> lock_;
-  AppendFile train_, eval_, world_;
+  AppendFile train_, eval_, world_, motions_;
   std::optional<ExperimentResult> completed_;
   std::optional<Checkpoint> checkpoint_;
 };

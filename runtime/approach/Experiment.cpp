@@ -87,6 +87,8 @@ sim::StepResult executeStep(sim::DomainSimulator& world, const std::vector<sim::
     for (auto& f : r.feedback) merged.feedback.push_back(std::move(f));
     for (auto& p : r.preferences) merged.preferences.push_back(std::move(p));
     for (auto& v : r.measures) merged.measures.push_back(std::move(v));
+    // Each motion is kept with the call that made it: `"call": ..., "motion": ...`, completed by the caller.
+    for (auto& m : r.motions) merged.motions.push_back(fmt::format(R"("call":{},"motion":{})", toJson(call).dump(), m));
     if (r.hasSatisfaction) {
       merged.hasSatisfaction = true;
       merged.satisfaction += r.satisfaction;
@@ -258,6 +260,9 @@ void evaluate(Trial& tr, std::int64_t step) {
       bool open = true;
       while (next < plan.calls.size() && !done && steps < config.maxEvalEpisodeSteps) {
         sim::StepResult r = executeStep(*tr.evalWorld, plan.calls, next);
+        if (config.recordMotions)
+          for (const auto& m : r.motions)
+            tr.out.motionLine(fmt::format(R"({{"phase":"eval","step":{},"task":{},{}}})", step, i, m) + "\n");
         countExecution(point.competence, open, plan.dryRun(), r, next < plan.calls.size());
         if (r.consumedStep) ++steps;
         if (r.hasSatisfaction) satisfaction += r.satisfaction;
@@ -333,6 +338,8 @@ void trainStep(Trial& tr, std::int64_t t) {
     tr.planWorld = StepWorld{plan.ok ? std::move(plan.solve.assignment) : std::vector<double>{}, obs};
   }
   sim::StepResult r = tr.next < tr.calls.size() ? executeStep(tr.trainWorld, tr.calls, tr.next) : tr.trainWorld.idle();
+  if (config.recordMotions)
+    for (const auto& m : r.motions) tr.out.motionLine(fmt::format(R"({{"phase":"train","step":{},{}}})", t, m) + "\n");
   countExecution(result.train, tr.planOpen, tr.planDryRun, r, tr.next < tr.calls.size());
   if (r.caregiverReset) ++result.train.caregiverResets;
   std::size_t labels = 0;

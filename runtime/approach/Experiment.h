@@ -71,6 +71,8 @@ struct ExperimentConfig {
   // Keep every training step's learned feedback events in ExperimentResult::feedback (for a profile store's
   // provenance). Only this process's steps: a resumed run keeps those after its checkpoint.
   bool recordFeedback = false;
+  // Writes what the robot did (StepResult::motions) to the run folder's motions.jsonl (RunDirectory.h).
+  bool recordMotions = true;
   // Makes the models of text factors (`model text(...)`); null: the offline descriptor model (no network).
   std::shared_ptr<const textpref::TextBackend> textBackend;
   RunMode runMode = RunMode::Fresh;  // what to do when outDir already holds a run

@@ -77,6 +77,9 @@ struct StepResult {
   // the closest the robot came to the user, metres); evaluation reports each one's minimum and mean.
   std::vector<std::pair<std::string, double>> measures;
   std::string message;  // human-readable detail (why an action was ignored, ...)
+  // What the robot's body did, for the run's record of executed motions (motions.jsonl): one JSON object per
+  // motion, written by the domain (robot domains: robot/world/MotionRecord.h) and never read by the runtime.
+  std::vector<std::string> motions;
 };
 
 // Observations by the name declared with `observe`; families by "name[member]" (e.g. "stock[salt]").

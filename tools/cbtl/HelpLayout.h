@@ -32,7 +32,8 @@ inline const std::vector<std::pair<std::string, std::vector<std::string>>>& opti
        {"--kind", "--layout", "--metric", "--panel-title", "--label", "--marks", "--at-step", "--title", "--xlabel",
         "--ylabel", "--ymin", "--ymax", "--width", "--height"}},
       {"Sweep", {"--index", "--collect", "--emit-slurm", "--list", "--trials-per-task"}},
-      {"Output", {"--out", "--force", "--resume", "--quiet", "--format", "--explain", "--echo"}},
+      {"Audit", {"--resolution", "--cap", "--program"}},
+      {"Output", {"--out", "--force", "--resume", "--quiet", "--format", "--explain", "--echo", "--no-motion-record"}},
   };
   return topics;
 }
@@ -58,6 +59,9 @@ inline const std::map<std::string, std::vector<std::string>>& commandExamples() 
       {"simulator serve",
        {"cbtl run domains/cooking/cooking.cbtl --simulator 'cbtl simulator serve domains/cooking/cooking.cbtl'"}},
       {"render", {"cbtl render domains/feeding/feeding.xml --out feeding.png"}},
+      {"audit",
+       {"cbtl run domains/cleaning/cleaning.cbtl --steps 200 --eval-every 100 --out out/cleaning-0 && cbtl audit "
+        "out/cleaning-0"}},
       {"plot",
        {"cbtl plot results/cooking/figure3-cooking results/robots/figure3-cleaning --panel-title Cooking --panel-title "
         "Cleaning --ymin -1 "

@@ -191,7 +191,7 @@ struct TrialArgs {
   std::int64_t participant = -1;
   int evalTasks = 10;
   double epsilon = 0.5, unsatisfiable = 0;
-  bool replan = false;
+  bool replan = false, noMotionRecord = false;
   SolverArgs solver;
   TextBackendArgs text;
   ExternalSimulatorArgs external;
@@ -211,6 +211,8 @@ inline void addTrialOptions(CLI::App* cmd, TrialArgs& a) {
       ->check(integerIn(1));
   cmd->add_option("--task", a.task, "task to run (default: the first)");
   cmd->add_flag("--replan", a.replan, "when the full CSP is unsatisfiable, replan without personalized constraints");
+  cmd->add_flag("--no-motion-record", a.noMotionRecord,
+                "do not write motions.jsonl, the record of what the robot did (`cbtl audit` re-checks it)");
   cmd->add_option("--epsilon", a.epsilon, "epsilon-greedy's exploration probability")
       ->capture_default_str()
       ->check(realIn(0, 1));
@@ -240,6 +242,7 @@ inline void addTrialOptions(CLI::App* cmd, TrialArgs& a) {
 
 // Fills everything but the approach, seed and outputs; false after printing a usage error.
 inline bool configureTrial(const std::string& command, const TrialArgs& a, approach::ExperimentConfig& c) {
+  c.recordMotions = !a.noMotionRecord;
   if (a.nonstationary != "none") {
     const auto mode = approach::parseAdaptation(a.nonstationary);
     if (!mode) {

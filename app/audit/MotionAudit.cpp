@@ -1,0 +1,267 @@
+// One of the translation units that include FCL (slow to compile): the audit asks FCL directly, not through the
+// executor's geometry.
+#include "app/audit/MotionAudit.h"
+
+#include "app/LoadedProgram.h"
+#include "robot/world/FclShapes.h"
+#include "robot/world/MotionRecord.h"
+#include "robot/world/Workspace.h"
+
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <set>
+
+namespace cbtl::app {
+
+namespace {
+
+using json = nlohmann::json;
+using world::BodyKind;
+
+struct AuditPair {
+  int g1, g2;
+  double required;
+  std::string bodyClass;  // of the pair: person, scenery, objects, self
+};
+
+class Auditor {
+ public:
+  Auditor(std::shared_ptr<const world::Scene> scene, const AuditOptions& o, AuditReport& report)
+      : scene_(std::move(scene)), ws_(scene_), options_(o), report_(report) {
+    const mjModel* m = scene_->model();
+    for (int g = 0; g < m->ngeom; ++g) shapes_.push_back(world::fclShapeOf(m, g));
+    const int user = scene_->bodyId("user");
+    person_.assign(static_cast<std::size_t>(m->nbody), false);
+    for (int b = 1; b < m->nbody; ++b) {
+      const std::string name = scene_->bodyName(b);
+      person_[static_cast<std::size_t>(b)] =
+          b == user || name.rfind("user_", 0) == 0 || person_[static_cast<std::size_t>(m->body_parentid[b])];
+    }
+  }
+
+  // Checks one recorded motion; `where` names it in the report.
+  void audit(const world::ExecutedMotion& motion, const std::string& where) {
+    if (ws_.setState(motion.start) != world::StateStatus::Ok) {
+      addViolation(where, "", "", 0, 0, "the recorded start state is not a valid state of the scene");
+      return;
+    }
+    ++report_.motions;
+    pairs(motion);
+    if (motion.kind == world::ExecutedMotion::Kind::Arm) {
+      for (std::size_t i = 0; i + 1 < motion.arm.size(); ++i)
+        armSegment(motion.arm[i], motion.arm[i + 1], i == 0, where);
+    } else {
+      for (std::size_t i = 0; i + 1 < motion.base.size(); ++i)
+        baseSegment(motion.base[i], motion.base[i + 1], i == 0, where);
+    }
+  }
+
+ private:
+  bool isRobot(int body) const {
+    const BodyKind k = scene_->bodyKind(body);
+    return k == BodyKind::Robot || k == BodyKind::Gripper;
+  }
+  bool isHeld(int body) const { return ws_.heldObject() >= 0 && scene_->objectOfBody(body) == ws_.heldObject(); }
+
+  // The pairs a motion must respect, from the scene's candidate pairs: robot and held object against the rest,
+  // never the held object against the gripper.
+  void pairs(const world::ExecutedMotion& motion) {
+    const mjModel* m = scene_->model();
+    pairs_.clear();
+    auto add = [&](int g1, int g2, double keepOut) {
+      const int b1 = m->geom_bodyid[g1], b2 = m->geom_bodyid[g2];
+      const bool moving1 = isRobot(b1) || isHeld(b1), moving2 = isRobot(b2) || isHeld(b2);
+      if (!moving1 && !moving2) return;
+      if ((isHeld(b1) && (isHeld(b2) || scene_->bodyKind(b2) == BodyKind::Gripper)) ||
+          (isHeld(b2) && scene_->bodyKind(b1) == BodyKind::Gripper))
+        return;
+      if (!moving1) std::swap(g1, g2);
+      const int other = m->geom_bodyid[g2];
+      double required = keepOut;
+      for (const world::ContactAllowance& a : motion.allowances) {
+        const bool partOk = a.part == world::ContactAllowance::Part::HeldObject
+                                ? isHeld(m->geom_bodyid[g1])
+                                : scene_->bodyKind(m->geom_bodyid[g1]) == BodyKind::Gripper;
+        const bool named = g2 == a.geom || (a.geom < 0 && other == a.body);
+        if (partOk && named) required = std::min(required, -a.depth);
+      }
+      std::string cls = person_[static_cast<std::size_t>(other)]      ? "person"
+                        : isRobot(other) || isHeld(other)             ? "self"
+                        : scene_->bodyKind(other) == BodyKind::Object ? "objects"
+                                                                      : "scenery";
+      pairs_.push_back({g1, g2, required, std::move(cls)});
+    };
+    for (const auto& p : scene_->robotPairs()) add(p.g1, p.g2, p.margin);
+    for (const auto& p : scene_->selfPairs()) add(p.g1, p.g2, p.margin);
+    if (ws_.heldObject() >= 0)
+      for (const auto& p : scene_->objectPairs(ws_.heldObject())) add(p.g1, p.g2, p.margin);
+  }
+
+  void armSegment(const world::ArmConfig& a, const world::ArmConfig& b, bool first, const std::string& where) {
+    ++report_.segments;
+    world::ArmConfig step{};
+    double linf = 0;
+    for (int i = 0; i < world::kArmDof; ++i) {
+      step[i] = scene_->armContinuous(i) ? world::angleDiff(b[i], a[i]) : b[i] - a[i];
+      linf = std::max(linf, std::abs(step[i]));
+    }
+    const long n = std::max(1L, static_cast<long>(std::ceil(linf / options_.resolution)));
+    for (long k = first ? 0 : 1; k <= n; ++k) {
+      world::ArmConfig q{};
+      const double t = static_cast<double>(k) / static_cast<double>(n);
+      for (int i = 0; i < world::kArmDof; ++i) q[i] = k == n ? b[i] : a[i] + t * step[i];
+      ws_.setArm(q);
+      checkState(where);
+    }
+  }
+
+  void baseSegment(const world::Pose2& a, const world::Pose2& b, bool first, const std::string& where) {
+    ++report_.segments;
+    const double dx = b.x - a.x, dy = b.y - a.y, dyaw = world::angleDiff(b.yaw, a.yaw);
+    const double linf = std::max({std::abs(dx), std::abs(dy), std::abs(dyaw)});
+    const long n = std::max(1L, static_cast<long>(std::ceil(linf / options_.resolution)));
+    for (long k = first ? 0 : 1; k <= n; ++k) {
+      const double t = static_cast<double>(k) / static_cast<double>(n);
+      ws_.setBase(k == n ? b : world::Pose2{a.x + t * dx, a.y + t * dy, world::wrapAngle(a.yaw + t * dyaw)});
+      checkState(where);
+    }
+  }
+
+  fcl::Transform3d transform(int g) const {
+    const mjData* d = ws_.data();
+    fcl::Transform3d t = fcl::Transform3d::Identity();
+    const double* r = d->geom_xmat + 9 * g;
+    Eigen::Matrix3d rot;
+    rot << r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8];
+    t.linear() = rot;
+    t.translation() = Eigen::Vector3d(d->geom_xpos + 3 * g);
+    return t;
+  }
+
+  // FCL's separation of a pair: its distance, or minus the deepest contact when they collide.
+  double separation(int g1, int g2) const {
+    const auto& s1 = shapes_[static_cast<std::size_t>(g1)];
+    const auto& s2 = shapes_[static_cast<std::size_t>(g2)];
+    const fcl::Transform3d t1 = transform(g1), t2 = transform(g2);
+    fcl::CollisionRequestd creq(4, true);
+    creq.gjk_solver_type = fcl::GST_INDEP;
+    fcl::CollisionResultd cres;
+    if (fcl::collide(s1.get(), t1, s2.get(), t2, creq, cres) > 0) {
+      double depth = 0;
+      for (std::size_t i = 0; i < cres.numContacts(); ++i)
+        depth = std::max(depth, cres.getContact(i).penetration_depth);
+      return -depth;
+    }
+    fcl::DistanceRequestd dreq;
+    dreq.gjk_solver_type = fcl::GST_INDEP;
+    fcl::DistanceResultd dres;
+    return std::max(0.0, fcl::distance(s1.get(), t1, s2.get(), t2, dreq, dres));
+  }
+
+  // A lower bound from bounding spheres (a plane: the height of the other's centre), to skip far pairs.
+  double sphereBound(int g1, int g2) const {
+    const mjModel* m = scene_->model();
+    const mjData* d = ws_.data();
+    const double r1 = m->geom_rbound[g1], r2 = m->geom_rbound[g2];
+    const double* x1 = d->geom_xpos + 3 * g1;
+    const double* x2 = d->geom_xpos + 3 * g2;
+    if (r1 > 0 && r2 > 0) return std::hypot(x1[0] - x2[0], x1[1] - x2[1], x1[2] - x2[2]) - r1 - r2;
+    const int plane = r1 > 0 ? g2 : g1, other = r1 > 0 ? g1 : g2;
+    const double* n = d->geom_xmat + 9 * plane;
+    const double* c = d->geom_xpos + 3 * plane;
+    const double* x = d->geom_xpos + 3 * other;
+    return n[2] * (x[0] - c[0]) + n[5] * (x[1] - c[1]) + n[8] * (x[2] - c[2]) - m->geom_rbound[other];
+  }
+
+  void checkState(const std::string& where) {
+    ++report_.states;
+    for (const AuditPair& p : pairs_) {
+      if (!shapes_[static_cast<std::size_t>(p.g1)] || !shapes_[static_cast<std::size_t>(p.g2)]) continue;
+      if (sphereBound(p.g1, p.g2) > std::max(p.required, 0.0) + options_.cap) continue;
+      const double sep = separation(p.g1, p.g2);
+      ClosestApproach& c = report_.closest[p.bodyClass];
+      if (c.where.empty() || sep < c.distance) c = {sep, where, scene_->geomName(p.g1), scene_->geomName(p.g2)};
+      const bool violated = p.required >= 0 ? (sep < p.required || sep <= 0) : sep < p.required;
+      if (violated) addViolation(where, scene_->geomName(p.g1), scene_->geomName(p.g2), sep, p.required, "");
+    }
+  }
+
+  void addViolation(const std::string& where, std::string first, std::string second, double sep, double required,
+                    const std::string& note) {
+    ++report_.violationCount;
+    if (report_.violations.size() < kMaxListedViolations)
+      report_.violations.push_back(
+          {note.empty() ? where : where + ": " + note, std::move(first), std::move(second), sep, required});
+  }
+
+  std::shared_ptr<const world::Scene> scene_;
+  world::Workspace ws_;
+  AuditOptions options_;
+  AuditReport& report_;
+  std::vector<std::shared_ptr<fcl::CollisionGeometryd>> shapes_;
+  std::vector<bool> person_;
+  std::vector<AuditPair> pairs_;
+};
+
+std::string describe(const json& line) {
+  std::string call = line.value("call", json::object()).value("name", std::string("?"));
+  std::string where = fmt::format("{} step {}", line.value("phase", std::string("?")), line.value("step", -1));
+  if (line.contains("task")) where += fmt::format(" task {}", line["task"].get<int>());
+  return where + ": " + call;
+}
+
+}  // namespace
+
+AuditReport auditRun(const std::string& runDir, const AuditOptions& options) {
+  namespace fs = std::filesystem;
+  AuditReport report;
+  report.run = runDir;
+  std::string program = options.program;
+  if (program.empty()) {
+    std::ifstream in(fs::path(runDir) / "config.json");
+    if (!in) {
+      report.error = fmt::format("{}: no config.json: not a run folder", runDir);
+      return report;
+    }
+    try {
+      program = json::parse(in).value("file", std::string());
+    } catch (const json::exception& e) {
+      report.error = fmt::format("{}/config.json: {}", runDir, e.what());
+      return report;
+    }
+  }
+  const auto loaded = LoadedProgram::load(program);
+  if (!loaded->ok() || !loaded->scene()) {
+    report.error = fmt::format("{}: cannot load the run's program '{}' (pass --program FILE){}", runDir, program,
+                               loaded->ok() ? ": it has no world scene" : "");
+    return report;
+  }
+  std::ifstream motions(fs::path(runDir) / "motions.jsonl");
+  if (!motions) {
+    report.error = fmt::format("{}: no motions.jsonl (the run recorded no motions)", runDir);
+    return report;
+  }
+  Auditor auditor(loaded->scene(), options, report);
+  std::string text;
+  for (long number = 1; std::getline(motions, text); ++number) {
+    try {
+      const json line = json::parse(text);
+      auditor.audit(world::motionFromJson(*loaded->scene(), line.at("motion").dump()), describe(line));
+    } catch (const std::exception& e) {
+      report.error = fmt::format("{}/motions.jsonl:{}: {}", runDir, number, e.what());
+      return report;
+    }
+  }
+  return report;
+}
+
+}  // namespace cbtl::app

@@ -1,0 +1,58 @@
+// MotionAudit.h — `cbtl audit`: re-checks every motion a run recorded (the run folder's motions.jsonl,
+// robot/world/MotionRecord.h) without the code that planned and certified it.
+//
+// An independent path on purpose: the executor proves segments with motion bounds and its own exact geometry
+// (robot/world/SegmentCertificate.h, GeomDistance.h); the audit samples every segment densely (at most
+// `resolution` rad, or metres for the base, between samples, L∞) and asks FCL 0.7 directly about every candidate
+// pair near enough to matter (collision with contact depth, distance), comparing each pair with the separation
+// it must keep: the scene's keep-out (MJCF margin or <pair> margin), 0 otherwise (touching is contact), or minus
+// the depth of an allowance the motion's record declares. It shares with the executor only the scene's data: the
+// geoms, the candidate pairs MuJoCo's filters give, the keep-outs and the FCL shape of each geom.
+//
+// The person is the scene's body `user`, every body below it and every body named `user_*` (both robot scenes
+// follow this convention). Other classes: scenery (static bodies and fixtures), objects (movable objects not
+// held), self (robot × robot).
+// Units: metres, radians.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace cbtl::app {
+
+struct AuditOptions {
+  double resolution = 0.002;  // largest step between sampled states (rad for joints and yaw, m for the base)
+  double cap = 0.10;          // distances up to this are measured for the clearance report (m)
+  std::string program;        // the .cbtl file; empty: the run's config.json "file"
+};
+
+struct AuditViolation {
+  std::string where;          // "train step 812: moveArm(...)" (phase, step, task, the call)
+  std::string first, second;  // the geoms
+  double separation = 0;      // measured (negative: penetration depth)
+  double required = 0;        // what the pair must keep
+};
+
+struct ClosestApproach {
+  double distance = 0;  // metres (the cap when nothing came nearer)
+  std::string where, first, second;
+};
+
+struct AuditReport {
+  std::string run;
+  std::int64_t motions = 0, segments = 0, states = 0;
+  std::int64_t violationCount = 0;
+  std::vector<AuditViolation> violations;          // the first kMaxListed
+  std::map<std::string, ClosestApproach> closest;  // per body class: person, scenery, objects, self
+  std::string error;                               // the run could not be audited (unreadable, no scene, ...)
+  bool passed() const { return error.empty() && violationCount == 0; }
+};
+
+inline constexpr std::size_t kMaxListedViolations = 20;
+
+// Audits the run folder `runDir`. Never throws: problems land in `error`.
+AuditReport auditRun(const std::string& runDir, const AuditOptions& options);
+
+}  // namespace cbtl::app

@@ -1,0 +1,210 @@
+// cbtl audit: a real run's motions pass; a forged motion into the table, a contact beyond its allowance and a
+// motion that touches without one fail; what cannot be audited says why.
+#include "app/audit/MotionAudit.h"
+
+#include "app/DomainSolverOptions.h"
+#include "app/LoadedProgram.h"
+#include "app/SimulatorFacts.h"
+#include "domains/DomainRegistry.h"
+#include "robot/world/MotionRecord.h"
+#include "robot/world/Scene.h"
+#include "runtime/approach/Experiment.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <string>
+
+namespace cbtl::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string domainFile(const std::string& d) { return std::string(CBTL_DOMAINS_DIR) + "/" + d + "/" + d + ".cbtl"; }
+
+struct TempRun {
+  fs::path dir;
+  explicit TempRun(const std::string& name) : dir(fs::temp_directory_path() / ("cbtl_audit_" + name)) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  ~TempRun() { fs::remove_all(dir); }
+  void config(const std::string& program) const {
+    std::ofstream(dir / "config.json") << "{\"file\": \"" << program << "\"}\n";
+  }
+  void motions(const std::vector<std::string>& records) const {
+    std::ofstream out(dir / "motions.jsonl");
+    for (const auto& r : records)
+      out << R"({"phase":"train","step":1,"call":{"name":"forged","args":[]},"motion":)" << r << "}\n";
+  }
+};
+
+const std::shared_ptr<const world::Scene>& homeScene() {
+  static const auto scene = world::Scene::loadFile(std::string(CBTL_DOMAINS_DIR) + "/home/home.xml").scene;
+  return scene;
+}
+
+// The base drives 0.4 m along x in open floor, arm retracted: free.
+world::ExecutedMotion freeBaseMotion() {
+  world::ExecutedMotion m;
+  m.kind = world::ExecutedMotion::Kind::Base;
+  m.start.arm = world::configs::kRetract;
+  m.start.base = {0.3, -0.4, 0};
+  m.base = {{0.3, -0.4, 0}, {0.7, -0.4, 0}};
+  return m;
+}
+
+TEST(MotionAudit, AFreeMotionPassesAndAMotionIntoTheTableFails) {
+  TempRun run("forged");
+  run.config(domainFile("cleaning"));
+  const world::Scene& scene = *homeScene();
+  world::ExecutedMotion into = freeBaseMotion();
+  // From beside the main table (x -0.75 +- 0.1, top at z 0) straight through it: the stand is 0.39 m tall.
+  into.start.base = {-0.3, 0.0, 0};
+  into.base = {{-0.3, 0.0, 0}, {-0.75, 0.0, 0}};
+  run.motions({world::motionToJson(scene, freeBaseMotion())});
+  AuditReport ok = auditRun(run.dir.string(), {});
+  EXPECT_TRUE(ok.passed()) << ok.error << " " << ok.violationCount;
+  EXPECT_EQ(ok.motions, 1);
+  EXPECT_GT(ok.states, 100);  // 0.4 m at 2 mm
+
+  run.motions({world::motionToJson(scene, freeBaseMotion()), world::motionToJson(scene, into)});
+  const AuditReport bad = auditRun(run.dir.string(), {});
+  EXPECT_FALSE(bad.passed());
+  ASSERT_GT(bad.violationCount, 0);
+  EXPECT_EQ(bad.violations.front().second, "table_top") << bad.violations.front().first;
+  EXPECT_LT(bad.violations.front().separation, 0.0);
+}
+
+// A held book pushed 0.5 mm into the shelf it stands on: a contact unless the motion's record allows it, and then
+// only up to the allowed depth.
+TEST(MotionAudit, AContactPassesOnlyWithinTheAllowanceItsRecordDeclares) {
+  TempRun run("allowance");
+  run.config(domainFile("books"));
+  const world::Scene& scene = *homeScene();
+  world::ExecutedMotion m = freeBaseMotion();
+  const int shelf = scene.geomId("shelf_layer_1");
+  // shelf_layer_1: centre (0, 0.75, 0), half-height 0.05; the book's half-height is 0.08.
+  // Holding requires the grasp relative to the tool: compute it from the start state's tool pose.
+  world::Workspace ws(homeScene());
+  world::WorldState st;
+  st.arm = m.start.arm;
+  st.base = m.start.base;
+  ASSERT_EQ(ws.setState(st), world::StateStatus::Ok);
+  // The base stands still (a zero-length motion would be dropped): move it 1 mm.
+  m.base = {m.start.base, {m.start.base.x + 0.001, m.start.base.y, 0}};
+  auto atDepth = [&](double depth, double allowed) {
+    world::ExecutedMotion h = m;
+    const world::Pose3 book = world::Pose3::fromPosition({0.3, 0.75, 0.05 + 0.08 - depth});
+    h.start.held = world::Grasp{"book_4", ws.toolPose().inverse() * book};
+    h.start.objects["book_4"] = book;
+    if (allowed > 0) {
+      world::ContactAllowance a;
+      a.geom = shelf;
+      a.depth = allowed;
+      h.allowances.push_back(a);
+    }
+    return world::motionToJson(scene, h);
+  };
+  run.motions({atDepth(0.0005, 0.001)});
+  const AuditReport allowed = auditRun(run.dir.string(), {});
+  EXPECT_TRUE(allowed.passed()) << allowed.error << " " << allowed.violationCount
+                                << (allowed.violations.empty() ? "" : " " + allowed.violations.front().second);
+  run.motions({atDepth(0.0005, 0.0)});
+  EXPECT_FALSE(auditRun(run.dir.string(), {}).passed());
+  run.motions({atDepth(0.002, 0.001)});
+  const AuditReport deep = auditRun(run.dir.string(), {});
+  ASSERT_FALSE(deep.passed());
+  EXPECT_EQ(deep.violations.front().second, "shelf_layer_1");
+  EXPECT_NEAR(deep.violations.front().separation, -0.002, 1e-4);
+}
+
+TEST(MotionAudit, SaysWhyARunCannotBeAudited) {
+  TempRun run("unreadable");
+  EXPECT_NE(auditRun(run.dir.string(), {}).error.find("config.json"), std::string::npos);
+  run.config(domainFile("cleaning"));
+  EXPECT_NE(auditRun(run.dir.string(), {}).error.find("motions.jsonl"), std::string::npos);
+  std::ofstream(run.dir / "motions.jsonl") << "{\"phase\":\"train\",\"motion\":{\"kind\":\"sideways\"}}\n";
+  const AuditReport r = auditRun(run.dir.string(), {});
+  EXPECT_NE(r.error.find("motions.jsonl:1"), std::string::npos) << r.error;
+  EXPECT_FALSE(r.passed());
+}
+
+std::string readAll(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+approach::ExperimentResult runCleaning(const std::string& dir, approach::RunMode mode,
+                                       std::function<void(const char*, std::int64_t)> hook = {}) {
+  static const auto lp = LoadedProgram::load(domainFile("cleaning"));
+  const auto facts = std::make_shared<domains::ProgramFacts>(simulatorFacts(*lp));
+  approach::ExperimentConfig c;
+  c.approach.kind = approach::ApproachKind::Cbtl;
+  c.steps = 60;
+  c.evalEvery = 20;
+  c.evalTasks = 1;
+  c.solverOptions = domainSolverOptions("cleaning");
+  c.outDir = dir;
+  c.runMode = mode;
+  c.testHook = std::move(hook);
+  return approach::runExperiment(
+      *lp,
+      [facts](const sim::SimulatorOptions& o, std::uint64_t seed) {
+        return domains::createSimulator("cleaning", *facts, o, seed);
+      },
+      c);
+}
+
+// Interrupted between checkpoints and resumed, a robot run's record holds the same bytes as an uninterrupted one's.
+TEST(MotionAudit, AResumedRunRecordsTheSameMotions) {
+  struct Interrupted {};
+  TempRun whole("resume_whole"), cut("resume_cut");
+  runCleaning(whole.dir.string(), approach::RunMode::Force);
+  EXPECT_THROW(runCleaning(cut.dir.string(), approach::RunMode::Force,
+                           [](const char* point, std::int64_t step) {
+                             if (step == 37 && std::string(point) == "step") throw Interrupted{};
+                           }),
+               Interrupted);
+  runCleaning(cut.dir.string(), approach::RunMode::Resume);
+  const std::string a = readAll(whole.dir / "motions.jsonl"), b = readAll(cut.dir / "motions.jsonl");
+  EXPECT_FALSE(a.empty());
+  EXPECT_EQ(a, b);
+}
+
+// A real run of each robot domain records its motions and they pass the audit.
+TEST(MotionAudit, RealRunsOfEveryRobotDomainPass) {
+  for (const std::string domain : {"cleaning", "books", "feeding"}) {
+    TempRun run("real_" + domain);
+    const auto lp = LoadedProgram::load(domainFile(domain));
+    ASSERT_TRUE(lp->ok());
+    const auto facts = std::make_shared<domains::ProgramFacts>(simulatorFacts(*lp));
+    approach::ExperimentConfig c;
+    c.approach.kind = approach::ApproachKind::Cbtl;
+    c.steps = 40;
+    c.evalEvery = 40;
+    c.evalTasks = 1;
+    c.solverOptions = domainSolverOptions(domain);
+    c.outDir = run.dir.string();
+    c.runMode = approach::RunMode::Force;
+    approach::runExperiment(
+        *lp,
+        [&](const sim::SimulatorOptions& o, std::uint64_t seed) {
+          return domains::createSimulator(domain, *facts, o, seed);
+        },
+        c);
+    // The run's config names the program as given; point the audit at it explicitly as well.
+    AuditOptions o;
+    o.program = domainFile(domain);
+    const AuditReport r = auditRun(run.dir.string(), o);
+    EXPECT_TRUE(r.passed()) << domain << ": " << r.error << " " << r.violationCount
+                            << (r.violations.empty() ? "" : " " + r.violations.front().where);
+    EXPECT_GT(r.motions, 5) << domain;
+  }
+}
+
+}  // namespace
+}  // namespace cbtl::app

@@ -167,29 +167,48 @@ class Auditor {
     return std::max(0.0, fcl::distance(s1.get(), t1, s2.get(), t2, dreq, dres));
   }
 
-  // A lower bound from bounding spheres (a plane: the height of the other's centre), to skip far pairs.
-  double sphereBound(int g1, int g2) const {
+  // A lower bound on the pair's distance, to skip pairs that cannot matter: bounding spheres, and for a box or a
+  // plane its true extent against the other's bounding sphere (a plane: the height of the other's centre).
+  double quickBound(int g1, int g2) const {
     const mjModel* m = scene_->model();
     const mjData* d = ws_.data();
     const double r1 = m->geom_rbound[g1], r2 = m->geom_rbound[g2];
     const double* x1 = d->geom_xpos + 3 * g1;
     const double* x2 = d->geom_xpos + 3 * g2;
-    if (r1 > 0 && r2 > 0) return std::hypot(x1[0] - x2[0], x1[1] - x2[1], x1[2] - x2[2]) - r1 - r2;
-    const int plane = r1 > 0 ? g2 : g1, other = r1 > 0 ? g1 : g2;
-    const double* n = d->geom_xmat + 9 * plane;
-    const double* c = d->geom_xpos + 3 * plane;
-    const double* x = d->geom_xpos + 3 * other;
-    return n[2] * (x[0] - c[0]) + n[5] * (x[1] - c[1]) + n[8] * (x[2] - c[2]) - m->geom_rbound[other];
+    double bound = -std::numeric_limits<double>::infinity();
+    if (r1 > 0 && r2 > 0) bound = std::hypot(x1[0] - x2[0], x1[1] - x2[1], x1[2] - x2[2]) - r1 - r2;
+    for (const auto& [solid, other] : {std::pair{g1, g2}, std::pair{g2, g1}}) {
+      const double radius = m->geom_rbound[other];
+      if (radius <= 0) continue;
+      const double* c = d->geom_xpos + 3 * solid;
+      const double* r = d->geom_xmat + 9 * solid;
+      const double* x = d->geom_xpos + 3 * other;
+      const double v[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
+      if (m->geom_type[solid] == mjGEOM_PLANE) {
+        bound = std::max(bound, r[2] * v[0] + r[5] * v[1] + r[8] * v[2] - radius);
+      } else if (m->geom_type[solid] == mjGEOM_BOX) {
+        double outside = 0;
+        for (int k = 0; k < 3; ++k) {
+          const double e = std::abs(r[k] * v[0] + r[3 + k] * v[1] + r[6 + k] * v[2]) - m->geom_size[3 * solid + k];
+          if (e > 0) outside += e * e;
+        }
+        bound = std::max(bound, std::sqrt(outside) - radius);
+      }
+    }
+    return bound;
   }
 
   void checkState(const std::string& where) {
     ++report_.states;
     for (const AuditPair& p : pairs_) {
       if (!shapes_[static_cast<std::size_t>(p.g1)] || !shapes_[static_cast<std::size_t>(p.g2)]) continue;
-      if (sphereBound(p.g1, p.g2) > std::max(p.required, 0.0) + options_.cap) continue;
+      // Measured when it could be a violation, or nearer than the class's closest approach so far (within the cap).
+      const auto known = report_.closest.find(p.bodyClass);
+      const double reportable = known == report_.closest.end() ? options_.cap : std::min(known->second.distance, options_.cap);
+      if (quickBound(p.g1, p.g2) > std::max(std::max(p.required, 0.0), reportable)) continue;
       const double sep = separation(p.g1, p.g2);
-      ClosestApproach& c = report_.closest[p.bodyClass];
-      if (c.where.empty() || sep < c.distance) c = {sep, where, scene_->geomName(p.g1), scene_->geomName(p.g2)};
+      if (sep < reportable)
+        report_.closest[p.bodyClass] = {sep, where, scene_->geomName(p.g1), scene_->geomName(p.g2)};
       const bool violated = p.required >= 0 ? (sep < p.required || sep <= 0) : sep < p.required;
       if (violated) addViolation(where, scene_->geomName(p.g1), scene_->geomName(p.g2), sep, p.required, "");
     }

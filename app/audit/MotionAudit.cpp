@@ -10,6 +10,7 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 #include <fmt/core.h>
+#include <zlib.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -204,11 +205,11 @@ class Auditor {
       if (!shapes_[static_cast<std::size_t>(p.g1)] || !shapes_[static_cast<std::size_t>(p.g2)]) continue;
       // Measured when it could be a violation, or nearer than the class's closest approach so far (within the cap).
       const auto known = report_.closest.find(p.bodyClass);
-      const double reportable = known == report_.closest.end() ? options_.cap : std::min(known->second.distance, options_.cap);
+      const double reportable =
+          known == report_.closest.end() ? options_.cap : std::min(known->second.distance, options_.cap);
       if (quickBound(p.g1, p.g2) > std::max(std::max(p.required, 0.0), reportable)) continue;
       const double sep = separation(p.g1, p.g2);
-      if (sep < reportable)
-        report_.closest[p.bodyClass] = {sep, where, scene_->geomName(p.g1), scene_->geomName(p.g2)};
+      if (sep < reportable) report_.closest[p.bodyClass] = {sep, where, scene_->geomName(p.g1), scene_->geomName(p.g2)};
       const bool violated = p.required >= 0 ? (sep < p.required || sep <= 0) : sep < p.required;
       if (violated) addViolation(where, scene_->geomName(p.g1), scene_->geomName(p.g2), sep, p.required, "");
     }
@@ -230,6 +231,18 @@ class Auditor {
   std::vector<bool> person_;
   std::vector<AuditPair> pairs_;
 };
+
+// The whole content of a gzip file (any number of members) or of a plain file (zlib reads those as they are).
+bool readMaybeGzipped(const std::string& path, std::string& out) {
+  gzFile f = gzopen(path.c_str(), "rb");
+  if (!f) return false;
+  char buf[1 << 16];
+  int n = 0;
+  while ((n = gzread(f, buf, sizeof buf)) > 0) out.append(buf, static_cast<std::size_t>(n));
+  const bool ok = n == 0;
+  gzclose(f);
+  return ok;
+}
 
 std::string describe(const json& line) {
   std::string call = line.value("call", json::object()).value("name", std::string("?"));
@@ -264,19 +277,27 @@ AuditReport auditRun(const std::string& runDir, const AuditOptions& options) {
                                loaded->ok() ? ": it has no world scene" : "");
     return report;
   }
-  std::ifstream motions(fs::path(runDir) / "motions.jsonl");
-  if (!motions) {
-    report.error = fmt::format("{}: no motions.jsonl (the run recorded no motions)", runDir);
+  // The run writes motions.jsonl.gz; a plain motions.jsonl (written by hand, or unpacked) is read the same way.
+  std::string name = "motions.jsonl.gz";
+  if (!fs::exists(fs::path(runDir) / name)) name = "motions.jsonl";
+  std::string all;
+  if (!readMaybeGzipped((fs::path(runDir) / name).string(), all)) {
+    report.error = fmt::format("{}: no readable motions.jsonl.gz (the run recorded no motions)", runDir);
     return report;
   }
   Auditor auditor(loaded->scene(), options, report);
-  std::string text;
-  for (long number = 1; std::getline(motions, text); ++number) {
+  std::size_t at = 0;
+  for (long number = 1; at < all.size(); ++number) {
+    std::size_t end = all.find('\n', at);
+    if (end == std::string::npos) end = all.size();
+    const std::string text = all.substr(at, end - at);
+    at = end + 1;
+    if (text.empty()) continue;
     try {
       const json line = json::parse(text);
       auditor.audit(world::motionFromJson(*loaded->scene(), line.at("motion").dump()), describe(line));
     } catch (const std::exception& e) {
-      report.error = fmt::format("{}/motions.jsonl:{}: {}", runDir, number, e.what());
+      report.error = fmt::format("{}/{}:{}: {}", runDir, name, number, e.what());
       return report;
     }
   }

@@ -1,5 +1,7 @@
 #include "runtime/approach/Checkpoint.h"
 
+#include "runtime/approach/GzipMember.h"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -238,7 +240,7 @@ json Checkpoint::toJson() const {
            {{"train.csv", trainCsvBytes},
             {"eval.csv", evalCsvBytes},
             {"world-calls.jsonl", worldLogBytes},
-            {"motions.jsonl", motionsBytes}}},
+            {"motions.jsonl.gz", motionsBytes}}},
           {"world_calls", worldCalls},
           {"train_solver", trainSolver},
           {"approach_rng", approachRng},
@@ -264,7 +266,7 @@ Checkpoint Checkpoint::fromJson(const json& j, const std::string& source) {
     cp.trainCsvBytes = j.at("files").at("train.csv").get<std::uint64_t>();
     cp.evalCsvBytes = j.at("files").at("eval.csv").get<std::uint64_t>();
     cp.worldLogBytes = j.at("files").at("world-calls.jsonl").get<std::uint64_t>();
-    cp.motionsBytes = j.at("files").value("motions.jsonl", std::uint64_t{0});
+    cp.motionsBytes = j.at("files").value("motions.jsonl.gz", std::uint64_t{0});
     cp.worldCalls = j.at("world_calls").get<std::uint64_t>();
     cp.trainSolver = j.at("train_solver");
     cp.profile = j.at("profile");
@@ -413,14 +415,19 @@ void RunOutput::openForResume(const json& config) {
   train_.open(path("train.csv"), checkpoint_->trainCsvBytes);
   eval_.open(path("eval.csv"), checkpoint_->evalCsvBytes);
   world_.open(worldLogPath(), checkpoint_->worldLogBytes);
-  if (checkpoint_->motionsBytes > 0 || fs::exists(path("motions.jsonl")))
-    motions_.open(path("motions.jsonl"), checkpoint_->motionsBytes);
+  if (checkpoint_->motionsBytes > 0 || fs::exists(path("motions.jsonl.gz")))
+    motions_.open(path("motions.jsonl.gz"), checkpoint_->motionsBytes);
 }
 
 void RunOutput::motionLine(const std::string& line) {
-  if (!enabled()) return;
-  if (!motions_.isOpen()) motions_.open(path("motions.jsonl"));
-  motions_.append(line);
+  if (enabled()) motionText_ += line;
+}
+
+void RunOutput::flushMotions() {
+  if (motionText_.empty()) return;
+  if (!motions_.isOpen()) motions_.open(path("motions.jsonl.gz"));
+  motions_.append(gzipMember(motionText_));
+  motionText_.clear();
 }
 
 std::string RunOutput::worldLog() const {
@@ -438,6 +445,7 @@ void RunOutput::writeModel(std::int64_t step, const std::string& profileJson) {
 void RunOutput::checkpoint(Checkpoint& cp, const std::string& worldLines) {
   if (!enabled()) return;
   world_.append(worldLines);
+  flushMotions();
   train_.sync();
   eval_.sync();
   world_.sync();
@@ -455,6 +463,7 @@ void RunOutput::finish(const std::string& profileJson, const ExperimentResult& r
   train_.close();
   eval_.close();
   world_.close();
+  flushMotions();
   if (motions_.isOpen()) motions_.close();
   writeFileAtomic(path("profile.json"), profileJson);
   if (hook) hook("finish", result.evals.empty() ? 0 : result.evals.back().step);

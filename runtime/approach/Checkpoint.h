@@ -2,7 +2,7 @@
 //
 // A checkpoint is taken at every evaluation point (every evalEvery steps, and at the end), after that point's
 // eval.csv row and models/<step>.json are written. Its order makes every prefix of it safe to be killed in:
-//   1. train.csv, eval.csv, world-calls.jsonl and motions.jsonl (when there is one) are flushed and fsynced;
+//   1. train.csv, eval.csv, world-calls.jsonl and motions.jsonl.gz (when there is one) are flushed and fsynced;
 //   2. checkpoint.json is replaced atomically. It holds the step, the three files' byte lengths at that
 //      moment, the training solver's state (RNG and memory, Solver::saveState; every evaluation starts its
 //      own solver afresh, Experiment.h), the approach RNG, the program's
@@ -111,7 +111,8 @@ class RunOutput {
   std::string worldLogPath() const;
 
   void trainRow(const std::string& row) { train_.append(row); }
-  // One line of motions.jsonl (with its newline); the file is created by the first line.
+  // One line of motions.jsonl.gz (with its newline). Lines are kept until the next checkpoint (or the end), then
+  // appended as one gzip member (GzipMember.h); the file is created by the first member.
   void motionLine(const std::string& line);
   void evalRow(const std::string& row) { eval_.append(row); }
   void writeModel(std::int64_t step, const std::string& profileJson);
@@ -129,7 +130,9 @@ class RunOutput {
 
   std::string dir_;
   std::unique_ptr<DirectoryLock> lock_;
+  void flushMotions();
   AppendFile train_, eval_, world_, motions_;
+  std::string motionText_;  // lines not yet compressed
   std::optional<ExperimentResult> completed_;
   std::optional<Checkpoint> checkpoint_;
 };

@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* const kTopFiles[] = {"config.json",     "train.csv",    "eval.csv", "world-calls.jsonl", "motions.jsonl",
+const char* const kTopFiles[] = {"config.json",     "train.csv",    "eval.csv", "world-calls.jsonl", "motions.jsonl.gz",
                                  "checkpoint.json", "profile.json", "llm.json", "complete.json"};
 
 bool allDigits(const std::string& s) {

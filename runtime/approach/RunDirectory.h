@@ -10,10 +10,10 @@
 //   eval.csv           one row per checkpoint (likewise)
 //   models/<step>.json the profile learned by each checkpoint (atomic)
 //   world-calls.jsonl  the training world's calls (append-only), replayed by `--resume` (Checkpoint.h)
-//   motions.jsonl      what the robot did, training and evaluation (append-only, kept after completion; only for
-//                      domains that report motions): one JSON object per executed motion, {"phase": "train" |
-//                      "eval", "step", "task" (eval), "call": the action, "motion": the domain's record} —
-//                      robot domains: robot/world/MotionRecord.h; `cbtl audit` re-checks it
+//   motions.jsonl.gz   what the robot did, training and evaluation (gzip, one member per checkpoint, appended; kept
+//                      after completion; only for domains that report motions): JSON lines, one per executed
+//                      motion, {"phase": "train" | "eval", "step", "task" (eval), "call": the action, "motion":
+//                      the domain's record} — robot domains: robot/world/MotionRecord.h; `cbtl audit` re-checks it
 //   checkpoint.json    the last complete checkpoint (atomic; written after the files above are durable)
 //   profile.json       the final profile (atomic)
 //   llm.json           the text backend and its failure counts (atomic, at the end; textpref/RunReport.h)

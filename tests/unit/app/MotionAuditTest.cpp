@@ -170,7 +170,7 @@ TEST(MotionAudit, AResumedRunRecordsTheSameMotions) {
                            }),
                Interrupted);
   runCleaning(cut.dir.string(), approach::RunMode::Resume);
-  const std::string a = readAll(whole.dir / "motions.jsonl"), b = readAll(cut.dir / "motions.jsonl");
+  const std::string a = readAll(whole.dir / "motions.jsonl.gz"), b = readAll(cut.dir / "motions.jsonl.gz");
   EXPECT_FALSE(a.empty());
   EXPECT_EQ(a, b);
 }

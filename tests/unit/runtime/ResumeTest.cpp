@@ -327,8 +327,8 @@ TEST(RunDirectory, AFullDeviceIsReportedWithTheFileNamed) {
 
 TEST(RunDirectory, RunFileNamesAreOnlyTheRunsOwn) {
   for (const char* f :
-       {"train.csv", "eval.csv", "config.json", "profile.json", "checkpoint.json", "world-calls.jsonl", "motions.jsonl",
-        "complete.json", "models/0.json", "models/12000.json", "profile.json.tmp.123.4"}) {
+       {"train.csv", "eval.csv", "config.json", "profile.json", "checkpoint.json", "world-calls.jsonl",
+        "motions.jsonl.gz", "complete.json", "models/0.json", "models/12000.json", "profile.json.tmp.123.4"}) {
     EXPECT_TRUE(approach::isRunFileName(f)) << f;
   }
   for (const char* f : {"notes.txt", "models/best.json", "models/1.json.bak", "train.csv.bak", "summary.csv", ".lock",

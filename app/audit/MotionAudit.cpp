@@ -137,16 +137,7 @@ class Auditor {
     }
   }
 
-  fcl::Transform3d transform(int g) const {
-    const mjData* d = ws_.data();
-    fcl::Transform3d t = fcl::Transform3d::Identity();
-    const double* r = d->geom_xmat + 9 * g;
-    Eigen::Matrix3d rot;
-    rot << r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8];
-    t.linear() = rot;
-    t.translation() = Eigen::Vector3d(d->geom_xpos + 3 * g);
-    return t;
-  }
+  fcl::Transform3d transform(int g) const { return world::geomWorldTransform(ws_.data(), g); }
 
   // FCL's separation of a pair: its distance, or minus the deepest contact when they collide.
   double separation(int g1, int g2) const {

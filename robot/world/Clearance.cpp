@@ -33,16 +33,7 @@ struct ClearanceChecker::Impl {
   std::vector<fcl::Transform3d> local;
   std::vector<LocalBox> boxes;  // per object
 
-  fcl::Transform3d geomWorld(const Workspace& ws, int g) const {
-    const mjData* d = ws.data();
-    fcl::Transform3d t = fcl::Transform3d::Identity();
-    const mjtNum* r = d->geom_xmat + 9 * g;
-    Eigen::Matrix3d rot;
-    rot << r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8];
-    t.linear() = rot;
-    t.translation() = Eigen::Vector3d(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]);
-    return t;
-  }
+  fcl::Transform3d geomWorld(const Workspace& ws, int g) const { return geomWorldTransform(ws.data(), g); }
 
   static fcl::Transform3d toTransform(const Pose3& p) {
     fcl::Transform3d t = fcl::Transform3d::Identity();

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <mujoco/mujoco.h>
+#include <Eigen/Geometry>
 
 #include <memory>
 
@@ -19,5 +20,8 @@ namespace cbtl::world {
 
 // Null for meshes and height fields (no scene uses them).
 std::shared_ptr<fcl::CollisionGeometry<double>> fclShapeOf(const mjModel* m, int g);
+
+// The world pose of geom g in `d` (geom_xpos, geom_xmat), as FCL takes it (fcl::Transform3d is this type).
+Eigen::Isometry3d geomWorldTransform(const mjData* d, int g);
 
 }  // namespace cbtl::world

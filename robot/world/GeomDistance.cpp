@@ -31,8 +31,10 @@ void axisEnds(const mjModel* m, const mjData* d, int g, double* a, double* b) {
 
 bool roundShape(int type) { return type == mjGEOM_SPHERE || type == mjGEOM_CAPSULE; }
 
-fcl::Transform3d worldTransform(const mjData* d, int g) {
-  fcl::Transform3d t = fcl::Transform3d::Identity();
+}  // namespace
+
+Eigen::Isometry3d geomWorldTransform(const mjData* d, int g) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
   const double* r = d->geom_xmat + 9 * g;
   Eigen::Matrix3d rot;
   rot << r[0], r[1], r[2], r[3], r[4], r[5], r[6], r[7], r[8];
@@ -40,8 +42,6 @@ fcl::Transform3d worldTransform(const mjData* d, int g) {
   t.translation() = Eigen::Vector3d(d->geom_xpos[3 * g], d->geom_xpos[3 * g + 1], d->geom_xpos[3 * g + 2]);
   return t;
 }
-
-}  // namespace
 
 namespace {
 
@@ -309,7 +309,7 @@ struct GeomDistance::Impl {
     bool settled = false;
     const double best = cheapGap(a, b, enough, settled);
     if (best > enough || settled) return best;
-    const fcl::Transform3d t1 = worldTransform(d, g1), t2 = worldTransform(d, g2);
+    const fcl::Transform3d t1 = geomWorldTransform(d, g1), t2 = geomWorldTransform(d, g2);
     const fcl::CollisionGeometryd* s1 = shapes[static_cast<size_t>(g1)].get();
     const fcl::CollisionGeometryd* s2 = shapes[static_cast<size_t>(g2)].get();
     fcl::DistanceRequestd dreq(true);

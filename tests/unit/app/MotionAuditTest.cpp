@@ -138,23 +138,26 @@ std::string readAll(const fs::path& p) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-approach::ExperimentResult runCleaning(const std::string& dir, approach::RunMode mode,
-                                       std::function<void(const char*, std::int64_t)> hook = {}) {
-  static const auto lp = LoadedProgram::load(domainFile("cleaning"));
+// A CBTL run of `domain` into `dir`: `steps` training steps, an evaluation (one task) every `evalEvery`.
+approach::ExperimentResult runDomain(const std::string& domain, const std::string& dir, approach::RunMode mode,
+                                     std::int64_t steps, std::int64_t evalEvery,
+                                     std::function<void(const char*, std::int64_t)> hook = {}) {
+  const auto lp = LoadedProgram::load(domainFile(domain));
+  EXPECT_TRUE(lp->ok()) << domain;
   const auto facts = std::make_shared<domains::ProgramFacts>(simulatorFacts(*lp));
   approach::ExperimentConfig c;
   c.approach.kind = approach::ApproachKind::Cbtl;
-  c.steps = 60;
-  c.evalEvery = 20;
+  c.steps = steps;
+  c.evalEvery = evalEvery;
   c.evalTasks = 1;
-  c.solverOptions = domainSolverOptions("cleaning");
+  c.solverOptions = domainSolverOptions(domain);
   c.outDir = dir;
   c.runMode = mode;
   c.testHook = std::move(hook);
   return approach::runExperiment(
       *lp,
-      [facts](const sim::SimulatorOptions& o, std::uint64_t seed) {
-        return domains::createSimulator("cleaning", *facts, o, seed);
+      [facts, domain](const sim::SimulatorOptions& o, std::uint64_t seed) {
+        return domains::createSimulator(domain, *facts, o, seed);
       },
       c);
 }
@@ -163,13 +166,13 @@ approach::ExperimentResult runCleaning(const std::string& dir, approach::RunMode
 TEST(MotionAudit, AResumedRunRecordsTheSameMotions) {
   struct Interrupted {};
   TempRun whole("resume_whole"), cut("resume_cut");
-  runCleaning(whole.dir.string(), approach::RunMode::Force);
-  EXPECT_THROW(runCleaning(cut.dir.string(), approach::RunMode::Force,
-                           [](const char* point, std::int64_t step) {
-                             if (step == 37 && std::string(point) == "step") throw Interrupted{};
-                           }),
+  runDomain("cleaning", whole.dir.string(), approach::RunMode::Force, 60, 20);
+  EXPECT_THROW(runDomain("cleaning", cut.dir.string(), approach::RunMode::Force, 60, 20,
+                         [](const char* point, std::int64_t step) {
+                           if (step == 37 && std::string(point) == "step") throw Interrupted{};
+                         }),
                Interrupted);
-  runCleaning(cut.dir.string(), approach::RunMode::Resume);
+  runDomain("cleaning", cut.dir.string(), approach::RunMode::Resume, 60, 20);
   const std::string a = readAll(whole.dir / "motions.jsonl.gz"), b = readAll(cut.dir / "motions.jsonl.gz");
   EXPECT_FALSE(a.empty());
   EXPECT_EQ(a, b);
@@ -179,23 +182,7 @@ TEST(MotionAudit, AResumedRunRecordsTheSameMotions) {
 TEST(MotionAudit, RealRunsOfEveryRobotDomainPass) {
   for (const std::string domain : {"cleaning", "books", "feeding"}) {
     TempRun run("real_" + domain);
-    const auto lp = LoadedProgram::load(domainFile(domain));
-    ASSERT_TRUE(lp->ok());
-    const auto facts = std::make_shared<domains::ProgramFacts>(simulatorFacts(*lp));
-    approach::ExperimentConfig c;
-    c.approach.kind = approach::ApproachKind::Cbtl;
-    c.steps = 40;
-    c.evalEvery = 40;
-    c.evalTasks = 1;
-    c.solverOptions = domainSolverOptions(domain);
-    c.outDir = run.dir.string();
-    c.runMode = approach::RunMode::Force;
-    approach::runExperiment(
-        *lp,
-        [&](const sim::SimulatorOptions& o, std::uint64_t seed) {
-          return domains::createSimulator(domain, *facts, o, seed);
-        },
-        c);
+    runDomain(domain, run.dir.string(), approach::RunMode::Force, 40, 40);
     // The run's config names the program as given; point the audit at it explicitly as well.
     AuditOptions o;
     o.program = domainFile(domain);

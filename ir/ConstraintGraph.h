@@ -236,7 +236,21 @@ struct Generator {
   Span span;
 };
 
-enum class ActionKind : std::uint8_t { Call, For, If, Block };
+// Allow: a skill's declared exception to the world's clearances, in force for the actions of its body.
+enum class ActionKind : std::uint8_t { Call, For, If, Block, Allow };
+
+// The part of the robot an exception is for: any robot body, the gripper (end effector and fingers), or the object
+// the robot holds.
+enum class AllowPart : std::uint8_t { Robot, Gripper, Held };
+
+// `allow <part> near <target> <length> { ... }` (the part may come to `length` of the target) or
+// `allow <part> touch <target> <length> { ... }` (it may touch the target and sink into it by `length`).
+struct Allowance {
+  AllowPart part = AllowPart::Held;
+  std::string clearance;       // the target when it is a declared clearance (ConstraintGraph::clearances), by name
+  std::optional<Expr> target;  // otherwise: a text naming a scene body (with the bodies below it) or a scene geom
+  double separation = 0;       // metres the part keeps at least; negative: the depth it may sink (`touch`)
+};
 
 struct Action {
   ActionKind kind = ActionKind::Block;
@@ -245,7 +259,17 @@ struct Action {
   std::vector<std::string> binders;
   std::optional<Expr> set;        // for
   std::optional<Expr> condition;  // if
+  std::optional<Allowance> allow;  // allow
   std::vector<Action> body, elseBody;
+  Span span;
+};
+
+// `clearance <name>: "body", ... >= <length>;` — a class of the world's bodies and the distance the robot, and what
+// it holds, keeps from every one of them along every motion (a hard constraint; skills may declare exceptions).
+struct Clearance {
+  std::string name;
+  std::vector<std::string> bodies;  // scene body names; each covers the bodies attached below it too
+  double distance = 0;              // metres, >= 0
   Span span;
 };
 
@@ -338,6 +362,7 @@ struct ConstraintGraph {
   std::string simulator;
   Span simulatorSpan;
   std::vector<Robot> robots;
+  std::vector<Clearance> clearances;
   std::vector<Enum> enums;
   std::vector<ItemType> itemTypes;
   std::vector<ItemSet> itemSets;

@@ -44,9 +44,21 @@ struct Value {
   static Value names(std::vector<std::string> m) { return Value{Kind::Names, 0, {}, {}, std::move(m)}; }
 };
 
+// A skill's exception to the world's clearances (`allow` in the .cbtl file), in force for a call made inside it:
+// `part` ("robot", "gripper" or "held") may come to `separation` metres of the named scene bodies (with the bodies
+// below them) or geoms; a negative separation lets it touch them and sink in by that much.
+struct ClearanceException {
+  std::string part;
+  std::vector<std::string> names;
+  double separation = 0;
+  std::string declaredAt;  // "file:line:col" of the `allow`
+  bool operator==(const ClearanceException&) const = default;
+};
+
 struct ActionCall {
   std::string name;         // the extern action's name in the .cbtl file
   std::vector<Value> args;  // in declaration order
+  std::vector<ClearanceException> exceptions;  // innermost `allow` last; empty outside any
 };
 
 struct FeedbackEvent {

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <limits>
+#include <set>
 
 namespace cbtl::ir {
 namespace {
@@ -205,6 +206,7 @@ ThresholdDirection readDirection(const Node& n) {
 TextScale readScale(const Node& n) { return knownName(n, "scale", textScaleFromName, "text scale"); }
 TextRating readRating(const Node& n) { return knownName(n, "rating", textRatingFromName, "text rating"); }
 ActionKind readActionKind(const Node& n) { return knownName(n, "kind", actionKindFromName, "action kind"); }
+AllowPart readAllowPart(const Node& n) { return knownName(n, "part", allowPartFromName, "allow part"); }
 FunctionKind readFunctionKind(const Node& n) { return knownName(n, "kind", functionKindFromName, "function kind"); }
 
 // --- the graph ------------------------------------------------------------------------------------------
@@ -229,6 +231,10 @@ class GraphReader {
       g.simulator = s.text("command");
       g.simulatorSpan = span(s);
     }
+    each("clearances", [&](const Node& n) {
+      g.clearances.push_back(clearance(n));
+      clearanceNames_.insert(g.clearances.back().name);
+    });
     each("robots", [&](const Node& n) {
       g.robots.push_back({n.text("name"), static_cast<int>(n.integer("dof", 0, 1000))});
     });
@@ -485,6 +491,32 @@ class GraphReader {
     return g;
   }
 
+  static Clearance clearance(const Node& n) {
+    Clearance c{n.text("name"), n.texts("bodies"), n.number("distance"), span(n)};
+    if (!(c.distance >= 0)) fail(GraphReadOutcome::Inconsistent, n.at("distance"), "a distance is at least 0");
+    if (c.bodies.empty()) fail(GraphReadOutcome::Inconsistent, n.at("bodies"), "a clearance names at least one body");
+    return c;
+  }
+
+  // Exactly one of "clearance" (a declared clearance's name) and "target" (a text expression).
+  Allowance allowance(const Node& n) const {
+    Allowance a;
+    a.part = readAllowPart(n);
+    a.separation = n.number("separation");
+    if (n.has("clearance") == n.has("target")) {
+      fail(GraphReadOutcome::Inconsistent, n.path(), "an allowance has either a \"clearance\" or a \"target\"");
+    }
+    if (n.has("clearance")) {
+      a.clearance = n.text("clearance");
+      if (!clearanceNames_.count(a.clearance)) {
+        fail(GraphReadOutcome::OutOfRange, n.at("clearance"),
+             fmt::format("clearance '{}' is not declared (not in /clearances)", a.clearance));
+      }
+    }
+    if (n.has("target")) a.target = expr(n.object("target"));
+    return a;
+  }
+
   Action action(const Node& n, int depth = 0) const {
     if (depth > kMaxExprDepth)
       fail(GraphReadOutcome::Inconsistent, n.path(), fmt::format("actions nest deeper than {}", kMaxExprDepth));
@@ -495,12 +527,17 @@ class GraphReader {
     a.binders = n.optTexts("binders");
     if (n.has("set")) a.set = expr(n.object("set"));
     if (n.has("condition")) a.condition = expr(n.object("condition"));
+    if (n.has("allow")) a.allow = allowance(n.object("allow"));
     if (n.has("body")) eachIn(n, "body", [&](const Node& b) { a.body.push_back(action(b, depth + 1)); });
     if (n.has("else")) eachIn(n, "else", [&](const Node& b) { a.elseBody.push_back(action(b, depth + 1)); });
     if (a.kind == ActionKind::For && !a.set)
       fail(GraphReadOutcome::MissingField, n.at("set"), "a 'for' action needs its set");
     if (a.kind == ActionKind::If && !a.condition)
       fail(GraphReadOutcome::MissingField, n.at("condition"), "an 'if' action needs its condition");
+    if (a.kind == ActionKind::Allow && !a.allow)
+      fail(GraphReadOutcome::MissingField, n.at("allow"), "an 'allow' action needs its allowance");
+    if (a.kind != ActionKind::Allow && a.allow)
+      fail(GraphReadOutcome::Inconsistent, n.at("allow"), "only an 'allow' action has an allowance");
     a.span = span(n);
     return a;
   }
@@ -530,6 +567,7 @@ class GraphReader {
   }
 
   const Node& root_;
+  std::set<std::string> clearanceNames_;  // of /clearances, read before the tasks that name them
   std::size_t variableCount_ = 0, constraintCount_ = 0, samplerCount_ = 0, costCount_ = 0;
 };
 

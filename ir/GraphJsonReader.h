@@ -25,7 +25,7 @@ enum class GraphReadOutcome {
   MissingField,  // a required field is absent
   WrongType,     // a field has the wrong JSON type (or a number out of its type's range)
   UnknownName,   // a discriminator names nothing this reader knows ("op": "foo")
-  OutOfRange,    // an index names no variable / constraint / sampler / cost / parameter
+  OutOfRange,    // an index names no variable / constraint / sampler / cost / parameter, a name no clearance
   Inconsistent,  // fields that disagree: operand counts, ids versus positions, arity versus parameters
 };
 

@@ -44,8 +44,18 @@ json exprJson(const Expr& e) {
 
 json optExpr(const std::optional<Expr>& e) { return e ? exprJson(*e) : json(nullptr); }
 
+json allowanceJson(const Allowance& a) {
+  json j{{"part", name(a.part)}, {"separation", a.separation}};
+  if (a.target)
+    j["target"] = exprJson(*a.target);
+  else
+    j["clearance"] = a.clearance;
+  return j;
+}
+
 json actionJson(const Action& a) {
   json j{{"kind", name(a.kind)}, {"span", spanJson(a.span)}};
+  if (a.allow) j["allow"] = allowanceJson(*a.allow);
   if (!a.name.empty()) j["name"] = a.name;
   if (!a.args.empty()) {
     json args = json::array();
@@ -77,6 +87,32 @@ std::string_view infix(Op op) {
 
 std::string varName(VarId id, const ConstraintGraph& g) {
   return id < g.variables.size() ? g.variables[id].name : fmt::format("<var {}>", id);
+}
+
+// `allow held near clearance person 0.005 m`, `allow gripper touch "table" 0.01 m`: the separation as a mode and a
+// distance, in metres.
+std::string allowanceText(const Allowance& a, const ConstraintGraph& g) {
+  const std::string target = a.target ? exprText(*a.target, g) : "clearance " + a.clearance;
+  return fmt::format("allow {} {} {} {} m", name(a.part), a.separation < 0 ? "touch" : "near", target,
+                     num(a.separation < 0 ? -a.separation : a.separation));
+}
+
+// The allow blocks of an action tree, one line each, indented by their nesting, with the actions they cover.
+void allowLines(const Action& a, const ConstraintGraph& g, int depth, std::ostringstream& o) {
+  int inner = depth;
+  if (a.kind == ActionKind::Allow && a.allow) {
+    o << std::string(static_cast<std::size_t>(2 * depth), ' ') << allowanceText(*a.allow, g) << " ("
+      << counted(a.body.size(), "action") << ")  @" << spanText(a.span) << "\n";
+    ++inner;
+  }
+  for (const auto& b : a.body) allowLines(b, g, inner, o);
+  for (const auto& b : a.elseBody) allowLines(b, g, inner, o);
+}
+
+std::string clearanceText(const Clearance& c) {
+  std::string bodies;
+  for (std::size_t i = 0; i < c.bodies.size(); ++i) bodies += (i ? ", " : "") + nlohmann::json(c.bodies[i]).dump();
+  return fmt::format("clearance {}: {} >= {} m", c.name, bodies, num(c.distance));
 }
 
 }  // namespace
@@ -155,6 +191,7 @@ std::string toText(const ConstraintGraph& g) {
   o << fmt::format("summary: {}, {}, {}, {}, {}\n", counted(g.tasks.size(), "task"),
                    counted(g.variables.size(), "variable"), counted(g.constraints.size(), "constraint"),
                    counted(g.samplers.size(), "sampler"), counted(g.generators.size(), "generator"));
+  for (const auto& c : g.clearances) o << clearanceText(c) << "  @" << spanText(c.span) << "\n";
   for (const auto& v : g.variables) {
     o << fmt::format("var %{} {} : {}", v.id, v.name, v.type.spelling);
     if (!v.domain.bounds.empty()) {
@@ -242,6 +279,7 @@ std::string toText(const ConstraintGraph& g) {
     for (const auto& si : t.instances) {
       o << fmt::format("  run {} as {}: {} variables, {} constraints, {} actions\n", si.skill, si.name, si.vars.size(),
                        si.constraints.size(), si.actions.size());
+      for (const auto& a : si.actions) allowLines(a, g, 2, o);
     }
   }
   return o.str();
@@ -254,6 +292,11 @@ std::string toJson(const ConstraintGraph& g) {
   j["domain"] = g.domain;
   j["world"] = g.world;
   if (!g.simulator.empty()) j["simulator"] = {{"command", g.simulator}, {"span", spanJson(g.simulatorSpan)}};
+  j["clearances"] = json::array();
+  for (const auto& c : g.clearances) {
+    j["clearances"].push_back(
+        {{"name", c.name}, {"bodies", c.bodies}, {"distance", c.distance}, {"span", spanJson(c.span)}});
+  }
   j["robots"] = json::array();
   for (const auto& r : g.robots) j["robots"].push_back({{"name", r.name}, {"dof", r.dof}});
   j["enums"] = json::array();
@@ -451,6 +494,10 @@ std::string toDot(const ConstraintGraph& g) {
   for (const auto& c : g.constraints) {
     o << fmt::format("  c{} [shape=box, label={}];\n", c.id, nlohmann::json(c.name).dump());
     for (VarId v : c.vars) o << fmt::format("  c{} -- v{};\n", c.id, v);
+  }
+  // Clearances constrain every motion rather than some variables: nodes without edges.
+  for (std::size_t i = 0; i < g.clearances.size(); ++i) {
+    o << fmt::format("  k{} [shape=octagon, label={}];\n", i, nlohmann::json(clearanceText(g.clearances[i])).dump());
   }
   o << "}\n";
   return o.str();

@@ -6,7 +6,7 @@
 // every type included), so `cbtl` can run an emitted graph without the front end. Its top-level "format"
 // tag and "version" say which revision of the layout a file has; the version grows whenever a field the
 // reader needs is added or a field changes meaning (version 2 added the type kinds and the entries'
-// "field_order").
+// "field_order"; version 3 the clearances and the allow actions).
 #pragma once
 
 #include "ir/ConstraintGraph.h"
@@ -16,7 +16,7 @@
 namespace cbtl::ir {
 
 inline constexpr const char* kGraphJsonFormat = "cbtl-constraint-graph";
-inline constexpr int kGraphJsonVersion = 2;
+inline constexpr int kGraphJsonVersion = 3;
 
 std::string toText(const ConstraintGraph& g);
 std::string toJson(const ConstraintGraph& g);

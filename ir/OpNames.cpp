@@ -93,9 +93,16 @@ constexpr std::array<Entry<TextRating>, 2> kRatings = {
     {{TextRating::Digits, "digits"}, {TextRating::Options, "options"}}};
 static_assert(inDeclarationOrder(kRatings, TextRating::Options));
 
-constexpr std::array<Entry<ActionKind>, 4> kActionKinds = {
-    {{ActionKind::Call, "call"}, {ActionKind::For, "for"}, {ActionKind::If, "if"}, {ActionKind::Block, "block"}}};
-static_assert(inDeclarationOrder(kActionKinds, ActionKind::Block));
+constexpr std::array<Entry<ActionKind>, 5> kActionKinds = {{{ActionKind::Call, "call"},
+                                                            {ActionKind::For, "for"},
+                                                            {ActionKind::If, "if"},
+                                                            {ActionKind::Block, "block"},
+                                                            {ActionKind::Allow, "allow"}}};
+static_assert(inDeclarationOrder(kActionKinds, ActionKind::Allow));
+
+constexpr std::array<Entry<AllowPart>, 3> kAllowParts = {
+    {{AllowPart::Robot, "robot"}, {AllowPart::Gripper, "gripper"}, {AllowPart::Held, "held"}}};
+static_assert(inDeclarationOrder(kAllowParts, AllowPart::Held));
 
 constexpr std::array<Entry<FunctionKind>, 4> kFunctionKinds = {{{FunctionKind::Function, "function"},
                                                                 {FunctionKind::Sampler, "sampler"},
@@ -128,6 +135,9 @@ std::optional<TextRating> textRatingFromName(std::string_view text) { return fin
 
 std::string_view name(ActionKind kind) { return lookUp(kActionKinds, kind); }
 std::optional<ActionKind> actionKindFromName(std::string_view text) { return find(kActionKinds, text); }
+
+std::string_view name(AllowPart part) { return lookUp(kAllowParts, part); }
+std::optional<AllowPart> allowPartFromName(std::string_view text) { return find(kAllowParts, text); }
 
 std::string_view name(FunctionKind kind) { return lookUp(kFunctionKinds, kind); }
 std::optional<FunctionKind> functionKindFromName(std::string_view text) { return find(kFunctionKinds, text); }

@@ -40,8 +40,11 @@ std::optional<TextScale> textScaleFromName(std::string_view text);
 std::string_view name(TextRating rating);  // digits | options
 std::optional<TextRating> textRatingFromName(std::string_view text);
 
-std::string_view name(ActionKind kind);  // call | for | if | block
+std::string_view name(ActionKind kind);  // call | for | if | block | allow
 std::optional<ActionKind> actionKindFromName(std::string_view text);
+
+std::string_view name(AllowPart part);  // robot | gripper | held
+std::optional<AllowPart> allowPartFromName(std::string_view text);
 
 std::string_view name(FunctionKind kind);  // function | sampler | action | feedback
 std::optional<FunctionKind> functionKindFromName(std::string_view text);

@@ -1,16 +1,53 @@
 #include "ir/Validator.h"
 
+#include "ir/OpNames.h"
 #include "ir/Pattern.h"
 #include "ir/ReadSet.h"
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <set>
 
 namespace cbtl::ir {
+namespace {
+
+// The allow actions of an action tree: each has exactly one of a clearance and a target, names a declared
+// clearance, keeps a finite separation, and covers at least one action; no other action has an allowance.
+void validateActions(const std::vector<Action>& actions, const std::set<std::string>& clearances,
+                     const std::string& where, std::vector<std::string>& problems) {
+  for (const auto& a : actions) {
+    if (a.kind != ActionKind::Allow) {
+      if (a.allow) problems.push_back(fmt::format("{}: a {} action has an allowance", where, name(a.kind)));
+    } else if (!a.allow) {
+      problems.push_back(fmt::format("{}: an allow action has no allowance", where));
+    } else {
+      const Allowance& al = *a.allow;
+      if (al.clearance.empty() == !al.target.has_value())
+        problems.push_back(fmt::format("{}: an allowance needs exactly one of a clearance and a target", where));
+      if (!al.clearance.empty() && !clearances.count(al.clearance))
+        problems.push_back(fmt::format("{}: an allowance names the undeclared clearance {}", where, al.clearance));
+      if (!std::isfinite(al.separation))
+        problems.push_back(fmt::format("{}: an allowance's separation is not finite", where));
+      if (a.body.empty()) problems.push_back(fmt::format("{}: an allow action covers no action", where));
+    }
+    validateActions(a.body, clearances, where, problems);
+    validateActions(a.elseBody, clearances, where, problems);
+  }
+}
+
+}  // namespace
 
 std::vector<std::string> validate(const ConstraintGraph& g) {
   std::vector<std::string> problems;
+  std::set<std::string> clearances;
+  for (const auto& c : g.clearances) {
+    if (!clearances.insert(c.name).second) problems.push_back(fmt::format("clearance {} is declared twice", c.name));
+    if (!std::isfinite(c.distance) || c.distance < 0)
+      problems.push_back(fmt::format("clearance {}: distance {} is not a finite number >= 0", c.name, c.distance));
+    if (c.bodies.empty()) problems.push_back(fmt::format("clearance {} names no body", c.name));
+    if (c.span.line == 0) problems.push_back(fmt::format("clearance {} has no span", c.name));
+  }
   const auto n = g.variables.size();
   for (std::size_t i = 0; i < n; ++i) {
     if (g.variables[i].id != i) problems.push_back(fmt::format("variable {} has id {}", i, g.variables[i].id));
@@ -75,6 +112,8 @@ std::vector<std::string> validate(const ConstraintGraph& g) {
     for (auto c : t.costs) {
       if (c >= g.costs.size()) problems.push_back(fmt::format("task {} lists unknown cost {}", t.name, c));
     }
+    for (const auto& si : t.instances)
+      validateActions(si.actions, clearances, fmt::format("task {}, {}", t.name, si.name), problems);
   }
   for (const auto& gen : g.generators) {
     for (const auto& p : gen.patterns) {

@@ -2,7 +2,9 @@
 //
 // Every id is in range; each constraint's hyperedge is exactly the set of variables its expression reads;
 // every task's constraints, samplers and costs read only the task's variables; variable names are unique
-// within a task; samplers write at least one variable; generator patterns compile; spans are present.
+// within a task; samplers write at least one variable; generator patterns compile; spans are present;
+// clearances have unique names, a finite distance >= 0 and at least one body; an allow action has exactly one of
+// a clearance (a declared one) and a target, a finite separation and at least one action in its body.
 // Returns the list of problems (empty if valid). A problem is a bug in whatever produced the graph.
 #pragma once
 

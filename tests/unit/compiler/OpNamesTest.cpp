@@ -33,7 +33,8 @@ TEST(OpNames, EveryEnumeratorRoundTrips) {
   expectRoundTrip(ThresholdDirection::Below, thresholdDirectionFromName);
   expectRoundTrip(TextScale::Relative, textScaleFromName);
   expectRoundTrip(TextRating::Options, textRatingFromName);
-  expectRoundTrip(ActionKind::Block, actionKindFromName);
+  expectRoundTrip(ActionKind::Allow, actionKindFromName);
+  expectRoundTrip(AllowPart::Held, allowPartFromName);
   expectRoundTrip(FunctionKind::Feedback, functionKindFromName);
 }
 
@@ -47,6 +48,10 @@ TEST(OpNames, TheDumpSpellings) {
   EXPECT_EQ(name(TypeKind::Conf), "Conf");
   EXPECT_EQ(name(ThresholdDirection::None), "");
   EXPECT_EQ(name(FunctionKind::Feedback), "feedback");
+  EXPECT_EQ(name(ActionKind::Allow), "allow");
+  EXPECT_EQ(name(AllowPart::Robot), "robot");
+  EXPECT_EQ(name(AllowPart::Gripper), "gripper");
+  EXPECT_EQ(name(AllowPart::Held), "held");
 }
 
 TEST(OpNames, UnknownNamesAreRejected) {
@@ -58,6 +63,8 @@ TEST(OpNames, UnknownNamesAreRejected) {
   EXPECT_FALSE(factorKindFromName("bogus").has_value());
   EXPECT_FALSE(thresholdDirectionFromName("none").has_value());
   EXPECT_FALSE(actionKindFromName("").has_value());
+  EXPECT_FALSE(allowPartFromName("hand").has_value());
+  EXPECT_FALSE(allowPartFromName("Held").has_value());
 }
 
 TEST(OpNames, BinaryOperatorsAreAddThroughIff) {

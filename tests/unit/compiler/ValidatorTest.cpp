@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace cbtl::ir {
 namespace {
@@ -156,6 +158,71 @@ TEST(Validator, GeneratorsHaveArityAndCompilingPatterns) {
   g.generators[0].params.clear();
   g.generators[0].patterns.clear();
   EXPECT_TRUE(mentions(validate(g), "generator g has arity 0"));
+}
+
+// validGraph with a clearance and a skill instance whose one action is an allow block for it around a call.
+ConstraintGraph graphWithAllow() {
+  ConstraintGraph g = validGraph();
+  g.clearances.push_back({"person", {"user"}, 0.05, at(6)});
+  Action call;
+  call.kind = ActionKind::Call;
+  call.name = "say";
+  call.span = at(8);
+  Action allow;
+  allow.kind = ActionKind::Allow;
+  allow.allow = Allowance{AllowPart::Held, "person", std::nullopt, 0.005};
+  allow.body = {call};
+  allow.span = at(7);
+  SkillInstance si;
+  si.skill = "feed";
+  si.name = "feed";
+  si.actions = {allow};
+  g.tasks[0].instances.push_back(si);
+  return g;
+}
+
+TEST(Validator, ClearancesHaveADistanceAndBodies) {
+  EXPECT_TRUE(validate(graphWithAllow()).empty());
+  ConstraintGraph g = graphWithAllow();
+  g.clearances[0].distance = -0.01;
+  g.clearances[0].bodies.clear();
+  g.clearances.push_back(g.clearances[0]);
+  auto p = validate(g);
+  EXPECT_TRUE(mentions(p, "clearance person: distance -0.01 is not a finite number >= 0"));
+  EXPECT_TRUE(mentions(p, "clearance person names no body"));
+  EXPECT_TRUE(mentions(p, "clearance person is declared twice"));
+  g = graphWithAllow();
+  g.clearances[0].distance = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(mentions(validate(g), "is not a finite number"));
+}
+
+TEST(Validator, AnAllowHasOneTargetADeclaredClearanceAndABody) {
+  ConstraintGraph g = graphWithAllow();
+  Action& allow = g.tasks[0].instances[0].actions[0];
+  Expr geom;
+  geom.op = Op::Str;
+  geom.text = "table_top";
+  geom.type = {TypeKind::Text, "text"};
+  allow.allow->target = geom;
+  EXPECT_TRUE(mentions(validate(g), "task main, feed: an allowance needs exactly one of a clearance and a target"));
+  allow.allow->clearance.clear();
+  EXPECT_TRUE(validate(g).empty());
+  allow.allow->target.reset();
+  EXPECT_TRUE(mentions(validate(g), "exactly one of a clearance and a target"));
+  allow.allow->clearance = "pets";
+  EXPECT_TRUE(mentions(validate(g), "names the undeclared clearance pets"));
+  g = graphWithAllow();
+  g.tasks[0].instances[0].actions[0].body.clear();
+  EXPECT_TRUE(mentions(validate(g), "an allow action covers no action"));
+  g = graphWithAllow();
+  g.tasks[0].instances[0].actions[0].allow->separation = std::nan("");
+  EXPECT_TRUE(mentions(validate(g), "separation is not finite"));
+  g = graphWithAllow();
+  g.tasks[0].instances[0].actions[0].allow.reset();
+  EXPECT_TRUE(mentions(validate(g), "an allow action has no allowance"));
+  g = graphWithAllow();
+  g.tasks[0].instances[0].actions[0].body[0].allow = Allowance{};
+  EXPECT_TRUE(mentions(validate(g), "a call action has an allowance"));
 }
 
 }  // namespace

@@ -80,7 +80,7 @@ TEST(GraphJsonReader, WrongVersion) {
   const GraphReadResult r = readEdited(doc);
   EXPECT_EQ(r.outcome, GraphReadOutcome::WrongVersion);
   EXPECT_EQ(r.describe("g.json"),
-            "g.json: /version: version 1 is not supported (this reader reads version 2; emit the graph again with "
+            "g.json: /version: version 1 is not supported (this reader reads version 3; emit the graph again with "
             "cbtlc)");
 }
 
@@ -163,6 +163,102 @@ TEST(GraphJsonReader, ExplorationModeRoundTripsAndDefaultsToAnywhere) {
   const GraphReadResult bad = readEdited(doc);
   EXPECT_EQ(bad.outcome, GraphReadOutcome::UnknownName);
   EXPECT_EQ(bad.describe("g.json"), "g.json: /generators/0/explore: unknown exploration mode 'inside'");
+}
+
+// smallGraph with a clearance and one skill instance whose actions hold two allow blocks, one nested: the first for a
+// declared clearance, the inner one for a scene geom given as text.
+ConstraintGraph graphWithAllowances() {
+  ConstraintGraph g = smallGraph();
+  g.clearances.push_back({"person", {"user", "user_head"}, 0.05, {"t.cbtl", 5, 1, 5, 40}});
+  Action call;
+  call.kind = ActionKind::Call;
+  call.name = "say";
+  call.span = {"t.cbtl", 7, 5, 7, 20};
+  Action inner;
+  inner.kind = ActionKind::Allow;
+  Expr geom;
+  geom.op = Op::Str;
+  geom.type = {TypeKind::Text, "text"};
+  geom.text = "table_top";
+  inner.allow = Allowance{AllowPart::Gripper, "", geom, -0.005};
+  inner.body = {call};
+  inner.span = {"t.cbtl", 7, 3, 7, 40};
+  Action outer;
+  outer.kind = ActionKind::Allow;
+  outer.allow = Allowance{AllowPart::Held, "person", std::nullopt, 0.005};
+  outer.body = {call, inner};
+  outer.span = {"t.cbtl", 6, 3, 8, 3};
+  SkillInstance si;
+  si.skill = "feed";
+  si.name = "feed";
+  si.actions = {outer};
+  si.span = {"t.cbtl", 9, 1, 9, 10};
+  g.tasks[0].instances.push_back(si);
+  g.skills.push_back("feed");
+  return g;
+}
+
+TEST(GraphJsonReader, ClearancesAndAllowancesRoundTrip) {
+  const GraphReadResult r = readGraphJson(toJson(graphWithAllowances()));
+  ASSERT_TRUE(r.ok()) << r.describe("t.json");
+  EXPECT_EQ(toJson(r.graph), toJson(graphWithAllowances()));
+  ASSERT_EQ(r.graph.clearances.size(), 1u);
+  EXPECT_EQ(r.graph.clearances[0].bodies, (std::vector<std::string>{"user", "user_head"}));
+  EXPECT_EQ(r.graph.clearances[0].distance, 0.05);
+  const Action& outer = r.graph.tasks[0].instances[0].actions[0];
+  ASSERT_TRUE(outer.allow.has_value());
+  EXPECT_EQ(outer.allow->part, AllowPart::Held);
+  EXPECT_EQ(outer.allow->clearance, "person");
+  EXPECT_FALSE(outer.allow->target.has_value());
+  const Action& inner = outer.body[1];
+  ASSERT_TRUE(inner.allow.has_value());
+  EXPECT_EQ(inner.allow->part, AllowPart::Gripper);
+  ASSERT_TRUE(inner.allow->target.has_value());
+  EXPECT_EQ(inner.allow->target->text, "table_top");
+  EXPECT_EQ(inner.allow->separation, -0.005);
+}
+
+TEST(GraphJsonReader, AllowanceErrorsNameTheirField) {
+  const json good = json::parse(toJson(graphWithAllowances()));
+  const std::string outer = "/tasks/0/instances/0/actions/0";
+  json doc = good;
+  doc["tasks"][0]["instances"][0]["actions"][0]["allow"]["part"] = "hand";
+  GraphReadResult r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::UnknownName);
+  EXPECT_EQ(r.describe("g.json"), "g.json: " + outer + "/allow/part: unknown allow part 'hand'");
+  doc = good;
+  doc["tasks"][0]["instances"][0]["actions"][0].erase("allow");
+  r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::MissingField);
+  EXPECT_EQ(r.pointer, outer + "/allow");
+  doc = good;
+  doc["tasks"][0]["instances"][0]["actions"][0]["allow"]["target"] = doc["constraints"][0]["expr"]["children"][1];
+  r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::Inconsistent);
+  EXPECT_EQ(r.pointer, outer + "/allow");
+  doc = good;
+  doc["tasks"][0]["instances"][0]["actions"][0]["allow"]["clearance"] = "pets";
+  r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::OutOfRange);
+  EXPECT_EQ(r.describe("g.json"), "g.json: " + outer +
+                                      "/allow/clearance: clearance 'pets' is not declared (not in "
+                                      "/clearances)");
+  doc = good;
+  doc["tasks"][0]["instances"][0]["actions"][0]["body"][0]["allow"] =
+      good["tasks"][0]["instances"][0]["actions"][0]["allow"];
+  r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::Inconsistent);
+  EXPECT_EQ(r.pointer, outer + "/body/0/allow");
+  doc = good;
+  doc["clearances"][0]["distance"] = -0.01;
+  r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::Inconsistent);
+  EXPECT_EQ(r.pointer, "/clearances/0/distance");
+  doc = good;
+  doc.erase("clearances");
+  r = readEdited(doc);
+  EXPECT_EQ(r.outcome, GraphReadOutcome::MissingField);
+  EXPECT_EQ(r.pointer, "/clearances");
 }
 
 TEST(GraphJsonReader, OutOfRange) {

@@ -26,6 +26,7 @@ topDecl
     | worldDecl
     | simulatorDecl
     | robotDecl
+    | clearanceDecl
     | constDecl
     | enumDecl
     | itemDecl
@@ -52,6 +53,13 @@ simulatorDecl : SIMULATOR STRING SEMI ;
 
 // robot gen3 { dof: 7; }
 robotDecl   : ROBOT ident LBRACE (fieldInit SEMI)* RBRACE ;
+
+// clearance person: "user", "user_head" >= 5 cm;   (scene bodies the robot keeps this far from)
+clearanceDecl : CLEARANCE ident COLON STRING (COMMA STRING)* GE lengthLit SEMI ;
+
+// 5 cm   0.05 m   12.5 mm. The unit is a name, checked by the compiler (m, cm, mm), so that `m` stays usable as a
+// name everywhere else; a minus sign is accepted here only so that a negative length gets a precise message.
+lengthLit   : MINUS? NUMBER ident? ;
 
 // const heatRate = 0.1;   const radius[Pot] : real = [0.5, 1.0, 0.5, 0.5];
 constDecl   : CONST ident indexSpec? (COLON typeRef)? ASSIGN expr SEMI ;
@@ -161,7 +169,12 @@ actionStmt
     | FOR binder LBRACE actionStmt* RBRACE                                         # actionFor
     | IF expr LBRACE actionStmt* RBRACE (ELSE LBRACE actionStmt* RBRACE)?          # actionIf
     | LBRACE actionStmt* RBRACE                                                    # actionBlock
+    | ALLOW allowPart modeWord=ident targetExpr=expr lengthLit LBRACE actionStmt* RBRACE # actionAllow
     ;
+
+// allow held near person 5 mm { ... }: the part (robot | gripper | held) and the mode (near | touch) are names
+// checked by the compiler, so that they stay usable as names elsewhere; `robot` is a keyword, accepted here.
+allowPart   : ROBOT | ident ;
 
 // task feedBite = bringPlate then pickUtensil then transferBite;
 // task feedBite { var plate : SE2; run bringPlate(plate) then transferBite(plate); }
@@ -222,6 +235,7 @@ IMPORT   : 'import' ;
 WORLD    : 'world' ;
 SIMULATOR : 'simulator' ;
 ROBOT    : 'robot' ;
+CLEARANCE : 'clearance' ;
 CONST    : 'const' ;
 ENUM     : 'enum' ;
 ITEMS    : 'items' ;
@@ -256,6 +270,7 @@ AS       : 'as' ;
 FOR      : 'for' ;
 IF       : 'if' ;
 ELSE     : 'else' ;
+ALLOW    : 'allow' ;
 FORALL   : 'forall' ;
 EXISTS   : 'exists' ;
 WHERE    : 'where' ;

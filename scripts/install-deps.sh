@@ -10,7 +10,7 @@ packages=(
   libeigen3-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libmujoco-dev libgl-dev libegl-dev libegl1 libgl1-mesa-dri
   libompl-dev libfcl-dev libccd-dev
-  zlib1g-dev libcurl4-openssl-dev libssl-dev libsqlite3-dev sqlite3 libedit-dev libcpp-httplib-dev tmux
+  zlib1g-dev libexpat1-dev libcurl4-openssl-dev libssl-dev libsqlite3-dev sqlite3 libedit-dev libcpp-httplib-dev tmux
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev clang-format
   libcairo2-dev fonts-dejavu-core

@@ -54,6 +54,8 @@ const char* toString(DeclKind kind) {
       return "simulator";
     case DeclKind::Robot:
       return "robot";
+    case DeclKind::Clearance:
+      return "clearance";
     case DeclKind::Const:
       return "constant";
     case DeclKind::Enum:

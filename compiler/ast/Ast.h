@@ -150,6 +150,7 @@ enum class DeclKind {
   World,
   Simulator,
   Robot,
+  Clearance,
   Const,
   Enum,
   ItemType,
@@ -210,6 +211,7 @@ struct ImportDecl : Decl {
 struct WorldDecl : Decl {
   WorldDecl() : Decl(DeclKind::World) {}
   std::string path;
+  SourceRange pathRange;  // the string literal
 };
 
 struct SimulatorDecl : Decl {
@@ -221,6 +223,26 @@ struct RobotDecl : Decl {
   RobotDecl() : Decl(DeclKind::Robot) {}
   std::vector<FieldInit> fields;
   int dof = 0;  // from the `dof` field, set by type checking
+};
+
+// A distance as written: `5 cm`, `0.05 m`, `12.5 mm`. The unit is checked by check-types (m, cm or mm; a missing
+// unit or a negative value is an error there) and the value converted to metres by lowering.
+struct Length {
+  double value = 0;       // the number as written, negated when a minus sign was written
+  std::string spelling;   // the number as written (without the sign), for messages
+  bool negative = false;  // a minus sign was written
+  Ident unit;             // empty name: no unit written
+  SourceRange range;      // the whole length, sign and unit included
+};
+
+// `clearance person: "user", "user_head" >= 5 cm;` — a class of scene bodies (each with the bodies attached below
+// it) and the distance the robot and what it holds keep from them. The body names are checked against the world
+// file by check-world.
+struct ClearanceDecl : Decl {
+  ClearanceDecl() : Decl(DeclKind::Clearance) {}
+  std::vector<std::string> bodies;      // decoded string literals
+  std::vector<SourceRange> bodyRanges;  // one per body, the literal with its quotes
+  Length distance;
 };
 
 struct ConstDecl : Decl {
@@ -368,7 +390,19 @@ struct PersonalDecl : Decl {
 
 // --- skills and tasks -------------------------------------------------------------------------------
 
-enum class ActionStmtKind { Call, For, If, Block };
+enum class ActionStmtKind { Call, For, If, Block, Allow };
+
+// `allow PART MODE TARGET LENGTH { ... }`: a scoped exception to the world's clearances for the actions of its body.
+// The part and the mode are written as names (robot | gripper | held, near | touch) and checked by check-types.
+struct AllowClause {
+  Ident part;
+  Ident mode;
+  ExprPtr target;  // a bare clearance name, or a text expression naming a scene body or geom
+  // Set by name resolution when the target is a bare name that names a declared clearance (the target expression
+  // is then left unresolved and untyped).
+  const ClearanceDecl* clearance = nullptr;
+  Length length;
+};
 
 struct ActionStmt {
   ActionStmtKind kind = ActionStmtKind::Call;
@@ -376,8 +410,9 @@ struct ActionStmt {
   Ident callee;  // Call
   NameRef calleeRef;
   std::vector<Arg> args;
-  std::unique_ptr<Binder> forBinder;  // For
-  ExprPtr condition;                  // If
+  std::unique_ptr<Binder> forBinder;   // For
+  ExprPtr condition;                   // If
+  std::unique_ptr<AllowClause> allow;  // Allow
   std::vector<std::unique_ptr<ActionStmt>> body;
   std::vector<std::unique_ptr<ActionStmt>> elseBody;
   bool hasElse = false;

@@ -15,7 +15,10 @@ std::unique_ptr<Decl> AstBuilder::topDecl(P::TopDeclContext* ctx) {
   if (auto* c = ctx->importDecl()) return importDecl(c);
   if (auto* c = ctx->worldDecl()) {
     auto d = start<WorldDecl>(c);
-    if (c->STRING() != nullptr) d->path = unquote(c->STRING()->getText());
+    if (c->STRING() != nullptr) {
+      d->path = unquote(c->STRING()->getText());
+      d->pathRange = range(c->STRING());
+    }
     return d;
   }
   if (auto* c = ctx->simulatorDecl()) {
@@ -29,6 +32,7 @@ std::unique_ptr<Decl> AstBuilder::topDecl(P::TopDeclContext* ctx) {
     d->fields = fieldInits(c->fieldInit());
     return d;
   }
+  if (auto* c = ctx->clearanceDecl()) return clearance(c);
   if (auto d = dataDecl(ctx)) return d;
   if (auto d = callableDecl(ctx)) return d;
   if (auto* c = ctx->personalDecl()) return personal(c);
@@ -266,6 +270,10 @@ std::unique_ptr<ActionStmt> AstBuilder::actionStmt(P::ActionStmtContext* ctx) {
   } else if (auto* bl = dynamic_cast<P::ActionBlockContext*>(ctx)) {
     s->kind = ActionStmtKind::Block;
     for (auto* b : bl->actionStmt()) s->body.push_back(actionStmt(b));
+  } else if (auto* al = dynamic_cast<P::ActionAllowContext*>(ctx)) {
+    s->kind = ActionStmtKind::Allow;
+    s->allow = allowClause(al);
+    for (auto* b : al->actionStmt()) s->body.push_back(actionStmt(b));
   }
   return s;
 }

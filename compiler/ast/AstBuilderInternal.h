@@ -6,6 +6,7 @@
 // each other. Its member functions are implemented by concern:
 //   AstBuilder.cpp       the entry point, the module, source ranges, identifiers, strings and types
 //   AstBuilderDecls.cpp  top-level declarations, scope statements, generators, skills, actions and tasks
+//   AstBuilderClearances.cpp  clearance declarations, allow clauses and lengths
 //   AstBuilderExprs.cpp  arguments, binders and expressions (with the nesting limit)
 #pragma once
 
@@ -72,6 +73,12 @@ class AstBuilder {
   std::unique_ptr<Decl> skill(P::SkillDeclContext* ctx);
   SkillInstance skillInstance(P::SkillInstanceContext* ctx);
   std::unique_ptr<Decl> task(P::TaskDeclContext* ctx);
+
+  // --- AstBuilderClearances.cpp: clearances ---
+  std::unique_ptr<Decl> clearance(P::ClearanceDeclContext* c);
+  Length length(P::LengthLitContext* ctx);
+  // The part, the mode, the target and the distance of an allow statement (its body is built by actionStmt).
+  std::unique_ptr<AllowClause> allowClause(P::ActionAllowContext* ctx);
 
   // --- AstBuilderExprs.cpp: expressions ---
   std::vector<Arg> args(P::ArgListContext* ctx);

@@ -212,6 +212,46 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
        "A 'do' block calls something that is not an 'extern action'.\nFix: declare the action or correct the name."},
       {"E0504", "duplicate instance name",
        "Two skill instances in one task have the same name.\nFix: give one of them another name with 'as'."},
+      // --- E06xx: the world: clearances and allow statements ---------------------------------------
+      {"E0601", "distance without a unit",
+       "A clearance's distance, or an allow's, is a number without a unit or with a unit the language does not\n"
+       "take. Distances are written with their unit, m, cm or mm, so that nobody has to guess what 5 means.\n"
+       "Example:  clearance person: \"user\" >= 5;\n"
+       "Fix:      clearance person: \"user\" >= 5 cm;"},
+      {"E0602", "negative distance",
+       "A clearance's distance or an allow's distance is negative. A clearance is a separation the robot keeps\n"
+       "(0 or more); an allow's 'near' distance is how close the part may come, and a 'touch' distance how deep it\n"
+       "may sink in, both written as positive lengths.\n"
+       "Example:  allow held near person -5 mm { ... }\n"
+       "Fix:      allow held touch person 5 mm { ... }   (or near with a positive distance)"},
+      {"E0603", "clearance without a world",
+       "A program declares a clearance, or uses an allow, but has no 'world \"scene.xml\";' line in its root file:\n"
+       "the bodies a clearance names are bodies of that scene, and without one there is nothing to keep clear of.\n"
+       "Example:  clearance person: \"user\" >= 5 cm;   (and no world line)\n"
+       "Fix:      world \"scene.xml\";   clearance person: \"user\" >= 5 cm;"},
+      {"E0604", "invalid allow statement",
+       "An allow statement names a part other than robot, gripper or held, a mode other than near or touch,\n"
+       "or has no action in its block (it would allow nothing).\n"
+       "Example:  allow hand near person 1 cm { say(\"hello\"); }\n"
+       "Fix:      allow gripper near person 1 cm { say(\"hello\"); }"},
+      {"E0605", "invalid allow target",
+       "The target of an allow is neither the name of a declared clearance nor a text naming a scene body or\n"
+       "geom (a string, or a text-valued constant, parameter or variable).\n"
+       "Example:  const userHeight = 1.7;   allow held near userHeight 1 cm { ... }\n"
+       "Fix:      allow held near \"user\" 1 cm { ... }"},
+      {"E0606", "cannot read the world",
+       "The program declares clearances or allows, so its world file is read to check the scene names they use,\n"
+       "and the file (or a file it includes) cannot be read or is not well-formed XML. The world's path is\n"
+       "relative to the root file, an include's to the including file. A program without clearances and allows\n"
+       "never reads its world.\n"
+       "Example:  world \"scene.xml\";   with a <body> in scene.xml that is never closed\n"
+       "Fix:      correct the path, or the XML at the line the message names."},
+      {"E0607", "unknown scene name",
+       "A clearance names a body that the world file does not declare (a <body name=...>), or an allow's target,\n"
+       "given as a string or a constant, is neither a body nor a geom of the world. A clearance names bodies\n"
+       "only: each covers the bodies attached below it, and so all their geoms.\n"
+       "Example:  clearance person: \"usr\" >= 5 cm;\n"
+       "Fix:      clearance person: \"user\" >= 5 cm;   (the help line suggests the closest name)"},
       // --- E09xx: internal ----------------------------------------------------------------------
       {"E0901", "invalid constraint graph (internal)",
        "The constraint graph produced by the compiler failed validation. This is a bug in cbtlc, not in your\n"

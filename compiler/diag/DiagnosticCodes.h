@@ -1,7 +1,8 @@
 // DiagnosticCodes.h — the catalogue of stable diagnostic codes.
 //
 // Codes are grouped by phase: E01xx syntax, E02xx names and imports, E03xx types and domains, E04xx
-// personalized constraint generators, E05xx skills and tasks, E09xx internal (IR validation). Warnings
+// personalized constraint generators, E05xx skills and tasks, E06xx the world (clearances, allow statements and
+// the scene names they use), E09xx internal (IR validation). Warnings
 // use W and the same grouping. A code, once published, keeps its meaning; `cbtlc explain CODE` prints
 // the long explanation.
 #pragma once

@@ -193,9 +193,19 @@ class Printer {
         }
         break;
       }
-      case DeclKind::Skill:
-        for (const auto& b : static_cast<const SkillDecl&>(d).body) decl(*b, depth + 1);
+      case DeclKind::Skill: {
+        const auto& sk = static_cast<const SkillDecl&>(d);
+        for (const auto& b : sk.body) decl(*b, depth + 1);
+        for (const auto& a : sk.actions) action(*a, depth + 1);
         break;
+      }
+      case DeclKind::Clearance: {
+        const auto& c = static_cast<const ClearanceDecl&>(d);
+        for (std::size_t i = 0; i < c.bodies.size(); ++i)
+          line(depth + 1, "body \"" + c.bodies[i] + "\"" + at(c.bodyRanges[i]));
+        line(depth + 1, "distance " + length(c.distance));
+        break;
+      }
       case DeclKind::Task: {
         const auto& t = static_cast<const TaskDecl&>(d);
         for (const auto& b : t.body) decl(*b, depth + 1);
@@ -205,6 +215,46 @@ class Printer {
       default:
         break;
     }
+  }
+
+  static std::string length(const Length& l) {
+    return (l.negative ? "-" : "") + l.spelling + (l.unit.name.empty() ? "" : " " + l.unit.name);
+  }
+
+  // A `do` statement and what it holds.
+  void action(const ActionStmt& s, int depth) {
+    switch (s.kind) {
+      case ActionStmtKind::Call:
+        line(depth, "do " + s.callee.name + ref(s.calleeRef) + at(s.range));
+        for (const auto& a : s.args) expr(a.value.get(), depth + 1);
+        break;
+      case ActionStmtKind::For: {
+        std::string names;
+        for (const auto& n : s.forBinder->names) names += " " + n->name.name;
+        line(depth, "do for" + names + at(s.range));
+        expr(s.forBinder->set.get(), depth + 1);
+        break;
+      }
+      case ActionStmtKind::If:
+        line(depth, "do if" + at(s.range));
+        expr(s.condition.get(), depth + 1);
+        break;
+      case ActionStmtKind::Block:
+        line(depth, "do block" + at(s.range));
+        break;
+      case ActionStmtKind::Allow: {
+        const AllowClause& a = *s.allow;
+        line(depth, fmt::format("do allow {} {} {}{}", a.part.name, a.mode.name, length(a.length), at(s.range)));
+        if (a.clearance != nullptr)
+          line(depth + 1, "clearance " + a.clearance->name.name);
+        else
+          expr(a.target.get(), depth + 1);
+        break;
+      }
+    }
+    for (const auto& b : s.body) action(*b, depth + 1);
+    if (s.hasElse) line(depth, "else");
+    for (const auto& b : s.elseBody) action(*b, depth + 1);
   }
 
   const SourceManager& sources_;

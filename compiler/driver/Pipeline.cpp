@@ -180,7 +180,7 @@ std::string dumpModules(const TranslationUnit& tu) {
 
 const std::vector<std::string>& passNames() {
   static const std::vector<std::string> names = {
-      "parse", "build-ast", "resolve-names", "check-types", "check-generators", "lower", "validate-ir"};
+      "parse", "build-ast", "resolve-names", "check-types", "check-generators", "check-world", "lower", "validate-ir"};
   return names;
 }
 
@@ -218,6 +218,8 @@ PipelineResult compileSource(TranslationUnit& tu, const std::string& path, std::
       {"check-types", [](TranslationUnit& t) { return checkTypes(t.modules, t.types, t.symbols, t.diags); },
        dumpModules},
       {"check-generators", [](TranslationUnit& t) { return checkGenerators(t.modules, t.diags); }, dumpModules},
+      {"check-world", [&](TranslationUnit& t) { return checkWorld(t.modules, t.symbols, path, t.diags, t.world); },
+       [](const TranslationUnit& t) { return dumpWorldCheck(t.world); }},
       {"lower", [](TranslationUnit& t) { return lowerToGraph(t.modules, t.symbols, t.sources, t.diags, t.graph); },
        [](const TranslationUnit& t) { return ir::toText(t.graph); }},
       {"validate-ir",
@@ -232,10 +234,12 @@ PipelineResult compileSource(TranslationUnit& tu, const std::string& path, std::
        },
        [](const TranslationUnit& t) { return ir::toText(t.graph); }},
   };
-  // The semantic checks (names, types, generators) report everything they find in one run: each one tolerates
-  // what an earlier one could not resolve (error types do not cascade), so after a semantic error the next check
-  // still runs. A syntax error stops everything (the tree is a guess), and so does any error before lowering.
-  auto tolerant = [](const std::string& name) { return name == "check-types" || name == "check-generators"; };
+  // The semantic checks (names, types, generators, the world) report everything they find in one run: each one
+  // tolerates what an earlier one could not resolve (error types do not cascade), so after a semantic error the next
+  // check still runs. A syntax error stops everything (the tree is a guess), and so does any error before lowering.
+  auto tolerant = [](const std::string& name) {
+    return name == "check-types" || name == "check-generators" || name == "check-world";
+  };
   bool failed = false;
   for (auto& pass : passes) {
     if (failed && !tolerant(pass.name)) break;

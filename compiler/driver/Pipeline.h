@@ -1,6 +1,6 @@
 // Pipeline.h — the named pass pipeline of cbtlc.
 //
-//   parse -> build-ast -> resolve-names -> check-types -> check-generators -> lower -> validate-ir
+//   parse -> build-ast -> resolve-names -> check-types -> check-generators -> check-world -> lower -> validate-ir
 //
 // Each pass has a name, one entry point, and a dump of the representation it leaves behind. The
 // pipeline stops after the first pass that reports errors (so later passes only ever see well-formed

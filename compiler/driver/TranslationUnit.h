@@ -8,6 +8,7 @@
 #include "compiler/sema/Symbols.h"
 #include "compiler/sema/Type.h"
 #include "compiler/source/SourceManager.h"
+#include "compiler/world/WorldCheck.h"
 #include "ir/ConstraintGraph.h"
 
 #include <map>
@@ -35,6 +36,7 @@ struct TranslationUnit {
   std::vector<std::unique_ptr<Module>> modules;
   std::map<FileId, std::string> parseTrees;  // filled when a dump of the parse pass is requested
   GlobalSymbols symbols;
+  WorldCheckResult world;  // what check-world read
   ir::ConstraintGraph graph;
   FileId root = kNoFile;
 };

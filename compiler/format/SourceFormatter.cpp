@@ -86,6 +86,8 @@ void collectRoles(antlr4::tree::ParseTree* node, OperatorRoles& roles) {
   if (auto* c = dynamic_cast<P::AddExprContext*>(node)) roles.binary.insert(c->op->getTokenIndex());
   if (auto* c = dynamic_cast<P::MulExprContext*>(node)) roles.binary.insert(c->op->getTokenIndex());
   if (auto* c = dynamic_cast<P::NegExprContext*>(node)) roles.prefix.insert(c->MINUS()->getSymbol()->getTokenIndex());
+  if (auto* c = dynamic_cast<P::LengthLitContext*>(node); c != nullptr && c->MINUS() != nullptr)
+    roles.prefix.insert(c->MINUS()->getSymbol()->getTokenIndex());
   for (antlr4::tree::ParseTree* child : node->children) collectRoles(child, roles);
 }
 
@@ -163,6 +165,8 @@ int spacesBetween(const Token& prev, const Token& next, int gap, const OperatorR
       (prev.type == Lexer::ID || prev.type == Lexer::RPAREN || prev.type == Lexer::RBRACK || roles.typeBracket(prev)))
     return 0;
   if (gap >= 2) return kAlign;
+  // A length's unit: `5 cm` (a number followed by a name is nothing else in the language).
+  if (prev.type == Lexer::NUMBER && next.type == Lexer::ID) return 1;
   if (roles.binary.count(prev.index) || roles.binary.count(next.index)) return 1;
   if (prev.type == Lexer::LBRACE || next.type == Lexer::LBRACE || next.type == Lexer::RBRACE ||
       prev.type == Lexer::COLON)
@@ -216,6 +220,7 @@ class Formatter {
     stack_.clear();
     statementOpen_ = false;
     statementIndent_ = statementSourceIndent_ = 0;
+    statementFirst_ = 0;
     trailingComment_.reset();
     outCol_.assign(tokens_.size(), 0);
     aligned_.assign(tokens_.size(), 0);
@@ -317,6 +322,7 @@ class Formatter {
     if (lastCode != nullptr && !continuation) {
       statementIndent_ = indent;
       statementSourceIndent_ = first.col;
+      statementFirst_ = firstCode->type;
     }
     for (std::size_t k = begin; k < end; ++k) {
       const Token& t = tokens_[k];
@@ -333,8 +339,10 @@ class Formatter {
     if (lastCode != nullptr) {
       const std::size_t l = lastCode->type;
       const bool inList = !stack_.empty() && stack_.back().list;
+      // A clearance's bodies are a list outside brackets: a line ending in one of its commas goes on.
+      const bool clearanceBodies = stack_.empty() && statementFirst_ == Lexer::CLEARANCE;
       statementOpen_ = !(l == Lexer::SEMI || l == Lexer::LBRACE || l == Lexer::RBRACE ||
-                         (l == Lexer::COMMA && (inList || stack_.empty())));
+                         (l == Lexer::COMMA && (inList || (stack_.empty() && !clearanceBodies))));
     }
   }
 
@@ -347,9 +355,10 @@ class Formatter {
   std::vector<int> outCol_;                                 // per token: output column in the last layout
   std::string out_;
   std::vector<Opener> stack_;
-  bool statementOpen_ = false;     // the last code line left its statement unfinished
-  int statementIndent_ = 0;        // the output indentation of the current statement's first line
-  int statementSourceIndent_ = 0;  // and its indentation in the source
+  bool statementOpen_ = false;      // the last code line left its statement unfinished
+  int statementIndent_ = 0;         // the output indentation of the current statement's first line
+  int statementSourceIndent_ = 0;   // and its indentation in the source
+  std::size_t statementFirst_ = 0;  // the token type that starts the current statement
   // The trailing comment of the last code line: its source column and output column.
   std::optional<std::pair<int, int>> trailingComment_;
 };

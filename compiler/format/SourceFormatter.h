@@ -13,7 +13,8 @@
 //   - Within a line: no space after `(` `[`, before `)` `]` `,` `;`, around `.`, inside `{}`, or before the `(` of
 //     a call or parameter list and the `[` of an index; one space after `,` and `:`, inside `{ ... }`, before `{`,
 //     and around the keywords and operators that join phrases (= == != <= >= => <=> -> .. ~ + * / % and or then
-//     as in where if else) and the comparison and arithmetic operators the parse finds binary (`a < b`, `a - b`);
+//     as in where if else) and the comparison and arithmetic operators the parse finds binary (`a < b`, `a - b`),
+//     and between a length's number and its unit (`5 cm`);
 //     none after a unary minus (`-x`) and none around the brackets of type arguments (`vec<2>`, `box<N>(lo)`);
 //     elsewhere one space if the author put any, none if not (`x : T` or `x: T`). A run of two or more spaces is
 //     alignment when the line above or below has a token of the same kind in the column it reaches (a table's

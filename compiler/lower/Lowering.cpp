@@ -94,6 +94,7 @@ std::size_t Lowerer::nodeCount(const ir::Expr& x) {
 
 std::size_t Lowerer::actionSize(const ir::Action& a) {
   std::size_t n = 1 + (a.set ? nodeCount(*a.set) : 0) + (a.condition ? nodeCount(*a.condition) : 0);
+  if (a.allow && a.allow->target) n += nodeCount(*a.allow->target);
   for (const auto& x : a.args) n += nodeCount(x);
   for (const auto& b : a.body) n += actionSize(b);
   for (const auto& b : a.elseBody) n += actionSize(b);

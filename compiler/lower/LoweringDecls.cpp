@@ -14,6 +14,11 @@ void Lowerer::declareTop(const Decl& d) {
     case DeclKind::Robot:
       g_.robots.push_back({d.name.name, static_cast<const RobotDecl&>(d).dof});
       break;
+    case DeclKind::Clearance: {
+      const auto& c = static_cast<const ClearanceDecl&>(d);
+      g_.clearances.push_back({c.name.name, c.bodies, metres(c.distance), span(d.range)});
+      break;
+    }
     case DeclKind::Enum: {
       ir::Enum e{d.name.name, {}, span(d.range)};
       for (const auto& m : static_cast<const EnumDecl&>(d).members) e.members.push_back(m.name);
@@ -67,6 +72,12 @@ void Lowerer::declareTop(const Decl& d) {
     default:
       break;
   }
+}
+
+double Lowerer::metres(const Length& l) {
+  const double perUnit = l.unit.name == "mm" ? 0.001 : l.unit.name == "cm" ? 0.01 : 1.0;
+  // + 0.0: a written "-0 mm" is refused by check-types, but no distance is ever the negative zero.
+  return l.value * perUnit + 0.0;
 }
 
 void Lowerer::declareItemSet(const ItemsDecl& items) {

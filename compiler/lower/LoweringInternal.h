@@ -131,6 +131,8 @@ class Lowerer {
 
   // --- LoweringDecls.cpp: top-level declarations and variables ---
   void declareTop(const Decl& d);
+  // A checked length (unit m, cm or mm) in metres.
+  static double metres(const Length& l);
   void declareItemSet(const ItemsDecl& items);
   void declareCallable(const CallableDecl& c);
   // Function bodies may read global variables, so they are lowered once those exist.
@@ -168,6 +170,8 @@ class Lowerer {
   // Lowers one skill instance of a task whose own context is `ctx` and appends its ids to `task`.
   void lowerSkillInstance(const TaskDecl& t, const SkillInstance& inst, Ctx& ctx, ir::Task& task);
   ir::Action lowerAction(const ActionStmt& s, Ctx& ctx);
+  // `allow PART near|touch TARGET LENGTH`: the exception, its separation signed by the mode.
+  ir::Allowance lowerAllowance(const AllowClause& a, Ctx& ctx);
 
   // --- LoweringGenerators.cpp: personalized generators ---
   void lowerGenerator(const PersonalDecl& p);

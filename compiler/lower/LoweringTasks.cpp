@@ -96,8 +96,28 @@ ir::Action Lowerer::lowerAction(const ActionStmt& s, Ctx& ctx) {
       a.kind = ir::ActionKind::Block;
       for (const auto& b : s.body) a.body.push_back(lowerAction(*b, ctx));
       break;
+    case ActionStmtKind::Allow:
+      a.kind = ir::ActionKind::Allow;
+      a.allow = lowerAllowance(*s.allow, ctx);
+      for (const auto& b : s.body) a.body.push_back(lowerAction(*b, ctx));
+      break;
   }
   return a;
+}
+
+ir::Allowance Lowerer::lowerAllowance(const AllowClause& a, Ctx& ctx) {
+  ir::Allowance out;
+  out.part = a.part.name == "robot"     ? ir::AllowPart::Robot
+             : a.part.name == "gripper" ? ir::AllowPart::Gripper
+                                        : ir::AllowPart::Held;
+  if (a.clearance != nullptr)
+    out.clearance = a.clearance->name.name;
+  else
+    out.target = lower(a.target.get(), ctx);
+  const double distance = metres(a.length);
+  // `touch` lets the part sink in by the distance: a negative separation (touching with no depth is separation 0).
+  out.separation = a.mode.name == "touch" && distance > 0 ? -distance : distance;
+  return out;
 }
 
 }  // namespace cbtl::detail

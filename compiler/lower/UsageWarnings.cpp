@@ -15,6 +15,7 @@ void varsOf(const ir::ConstraintGraph& g, const ir::Action& a, std::set<ir::VarI
   for (const auto& x : a.args) ir::collectReadVars(g, x, out);
   if (a.set) ir::collectReadVars(g, *a.set, out);
   if (a.condition) ir::collectReadVars(g, *a.condition, out);
+  if (a.allow && a.allow->target) ir::collectReadVars(g, *a.allow->target, out);
   for (const auto& b : a.body) varsOf(g, b, out);
   for (const auto& b : a.elseBody) varsOf(g, b, out);
 }

@@ -23,6 +23,8 @@ const std::map<std::string, std::string>& ruleDescriptions() {
       {"worldDecl", "the world declaration"},
       {"simulatorDecl", "the simulator declaration"},
       {"robotDecl", "the robot declaration"},
+      {"clearanceDecl", "the clearance declaration"},
+      {"lengthLit", "the distance"},
       {"constDecl", "the constant declaration"},
       {"enumDecl", "the enum declaration"},
       {"itemDecl", "the item type declaration"},
@@ -40,6 +42,7 @@ const std::map<std::string, std::string>& ruleDescriptions() {
       {"personalClause", "the generator clause"},
       {"skillDecl", "the skill"},
       {"actionStmt", "the action statement"},
+      {"allowPart", "the allow statement"},
       {"taskDecl", "the task"},
       {"taskItem", "the task"},
   };
@@ -118,6 +121,7 @@ bool isDeclarationKeyword(std::size_t type) {
     case CbtlParser::IMPORT:
     case CbtlParser::WORLD:
     case CbtlParser::ROBOT:
+    case CbtlParser::CLEARANCE:
     case CbtlParser::CONST:
     case CbtlParser::ENUM:
     case CbtlParser::ITEM:
@@ -171,6 +175,13 @@ void addHints(Diagnostic& d, antlr4::Parser* parser, antlr4::Token* offending,
     const std::string guess = closestMatch(offending->getText(), expectedKeywords(parser, expected));
     if (!guess.empty()) d.help(fmt::format("did you mean the keyword '{}'?", guess));
   }
+  if (type == CbtlParser::ALLOW && !expected.contains(static_cast<std::size_t>(CbtlParser::ALLOW)))
+    d.help("'allow' is an action statement: it goes in a skill's 'do' block, around the actions it is for");
+  // The start of a distance (lengthLit) is the only place a number is expected and a name is not.
+  if (expected.contains(static_cast<std::size_t>(CbtlParser::NUMBER)) &&
+      expected.contains(static_cast<std::size_t>(CbtlParser::MINUS)) &&
+      !expected.contains(static_cast<std::size_t>(CbtlParser::ID)))
+    d.help("a distance is a number and its unit, e.g. '5 cm'");
   if (type == CbtlParser::ASSIGN && !expected.contains(static_cast<std::size_t>(CbtlParser::ASSIGN)))
     d.help("'=' only gives a declaration its value (`var x : real = 1;`); to compare, write '=='");
   if (type == CbtlParser::DOT) {

@@ -92,6 +92,10 @@ void NameResolver::declare(Module& module, bool isRoot) {
       case DeclKind::Robot:
         if (!d.name.name.empty() && claim(d.name)) symbols_.robots[d.name.name] = &d;
         break;
+      case DeclKind::Clearance:
+        if (!d.name.name.empty() && claim(d.name))
+          symbols_.clearances[d.name.name] = static_cast<const ClearanceDecl*>(&d);
+        break;
       case DeclKind::Enum: {
         if (d.name.name.empty() || !claim(d.name)) break;
         symbols_.types[d.name.name] = &d;

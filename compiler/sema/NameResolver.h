@@ -4,8 +4,10 @@
 // written to a semantic Type, and every name in expressions, samples, actions, skill instances and
 // learning rules to its declaration (Expr::ref and friends). Scopes, innermost first: quantifier and
 // learn binders, function / generator / skill parameters, skill or task variables, then the global
-// namespace, then unambiguous enum members, then built-ins (pi, uniform, box). Reports E02xx and the
-// type-argument errors E0309; suggests the closest name for typos.
+// namespace, then unambiguous enum members, then built-ins (pi, uniform, box). An `allow` target that is a bare
+// name naming a declared clearance is that clearance (AllowClause::clearance), whatever else is in scope; clearance
+// names are no values anywhere else. Reports E02xx and the type-argument errors E0309; suggests the closest name for
+// typos.
 #pragma once
 
 #include "compiler/ast/Ast.h"

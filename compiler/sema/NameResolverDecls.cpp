@@ -112,8 +112,36 @@ void NameResolver::resolveActions(std::vector<std::unique_ptr<ActionStmt>>& stmt
       case ActionStmtKind::Block:
         resolveActions(s->body);
         break;
+      case ActionStmtKind::Allow:
+        resolveAllowTarget(*s->allow);
+        resolveActions(s->body);
+        break;
     }
   }
+}
+
+// A bare name that names a declared clearance is that class, whatever else is in scope; anything else is a text
+// expression. An unknown bare name gets its suggestion from the clearances as well as the values in scope.
+void NameResolver::resolveAllowTarget(AllowClause& a) {
+  Expr* target = a.target.get();
+  if (target == nullptr) return;
+  if (target->kind != ExprKind::Name) {
+    resolveExpr(target);
+    return;
+  }
+  if (auto it = symbols_.clearances.find(target->text); it != symbols_.clearances.end()) {
+    a.clearance = it->second;
+    return;
+  }
+  target->ref = lookup(target->text, target->range, false);
+  if (target->ref.kind != RefKind::Unresolved || target->text.empty()) return;
+  Diagnostic& d = diags_.error("E0201", target->range, fmt::format("unknown clearance or name '{}'", target->text));
+  std::vector<std::string> names;
+  for (const auto& [n, c] : symbols_.clearances) names.push_back(n);
+  for (auto& n : visibleNames()) names.push_back(n);
+  const std::string guess = closestMatch(target->text, names);
+  if (!guess.empty()) d.help(fmt::format("did you mean '{}'?", guess));
+  d.note("an allow target is a declared clearance or a text naming a scene body or geom");
 }
 
 void NameResolver::resolveCallable(CallableDecl& c) {

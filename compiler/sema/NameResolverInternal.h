@@ -81,6 +81,7 @@ class NameResolver {
   void resolveScopeStmt(Decl& d);
   void bindBodyVariables(const std::vector<std::unique_ptr<Decl>>& body);
   void resolveActions(std::vector<std::unique_ptr<ActionStmt>>& stmts);
+  void resolveAllowTarget(AllowClause& a);
   void resolveCallable(CallableDecl& c);
   void resolvePersonal(PersonalDecl& g);
   void resolveModelArgs(ModelFactor& f);

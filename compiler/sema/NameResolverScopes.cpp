@@ -70,6 +70,9 @@ void NameResolver::unknownName(const std::string& name, SourceRange at) {
       symbols_.generators.count(name) || symbols_.robots.count(name)) {
     d.note(fmt::format("'{}' names a type, robot, skill, task or generator, which is not a value", name));
   }
+  if (symbols_.clearances.count(name)) {
+    d.note(fmt::format("'{}' is a clearance, a class of scene bodies: only the target of an 'allow' names it", name));
+  }
 }
 
 NameRef NameResolver::toRef(const Symbol& s) {

@@ -26,6 +26,7 @@ struct GlobalSymbols {
   std::map<std::string, const SkillDecl*> skills;
   std::map<std::string, const TaskDecl*> tasks;
   std::map<std::string, const PersonalDecl*> generators;
+  std::map<std::string, const ClearanceDecl*> clearances;  // named only by `allow` targets
   std::map<std::string, std::vector<Symbol>> enumMembers;  // bare member name -> every enum that has it
   std::vector<const Decl*> globalScope;                    // top-level var/require/sample/cost, in order
   const WorldDecl* world = nullptr;

@@ -118,6 +118,9 @@ void TypeChecker::checkTop(Decl& d) {
     case DeclKind::Robot:
       checkRobot(static_cast<RobotDecl&>(d));
       break;
+    case DeclKind::Clearance:
+      checkClearance(static_cast<ClearanceDecl&>(d));
+      break;
     case DeclKind::ItemSet:
       checkItems(static_cast<ItemsDecl&>(d));
       break;

@@ -5,7 +5,9 @@
 // bounds do not depend on variables, calls match the extern signatures declared in the standard library
 // (arity, named arguments, argument types with vec<N>/Conf<R> unification), samples write variables
 // with values of the right type, skill instances pass variables of the skills' parameter types, and
-// user functions are not recursive. Reports E03xx and E05xx.
+// user functions are not recursive, clearances and allow statements give distances with a unit (m, cm, mm) that
+// are not negative, and an allow's part, mode and target are what it takes. Reports E03xx, E05xx and E0601,
+// E0602, E0604, E0605 (the world's names are checked by check-world).
 //
 // Expressions inside personalized generators (model arguments, labels) are typed here too; their
 // meaning is checked by the `check-generators` pass.

@@ -10,6 +10,7 @@
 //   TypeCheckerDecls.cpp  constants, index sets, variables and their domains, samples, items, robots,
 //                         generators
 //   TypeCheckerTasks.cpp  skill bodies, action blocks and task skill instances
+//   TypeCheckerClearances.cpp  clearances and allow statements (parts, modes, targets, distances with units)
 #pragma once
 
 #include "compiler/ast/Ast.h"
@@ -100,6 +101,13 @@ class TypeChecker {
   void checkTask(TaskDecl& t);
   // Checks a skill instance's arguments against its skill's parameters (arity, variables, types).
   void checkSkillArgs(SkillInstance& inst);
+
+  // --- TypeCheckerClearances.cpp: clearances and allow statements ---
+  // E0601 unless the length has the unit m, cm or mm; E0602 if it is negative (`touchDepth`: a touch's depth).
+  void checkLength(const Length& l, bool touchDepth);
+  void checkClearance(ClearanceDecl& c);
+  // The part, the mode, the target (a clearance, else text), the distance and a body that is not empty.
+  void checkAllow(ActionStmt& s);
 
   TypeContext& types_;
   const GlobalSymbols& symbols_;

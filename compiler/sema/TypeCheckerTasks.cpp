@@ -35,6 +35,10 @@ void TypeChecker::checkActions(std::vector<std::unique_ptr<ActionStmt>>& stmts) 
       case ActionStmtKind::Block:
         checkActions(s->body);
         break;
+      case ActionStmtKind::Allow:
+        checkAllow(*s);
+        checkActions(s->body);
+        break;
     }
   }
 }

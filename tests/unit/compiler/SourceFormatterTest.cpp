@@ -62,6 +62,33 @@ TEST(SourceFormatter, SpacesOperatorsByTheirRoleInTheParse) {
             "extern sampler box<N>(lo : vec<N>) -> vec<N>;\n");
 }
 
+TEST(SourceFormatter, LengthsAndAllowBlocks) {
+  const std::string messy =
+      "clearance person:\"user\",\"user_head\">=5cm;\n"
+      "clearance far: \"table\",\n"
+      "\"shelf\" >= - 1  m;\n"
+      "skill s {\n"
+      "do {\n"
+      "allow held near person 5mm{\n"
+      "allow gripper touch \"table_top\" 0.5 cm { say(\"x\") ; }\n"
+      "}\n"
+      "}\n"
+      "}\n";
+  const std::string expected =
+      "clearance person: \"user\", \"user_head\" >= 5 cm;\n"
+      "clearance far: \"table\",\n"
+      "    \"shelf\" >= -1 m;\n"
+      "skill s {\n"
+      "  do {\n"
+      "    allow held near person 5 mm {\n"
+      "      allow gripper touch \"table_top\" 0.5 cm { say(\"x\"); }\n"
+      "    }\n"
+      "  }\n"
+      "}\n";
+  EXPECT_EQ(formatSource(messy), expected);
+  EXPECT_EQ(formatSource(expected), expected);
+}
+
 TEST(SourceFormatter, KeepsAlignmentAndMovesContinuationsWithTheirStatement) {
   const std::string text =
       "const a = 1;        // one\n"

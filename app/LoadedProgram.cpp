@@ -116,7 +116,11 @@ void LoadedProgram::prepareGraph(std::shared_ptr<const ir::ConstraintGraph> grap
   WorldSync sync;
   if (!graph->world.empty()) {
     setWorldPath(scene);
-    const world::SceneLoadResult loaded = world::Scene::loadFile(worldPath());
+    // The program's clearances are part of the scene: every check of every thread requires them.
+    std::vector<world::BodyClearance> clearances;
+    for (const ir::Clearance& c : graph->clearances)
+      clearances.push_back({c.name, c.bodies, c.distance, rt::Program::where(c.span)});
+    const world::SceneLoadResult loaded = world::Scene::loadFile(worldPath(), clearances);
     if (loaded.status != world::LoadStatus::Ok) {
       setErrors(fmt::format("error: {}: world scene '{}': {}\n", path(), graph->world, loaded.message));
       return;

@@ -3,6 +3,7 @@
 #include "runtime/solver/PersonalExplanation.h"
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 
@@ -49,6 +50,13 @@ void printStatistics(std::FILE* out, const solver::Csp& csp, const solver::Solve
     fmt::print(out, "  {:>10} {:>11}  {:<48} {}\n", s.rejections, s.evaluations, constraintName(csp, s.ref),
                constraintLocation(csp, s.ref));
   }
+  // A robot world's every collision check keeps the program's clearances: when the search failed, they may be why
+  // (a constraint such as confCollisionFree rejects what comes too close), so say them with where they stand.
+  if (r.outcome != SolveOutcome::Solved && csp.program != nullptr) {
+    for (const ir::Clearance& c : csp.program->graph().clearances)
+      fmt::print(out, "  every collision check keeps clearance {}: {:g} mm from {} ({})\n", c.name, c.distance * 1e3,
+                 fmt::join(c.bodies, ", "), rt::Program::where(c.span));
+  }
   if (r.planFailures.empty()) return;
   std::vector<std::pair<std::string, PlanFailure>> failures(r.planFailures.begin(), r.planFailures.end());
   std::stable_sort(failures.begin(), failures.end(),
@@ -60,7 +68,17 @@ void printStatistics(std::FILE* out, const solver::Csp& csp, const solver::Solve
 
 }  // namespace
 
-std::string renderCall(const sim::ActionCall& call) { return renderArgs(call.name, call.args); }
+std::string renderCall(const sim::ActionCall& call) {
+  std::string s = renderArgs(call.name, call.args);
+  // The exceptions to the clearances the call runs under, as the skill's `allow` said them (innermost last).
+  for (const sim::ClearanceException& e : call.exceptions) {
+    std::string names;
+    for (const std::string& n : e.names) names += (names.empty() ? "" : ", ") + n;
+    s += e.separation < 0 ? fmt::format("  [allow {} touch {} {:g} mm]", e.part, names, -e.separation * 1e3)
+                          : fmt::format("  [allow {} near {} {:g} mm]", e.part, names, e.separation * 1e3);
+  }
+  return s;
+}
 
 std::string renderEvent(const sim::FeedbackEvent& event) { return renderArgs(event.name, event.args); }
 

@@ -7,6 +7,7 @@ domains::ProgramFacts simulatorFacts(const LoadedProgram& program) {
   if (!program.ok()) return facts;
   facts.scenePath = program.worldPath();
   facts.scene = program.scene();
+  facts.clearances = program.graph().clearances;
   facts.itemSets = program.graph().itemSets;
   for (const ir::Constant& c : program.graph().constants) {
     if (!c.indexSet.empty()) continue;

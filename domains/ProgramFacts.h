@@ -27,6 +27,7 @@ namespace cbtl::domains {
 struct ProgramFacts {
   std::string scenePath;                      // the program's scene file, resolved; empty: the program has none
   std::shared_ptr<const world::Scene> scene;  // that file, loaded and shared read-only; null: load scenePath
+  std::vector<ir::Clearance> clearances;      // the program's clearances (scenePath is loaded with them)
   std::vector<ir::ItemSet> itemSets;          // the program's item sets, in declaration order
   // The program's constants whose value is a number as written (a literal, or a negated one), by name.
   struct Number {

@@ -257,8 +257,8 @@ struct Action {
   std::string name;
   std::vector<Expr> args;
   std::vector<std::string> binders;
-  std::optional<Expr> set;        // for
-  std::optional<Expr> condition;  // if
+  std::optional<Expr> set;         // for
+  std::optional<Expr> condition;   // if
   std::optional<Allowance> allow;  // allow
   std::vector<Action> body, elseBody;
   Span span;

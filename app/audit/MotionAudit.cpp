@@ -3,6 +3,7 @@
 #include "app/audit/MotionAudit.h"
 
 #include "app/LoadedProgram.h"
+#include "robot/actions/ClearanceExceptions.h"
 #include "robot/world/FclShapes.h"
 #include "robot/world/MotionRecord.h"
 #include "robot/world/Workspace.h"
@@ -26,6 +27,9 @@ namespace cbtl::app {
 namespace {
 
 using json = nlohmann::json;
+// Metres the held object may sink into the face it rests on while it is lifted off or set down (the executor's
+// robot/actions kRestingContact, restated: the audit does not read the executor's constants).
+constexpr double kRestingContact = 0.001;
 using world::BodyKind;
 
 struct AuditPair {
@@ -40,20 +44,22 @@ class Auditor {
       : scene_(std::move(scene)), ws_(scene_), options_(o), report_(report) {
     const mjModel* m = scene_->model();
     for (int g = 0; g < m->ngeom; ++g) shapes_.push_back(world::fclShapeOf(m, g));
-    const int user = scene_->bodyId("user");
-    person_.assign(static_cast<std::size_t>(m->nbody), false);
-    for (int b = 1; b < m->nbody; ++b) {
-      const std::string name = scene_->bodyName(b);
-      person_[static_cast<std::size_t>(b)] =
-          b == user || name.rfind("user_", 0) == 0 || person_[static_cast<std::size_t>(m->body_parentid[b])];
-    }
   }
 
-  // Checks one recorded motion; `where` names it in the report.
-  void audit(const world::ExecutedMotion& motion, const std::string& where) {
+  // Checks one recorded motion; `where` names it in the report. `declared`: the allowances the call's `allow`
+  // blocks grant; every allowance of the record must be one of them or a resting contact.
+  void audit(const world::ExecutedMotion& motion, const std::vector<world::ContactAllowance>& declared,
+             const std::string& where) {
     if (ws_.setState(motion.start) != world::StateStatus::Ok) {
       addViolation(where, "", "", 0, 0, "the recorded start state is not a valid state of the scene");
       return;
+    }
+    for (const world::ContactAllowance& a : motion.allowances) {
+      // The one contact actions allow on their own: the held object on the face it is lifted from or set onto.
+      const bool resting = a.part == world::ContactAllowance::Part::HeldObject && a.separation >= -kRestingContact;
+      if (!resting && std::find(declared.begin(), declared.end(), a) == declared.end())
+        addViolation(where, world::toString(a.part), a.geom >= 0 ? scene_->geomName(a.geom) : scene_->bodyName(a.body),
+                     0, a.separation, "the record allows an approach no `allow` of the call declares");
     }
     ++report_.motions;
     pairs(motion);
@@ -89,16 +95,21 @@ class Auditor {
       const int other = m->geom_bodyid[g2];
       double required = keepOut;
       for (const world::ContactAllowance& a : motion.allowances) {
-        const bool partOk = a.part == world::ContactAllowance::Part::HeldObject
-                                ? isHeld(m->geom_bodyid[g1])
-                                : scene_->bodyKind(m->geom_bodyid[g1]) == BodyKind::Gripper;
+        const int moving = m->geom_bodyid[g1];
+        const bool partOk = a.part == world::ContactAllowance::Part::HeldObject ? isHeld(moving)
+                            : a.part == world::ContactAllowance::Part::Gripper
+                                ? scene_->bodyKind(moving) == BodyKind::Gripper
+                                : isRobot(moving);
         const bool named = g2 == a.geom || (a.geom < 0 && other == a.body);
-        if (partOk && named) required = std::min(required, -a.depth);
+        if (partOk && named) required = std::min(required, a.separation);
       }
-      std::string cls = person_[static_cast<std::size_t>(other)]      ? "person"
-                        : isRobot(other) || isHeld(other)             ? "self"
+      const world::BodyClearance* declared = scene_->clearanceOfBody(other);
+      std::string cls = isRobot(other) || isHeld(other)               ? "self"
+                        : declared != nullptr                         ? declared->name
                         : scene_->bodyKind(other) == BodyKind::Object ? "objects"
                                                                       : "scenery";
+      // Approaches a skill declared are reported apart: the class's own figure is what held without exceptions.
+      if (required < keepOut) cls += kUnderAllow;
       pairs_.push_back({g1, g2, required, std::move(cls)});
     };
     for (const auto& p : scene_->robotPairs()) add(p.g1, p.g2, p.margin);
@@ -219,7 +230,6 @@ class Auditor {
   AuditOptions options_;
   AuditReport& report_;
   std::vector<std::shared_ptr<fcl::CollisionGeometryd>> shapes_;
-  std::vector<bool> person_;
   std::vector<AuditPair> pairs_;
 };
 
@@ -233,6 +243,16 @@ bool readMaybeGzipped(const std::string& path, std::string& out) {
   const bool ok = n == 0;
   gzclose(f);
   return ok;
+}
+
+// The exceptions the recorded call carried (runtime/approach/Checkpoint.h writes them as "allow").
+std::vector<sim::ClearanceException> exceptionsOf(const json& line) {
+  std::vector<sim::ClearanceException> out;
+  if (!line.contains("call") || !line.at("call").contains("allow")) return out;
+  for (const json& e : line.at("call").at("allow"))
+    out.push_back({e.at("part").get<std::string>(), e.at("names").get<std::vector<std::string>>(),
+                   e.at("separation").get<double>(), e.value("declared_at", std::string())});
+  return out;
 }
 
 std::string describe(const json& line) {
@@ -276,6 +296,13 @@ AuditReport auditRun(const std::string& runDir, const AuditOptions& options) {
     report.error = fmt::format("{}: no readable motions.jsonl.gz (the run recorded no motions)", runDir);
     return report;
   }
+  std::vector<std::string> classes;
+  for (const auto& c : loaded->scene()->clearances()) classes.push_back(c.name);
+  for (const char* c : {"scenery", "objects", "self"}) classes.push_back(c);
+  for (const std::string& c : classes) {
+    report.classes.push_back(c);
+    report.classes.push_back(c + kUnderAllow);
+  }
   Auditor auditor(loaded->scene(), options, report);
   std::size_t at = 0;
   for (long number = 1; at < all.size(); ++number) {
@@ -286,7 +313,11 @@ AuditReport auditRun(const std::string& runDir, const AuditOptions& options) {
     if (text.empty()) continue;
     try {
       const json line = json::parse(text);
-      auditor.audit(world::motionFromJson(*loaded->scene(), line.at("motion").dump()), describe(line));
+      std::vector<world::ContactAllowance> declared;
+      std::string error;
+      if (!actions::resolveClearanceExceptions(*loaded->scene(), exceptionsOf(line), declared, error))
+        throw std::runtime_error(error);
+      auditor.audit(world::motionFromJson(*loaded->scene(), line.at("motion").dump()), declared, describe(line));
     } catch (const std::exception& e) {
       report.error = fmt::format("{}/{}:{}: {}", runDir, name, number, e.what());
       return report;

@@ -9,9 +9,11 @@
 // the depth of an allowance the motion's record declares. It shares with the executor only the scene's data: the
 // geoms, the candidate pairs MuJoCo's filters give, the keep-outs and the FCL shape of each geom.
 //
-// The person is the scene's body `user`, every body below it and every body named `user_*` (both robot scenes
-// follow this convention). Other classes: scenery (static bodies and fixtures), objects (movable objects not
-// held), self (robot × robot).
+// Body classes: the program's clearances (`clearance person: "user" >= 5 cm;`: the pairs with a body of the class,
+// which must keep its distance unless the motion's record declares an exception), then self (robot × robot and the
+// held object × the arm), objects (movable objects not held) and scenery (everything else). Pairs whose requirement
+// an exception of the motion lowered (a skill's `allow`) count in a class of their own, "<class> under an allow":
+// the closest approach of a class is what held where no exception applied.
 // Units: metres, radians.
 #pragma once
 
@@ -45,12 +47,14 @@ struct AuditReport {
   std::int64_t motions = 0, segments = 0, states = 0;
   std::int64_t violationCount = 0;
   std::vector<AuditViolation> violations;          // the first kMaxListed
-  std::map<std::string, ClosestApproach> closest;  // per body class: person, scenery, objects, self
+  std::map<std::string, ClosestApproach> closest;  // per body class: each clearance, scenery, objects, self
+  std::vector<std::string> classes;                // the classes in report order: the clearances as declared first
   std::string error;                               // the run could not be audited (unreadable, no scene, ...)
   bool passed() const { return error.empty() && violationCount == 0; }
 };
 
 inline constexpr std::size_t kMaxListedViolations = 20;
+inline constexpr const char* kUnderAllow = " under an allow";  // suffix of the classes of excepted pairs
 
 // Audits the run folder `runDir`. Never throws: problems land in `error`.
 AuditReport auditRun(const std::string& runDir, const AuditOptions& options);

@@ -1,5 +1,7 @@
 #include "domains/feeding/FeedingSimulator.h"
 
+#include "robot/actions/ClearanceExceptions.h"
+
 #include "domains/feeding/BiteAnswers.h"
 #include "domains/feeding/FeedingActions.h"
 #include "domains/home/HomeEpisode.h"
@@ -270,13 +272,16 @@ sim::Observation FeedingSimulator::observe() const {
   return o;
 }
 
-void FeedingSimulator::trackClearance(const std::vector<world::ArmConfig>& path) {
+void FeedingSimulator::trackClearance(const sim::ActionCall& call, const std::vector<world::ArmConfig>& path) {
   if (path.empty() || userBodies_.empty()) return;
   world::Workspace& ws = world().workspace();
+  world::CollisionOptions declared;
+  std::string error;  // the executor refused the call already when its exceptions do not resolve
+  if (!actions::resolveClearanceExceptions(ws.scene(), call.exceptions, declared.allowances, error)) return;
   const world::ArmConfig reached = ws.state().arm;
   for (const auto& q : path) {
     ws.setArm(q);
-    const world::RobotDistance d = world::robotDistanceTo(ws, userBodies_, kClearanceCap);
+    const world::RobotDistance d = world::robotDistanceTo(ws, userBodies_, kClearanceCap, declared);
     if (d.distance < progress_.userClearance) {
       progress_.userClearance = d.distance;
       progress_.nearest = fmt::format("{} - {}, keep-out {:.3f} m", d.robotGeom, d.bodyGeom, d.keepOut);
@@ -320,7 +325,7 @@ std::optional<sim::StepResult> FeedingSimulator::actOnSimulatorState(const sim::
 sim::StepResult FeedingSimulator::afterApplied(const sim::ActionCall& call, const actions::RobotActionResult& result,
                                                sim::StepResult step) {
   world::Workspace& ws = world().workspace();
-  trackClearance(result.armPath);
+  trackClearance(call, result.armPath);
   if (call.name == "waitForReady") {
     progress_.signal = call.args[0].text;
     return step;

@@ -168,7 +168,8 @@ class FeedingSimulator final
   static constexpr double kClearanceCap = 0.5;  // metres; farther is reported as this
   // Lowers progress_.userClearance (and userKeepOutSlack) to the robot's distance to the user (and its slack to the
   // keep-out distances) at each waypoint of an executed path.
-  void trackClearance(const std::vector<world::ArmConfig>& path);
+  // `call`'s declared exceptions (the bite's `allow`) set what each pair must keep, as they did for its motion.
+  void trackClearance(const sim::ActionCall& call, const std::vector<world::ArmConfig>& path);
   void serveMeal();  // draws the next meal: food, the two sauces on the table, the setting, the table
   // Puts the table of `shape` (Meal::table) in place and the other away, then the plate back on it if need be.
   void setTable(const std::string& shape);

@@ -16,7 +16,10 @@ std::shared_ptr<const world::Scene> programScene(const ProgramFacts& program, st
     throw std::invalid_argument(std::string(domain) +
                                 ": no scene: a robot domain's simulator needs the program's `world \"...\"` scene");
   }
-  const world::SceneLoadResult r = world::Scene::loadFile(program.scenePath);
+  std::vector<world::BodyClearance> clearances;
+  for (const ir::Clearance& c : program.clearances)
+    clearances.push_back({c.name, c.bodies, c.distance, whereOf(c.span)});
+  const world::SceneLoadResult r = world::Scene::loadFile(program.scenePath, clearances);
   if (r.status != world::LoadStatus::Ok) throw std::runtime_error(std::string(domain) + " scene: " + r.message);
   return r.scene;
 }

@@ -1,5 +1,7 @@
 #include "robot/actions/RobotActions.h"
 
+#include "robot/actions/ClearanceExceptions.h"
+
 #include "robot/world/CartesianPath.h"
 #include "robot/world/MotionPlanner.h"
 #include "robot/world/MotionQuery.h"
@@ -105,9 +107,9 @@ world::Rng ikStream(const world::Workspace& ws, const world::Pose3& target) {
 
 // The standard action names, sorted (isStandard).
 const std::vector<std::string> kNames = [] {
-  std::vector<std::string> n{"moveArm", "moveTool", "moveArmToNamed", "moveBase", "grasp", "closeGripper",
-                             "release", "place",    "handOver",       "wipe",     "say",   "waitForUser",
-                             "wait"};
+  std::vector<std::string> n{
+      "moveArm", "moveTool", "moveToolStraight", "moveArmToNamed", "moveBase", "grasp",       "closeGripper",
+      "release", "place",    "handOver",         "wipe",           "say",      "waitForUser", "wait"};
   std::sort(n.begin(), n.end());
   return n;
 }();
@@ -182,6 +184,25 @@ ActionResult moveToolIn(world::World& w, const world::Pose3& target, ExecutionMo
   return moveArmIn(w, ik.q, mode);
 }
 
+// The tool along the straight line to `target` (CartesianPath.h), or a failure: never a joint-space detour. The same
+// computation in every mode, so that Effects ends where Execute does.
+ActionResult moveToolStraightIn(world::World& w, const world::Pose3& target, ExecutionMode mode) {
+  world::Workspace& ws = w.workspace();
+  world::CartesianPathOptions line;
+  line.collision = w.planning.collision;
+  ActionResult r;
+  auto path = world::cartesianToolPath(ws, target, w.ik, line);
+  if (!path) {
+    r.status = ActionStatus::NoPath;
+    r.detail = "no straight tool line to the target keeps every required separation";
+    return r;
+  }
+  r.armPath = std::move(*path);
+  ws.setArm(r.armPath.back());
+  if (mode == ExecutionMode::Execute) w.noteArmMotion(r.armPath, line.collision);
+  return r;
+}
+
 std::vector<world::ContactAllowance> restingContacts(world::World& w) {
   world::Workspace& ws = w.workspace();
   std::vector<world::ContactAllowance> out;
@@ -194,7 +215,7 @@ std::vector<world::ContactAllowance> restingContacts(world::World& w) {
     world::ContactAllowance a;
     a.part = world::ContactAllowance::Part::HeldObject;
     a.geom = other;
-    a.depth = kRestingContact;
+    a.separation = -kRestingContact;
     if (std::find(out.begin(), out.end(), a) == out.end()) out.push_back(a);
   }
   return out;
@@ -202,6 +223,14 @@ std::vector<world::ContactAllowance> restingContacts(world::World& w) {
 
 std::optional<RobotActionResult> RobotActions::execute(world::World& w, const sim::ActionCall& call,
                                                        ExecutionMode mode) const {
+  // The skill's declared exceptions to the clearances hold for every check of this action.
+  std::vector<world::ContactAllowance> declared;
+  std::string error;
+  if (!resolveClearanceExceptions(w.workspace().scene(), call.exceptions, declared, error)) {
+    if (!domain_ && !isStandard(call.name)) return std::nullopt;
+    return failed(ActionStatus::InvalidArgument, error);
+  }
+  ScopedAllowances scope(w, declared);
   if (domain_) {
     if (auto r = domain_->execute(w, call, mode)) return r;
   }
@@ -225,6 +254,14 @@ RobotActionResult RobotActions::standard(world::World& w, const sim::ActionCall&
     if (!tool)
       return failed(ActionStatus::InvalidArgument, "moveTool: the pose is not finite or its quaternion is zero");
     return from(moveToolIn(w, *tool, mode));
+  }
+  if (n == "moveToolStraight") {
+    if (auto e = checkArguments(call, {kSe3Arg}); !e.empty()) return illFormed(e);
+    const auto tool = decodePose3(a[0].vector);
+    if (!tool)
+      return failed(ActionStatus::InvalidArgument,
+                    "moveToolStraight: the pose is not finite or its quaternion is zero");
+    return from(moveToolStraightIn(w, *tool, mode));
   }
   if (n == "moveArmToNamed") {
     if (auto e = checkArguments(call, {kNameArg}); !e.empty()) return illFormed(e);
@@ -354,11 +391,11 @@ RobotActionResult RobotActions::handOver(world::World& w) const {
   world::WorldState open = holding;
   open.gripper = 1.0;
   world::CollisionReport opened;
-  if (ws.setState(open) == world::StateStatus::Ok) opened = world::checkRobotCollisions(ws);
+  if (ws.setState(open) == world::StateStatus::Ok) opened = world::checkRobotCollisions(ws, w.planning.collision);
   ws.setState(holding);
   if (!opened.free())
-    return failed(ActionStatus::Blocked, fmt::format("the gripper could not open to let go of {}: {} would touch {}",
-                                                     holding.held->object, opened.first, opened.second));
+    return failed(ActionStatus::Blocked, fmt::format("the gripper could not open to let go of {}: {}",
+                                                     holding.held->object, opened.describe()));
   return from(world::builtins::say(w, "Here you go!"));
 }
 
@@ -425,7 +462,7 @@ RobotActionResult RobotActions::place(world::World& w, const std::string& surfac
     // The body comes to rest on the surface's face: that contact (and only that) is part of the motion.
     world::ContactAllowance onFace;
     onFace.geom = ws.scene().geomId(surface);
-    onFace.depth = kRestingContact;
+    onFace.separation = -kRestingContact;
     const ScopedAllowances resting(w, {onFace});
     ActionResult moved = moveToolIn(w, tool, mode);
     if (!moved.done()) return failed(moved.status, "carrying " + held.object + ": " + moved.detail);

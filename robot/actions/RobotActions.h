@@ -34,6 +34,9 @@
 //   moveArm(q: Conf)            plan (straight segment first, then RRTConnect) and move the arm to q.
 //   moveTool(tool: SE3)         IK seeded at the current joints, then as moveArm. Simplification: a joint-space
 //                               move to the IK solution, not a Cartesian servo.
+//   moveToolStraight(tool: SE3) the tool frame along the straight line to `tool` (world/CartesianPath.h: 1 cm /
+//                               0.05 rad steps, IK seeded at the previous step, each joint segment certified);
+//                               NoPath when no such line exists (never a joint-space detour). Same in every mode.
 //   moveArmToNamed(name)        moveArm to the scene's named configuration (NamedConfigurations.h, as std.kinova's
 //                               namedConf); an unknown name fails (InvalidArgument, the detail lists the known
 //                               names).

@@ -85,12 +85,8 @@ ActionResult sweepSurface(world::World& w, const std::string& surface, const wor
   std::vector<Eigen::Vector2d> targets = strokeWaypoints(*face, s);
   targets.push_back(s);  // back to where the sweep began, i.e. the base back at `base`
 
-  // The duster is meant to touch the face it wipes, up to kSweepPenetration; nothing else may be touched.
-  world::CollisionOptions contact = w.planning.collision;
-  world::ContactAllowance wiping;
-  wiping.geom = ws.scene().geomId(surface);
-  wiping.depth = kSweepPenetration;
-  contact.allowances.push_back(wiping);
+  // Contact with the face wiped, like any other, only as far as the skill declares it (`allow held touch ...`).
+  const world::CollisionOptions& contact = w.planning.collision;
   Eigen::Vector2d from = s;
   for (const Eigen::Vector2d& to : targets) {
     const world::Pose2 a{base.x + (from - s).x(), base.y + (from - s).y(), base.yaw};

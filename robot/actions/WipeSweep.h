@@ -11,9 +11,8 @@
 //      stroke and end nearest to the object's start position; the object's height never changes;
 //   3. the base translates by the same offsets as the object (yaw kept) and finally returns to `base`;
 //      every straight base segment is certified free along its whole length (world/SegmentCertificate.h) for
-//      the robot and the held object, which may touch the wiped face (and nothing else) up to kSweepPenetration
-//      deep (the duster is meant to touch the surface, and the pre-wipe pose is only accurate to the CSP's
-//      1 mm / 0.01 rad).
+//      the robot and the held object with the scene's clearances: the duster touches the face it wipes only where
+//      the skill declares it (`allow held touch surfaceGeom[s] 5 mm { wipe(...); }` in cleaning.cbtl).
 // Failures (the world is left as it was): NotHolding; InvalidArgument (no box surface of that name);
 // OutOfReach (the held object is not on the surface); NoPath (base planning to `base`, or a sweep segment
 // collides: the detail names the geoms).
@@ -27,12 +26,11 @@
 
 namespace cbtl::actions {
 
-inline constexpr double kStrokeSpacing = 0.15;      // metres between strokes (the duster head's length)
-inline constexpr double kStrokeCoverage = 0.8;      // share of the face length a stroke covers
-inline constexpr double kSweepPenetration = 0.005;  // metres of contact tolerated during the sweep
-inline constexpr double kContactBelow = 0.01;       // the held object's bottom may be this far into the face...
-inline constexpr double kContactAbove = 0.03;       // ...or this far above it
-inline constexpr double kContactReach = 0.1;        // its origin may lie this far outside the face (x, y)
+inline constexpr double kStrokeSpacing = 0.15;  // metres between strokes (the duster head's length)
+inline constexpr double kStrokeCoverage = 0.8;  // share of the face length a stroke covers
+inline constexpr double kContactBelow = 0.01;   // the held object's bottom may be this far into the face...
+inline constexpr double kContactAbove = 0.03;   // ...or this far above it
+inline constexpr double kContactReach = 0.1;    // its origin may lie this far outside the face (x, y)
 
 // The pre-wipe pose lives in the world library (world/PreWipe.h), where std.collision's wipeStartPose reads it.
 using world::preWipeToolPose;

@@ -60,6 +60,13 @@ std::uint64_t callsFingerprint(std::uint64_t state, std::uint64_t mode, std::spa
       k.push_back(static_cast<double>(v.members.size()));
       for (const std::string& m : v.members) appendText(k, m);
     }
+    k.push_back(static_cast<double>(c.exceptions.size()));
+    for (const sim::ClearanceException& e : c.exceptions) {
+      appendText(k, e.part);
+      k.push_back(static_cast<double>(e.names.size()));
+      for (const std::string& n : e.names) appendText(k, n);
+      k.push_back(e.separation);
+    }
   }
   return world::fingerprintOf(k);
 }

@@ -31,19 +31,27 @@ struct CollisionReport {
   std::string first, second;  // geom names of the first counted contact (empty when Free)
   double depth =
       0.0;  // how far inside the pair's required separation, metres (positive; penetration when 0 is required)
+  double required = 0.0;  // the separation that pair must keep (metres; negative: an allowed contact depth)
+  std::string clearance;  // the scene clearance that set `required` ("" when none did; Scene::BodyClearance)
   bool free() const { return status == CollisionStatus::Free; }
+  // "gripper_finger touches book_3_geom" / "... is 3.1 cm from user_forearm_r (clearance person at f:l:c needs 5 cm)"
+  std::string describe() const;
 };
 
-// An exception to "contact is contact", declared by an action: `part` may touch the geom `geom` (or any geom of
-// body `body`, when geom is -1) and sink into it by at most `depth` metres.
+// An exception to a pair's required separation (its keep-out, a clearance, or "contact is contact"), declared by a
+// skill (`allow` in the .cbtl file) or by the action that needs it: `part` may come to `separation` metres of the
+// geom `geom` (or of any geom of body `body`, when geom is -1); a negative separation lets it touch and sink in by
+// that much. An allowance only ever lowers a requirement.
 struct ContactAllowance {
-  enum class Part : unsigned char { HeldObject, Gripper };
+  enum class Part : unsigned char { HeldObject, Gripper, Robot };  // Robot: any robot body, the gripper included
   Part part = Part::HeldObject;
   int geom = -1;
   int body = -1;
-  double depth = 0.0;  // metres, >= 0
+  double separation = 0.0;  // metres
   bool operator==(const ContactAllowance&) const = default;
 };
+
+const char* toString(ContactAllowance::Part part);  // "held", "gripper", "robot"
 
 struct CollisionOptions {
   std::vector<ContactAllowance> allowances;

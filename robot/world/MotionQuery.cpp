@@ -33,7 +33,8 @@ std::vector<double> stateKey(const Workspace& ws, MotionKind kind, const PlanOpt
   k.insert(k.end(), {static_cast<double>(o.shortcutAttempts), o.range, o.tryDirectFirst ? 1.0 : 0.0});
   k.push_back(static_cast<double>(o.collision.allowances.size()));
   for (const ContactAllowance& a : o.collision.allowances)
-    k.insert(k.end(), {static_cast<double>(a.part), static_cast<double>(a.geom), static_cast<double>(a.body), a.depth});
+    k.insert(k.end(),
+             {static_cast<double>(a.part), static_cast<double>(a.geom), static_cast<double>(a.body), a.separation});
   k.insert(k.end(), std::begin(o.baseBounds), std::end(o.baseBounds));
   return k;
 }

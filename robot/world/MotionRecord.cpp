@@ -3,6 +3,8 @@
 #include "robot/world/Scene.h"
 
 #include <fmt/core.h>
+
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 namespace cbtl::world {
@@ -62,7 +64,7 @@ std::string motionToJson(const Scene& scene, const ExecutedMotion& m) {
   }
   json allow = json::array();
   for (const ContactAllowance& a : m.allowances) {
-    json e{{"part", a.part == ContactAllowance::Part::HeldObject ? "held" : "gripper"}, {"depth", a.depth}};
+    json e{{"part", toString(a.part)}, {"separation", a.separation}};
     if (a.geom >= 0) e["geom"] = scene.geomName(a.geom);
     if (a.body >= 0) e["body"] = scene.bodyName(a.body);
     allow.push_back(e);
@@ -108,14 +110,21 @@ ExecutedMotion motionFromJson(const Scene& scene, const std::string& text) {
     for (const json& a : doc.at("allow")) {
       ContactAllowance c;
       const std::string part = a.at("part").get<std::string>();
-      if (part != "held" && part != "gripper") throw MotionRecordError("an allowance's part must be held or gripper");
-      c.part = part == "held" ? ContactAllowance::Part::HeldObject : ContactAllowance::Part::Gripper;
+      if (part == "held")
+        c.part = ContactAllowance::Part::HeldObject;
+      else if (part == "gripper")
+        c.part = ContactAllowance::Part::Gripper;
+      else if (part == "robot")
+        c.part = ContactAllowance::Part::Robot;
+      else
+        throw MotionRecordError("an allowance's part must be held, gripper or robot");
       if (a.contains("geom") && (c.geom = scene.geomId(a.at("geom").get<std::string>())) < 0)
         throw MotionRecordError("an allowance names a geom the scene does not have");
       if (a.contains("body") && (c.body = scene.bodyId(a.at("body").get<std::string>())) < 0)
         throw MotionRecordError("an allowance names a body the scene does not have");
-      c.depth = a.at("depth").get<double>();
-      if (!(c.depth >= 0)) throw MotionRecordError("an allowance's depth must be a number >= 0");
+      // Records written before skills could declare clearance exceptions give a contact depth instead.
+      c.separation = a.contains("separation") ? a.at("separation").get<double>() : -a.at("depth").get<double>();
+      if (!std::isfinite(c.separation)) throw MotionRecordError("an allowance's separation must be a finite number");
       m.allowances.push_back(c);
     }
   } catch (const json::exception& e) {

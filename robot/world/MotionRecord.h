@@ -10,7 +10,8 @@
 //   "start": {"arm": [7 rad], "base": [x, y, yaw], "gripper": g, "objects": {name: [x, y, z, qw, qx, qy, qz]},
 //             "fixtures": {name: [...]}, "held": name, "grasp": [x, y, z, qw, qx, qy, qz]  (tool frame → object)},
 //   "path": [[7 rad] ...] | [[x, y, yaw] ...],
-//   "allow": [{"part": "held" | "gripper", "geom": name, "body": name, "depth": metres}]}
+//   "allow": [{"part": "held" | "gripper" | "robot", "geom": name, "body": name, "separation": metres}]}
+// (ContactAllowance: a negative separation is an allowed contact depth; older records wrote "depth" instead.)
 // Numbers are written with enough digits to read back the same doubles. Units: metres, radians; world frame.
 #pragma once
 

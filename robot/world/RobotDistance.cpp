@@ -6,7 +6,8 @@
 
 namespace cbtl::world {
 
-RobotDistance robotDistanceTo(Workspace& ws, const std::vector<int>& bodies, double cap) {
+RobotDistance robotDistanceTo(Workspace& ws, const std::vector<int>& bodies, double cap,
+                              const CollisionOptions& options) {
   const mjModel* m = ws.model();
   const mjData* d = ws.data();
   const Scene& s = ws.scene();
@@ -22,7 +23,7 @@ RobotDistance robotDistanceTo(Workspace& ws, const std::vector<int>& bodies, dou
       if (lowerBound(m, d, g1, g2) >= cap) continue;  // farther than the cap: not measured
       const double dist = exactSeparation(ws, g1, g2);
       if (dist >= cap) continue;
-      const double keepOut = s.keepOut(g1, g2);
+      const double keepOut = requiredSeparation(ws, options, g1, g2);
       if (dist < nearest.distance) {
         nearest.distance = dist;
         nearest.robotGeom = s.geomName(g1);

@@ -37,7 +37,7 @@ mjModel* loadXml(const char* path, std::string& error) {
 
 }  // namespace
 
-SceneLoadResult Scene::loadFile(const std::string& path) {
+SceneLoadResult Scene::loadFile(const std::string& path, const std::vector<BodyClearance>& clearances) {
   installMujocoHandlers();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec) || !std::ifstream(path).good())
@@ -46,6 +46,8 @@ SceneLoadResult Scene::loadFile(const std::string& path) {
   mjModel* m = loadXml(path.c_str(), error);
   if (!m) return fail(LoadStatus::ParseError, fmt::format("{}: {}", path, error));
   std::shared_ptr<Scene> scene(new Scene(m));
+  if (std::string msg = scene->applyClearances(clearances); !msg.empty())
+    return fail(LoadStatus::BadClearance, fmt::format("{}: {}", path, msg));
   if (std::string msg = scene->initialise(); !msg.empty())
     return fail(LoadStatus::NotARobotScene, fmt::format("{}: {}", path, msg));
   return {LoadStatus::Ok, {}, std::move(scene)};
@@ -57,6 +59,35 @@ Scene::Scene(mjModel* m) : model_(m), motionCache_(std::make_unique<MotionCache>
 }
 
 Scene::~Scene() { mj_deleteModel(model_); }
+
+std::string Scene::applyClearances(const std::vector<BodyClearance>& clearances) {
+  const mjModel* m = model_;
+  clearances_ = clearances;
+  clearanceOf_.assign(static_cast<size_t>(m->nbody), -1);
+  std::vector<char> marked(static_cast<size_t>(m->nbody));
+  for (size_t c = 0; c < clearances_.size(); ++c) {
+    const BodyClearance& bc = clearances_[c];
+    const std::string at = bc.declaredAt.empty() ? "" : fmt::format(" ({})", bc.declaredAt);
+    if (!(bc.distance >= 0) || !std::isfinite(bc.distance))
+      return fmt::format("clearance '{}'{}: the distance must be a number >= 0", bc.name, at);
+    std::fill(marked.begin(), marked.end(), 0);
+    for (const std::string& name : bc.bodies) {
+      const int root = bodyId(name);
+      if (root < 0) return fmt::format("clearance '{}'{}: the scene has no body '{}'", bc.name, at, name);
+      marked[static_cast<size_t>(root)] = 1;
+    }
+    // Parents precede children in MuJoCo's body order, so one pass marks every subtree.
+    for (int b = 1; b < m->nbody; ++b)
+      if (marked[static_cast<size_t>(m->body_parentid[b])]) marked[static_cast<size_t>(b)] = 1;
+    for (int b = 0; b < m->nbody; ++b) {
+      int& current = clearanceOf_[static_cast<size_t>(b)];
+      if (marked[static_cast<size_t>(b)] &&
+          (current < 0 || clearances_[static_cast<size_t>(current)].distance < bc.distance))
+        current = static_cast<int>(c);
+    }
+  }
+  return {};
+}
 
 std::string Scene::initialise() {
   const mjModel* m = model_;
@@ -170,20 +201,25 @@ void Scene::buildPairs() {
   };
   for (int g = 0; g < m->ngeom; ++g)
     if (robotGeom(g)) robotGeoms_.push_back(g);
+  auto clearanceOfGeom = [&](int g) { return clearanceDistance(m->geom_bodyid[g]); };
   auto add = [&](int a, int b, double margin) {
-    const GeomPair p = m->geom_type[a] <= m->geom_type[b] ? GeomPair{a, b, margin} : GeomPair{b, a, margin};
-    reachMargin_[static_cast<size_t>(a)] = std::max(reachMargin_[static_cast<size_t>(a)], margin);
-    reachMargin_[static_cast<size_t>(b)] = std::max(reachMargin_[static_cast<size_t>(b)], margin);
+    auto pair = [&](double keepOut) {
+      reachMargin_[static_cast<size_t>(a)] = std::max(reachMargin_[static_cast<size_t>(a)], keepOut);
+      reachMargin_[static_cast<size_t>(b)] = std::max(reachMargin_[static_cast<size_t>(b)], keepOut);
+      return m->geom_type[a] <= m->geom_type[b] ? GeomPair{a, b, keepOut} : GeomPair{b, a, keepOut};
+    };
     const bool ra = robotGeom(a), rb = robotGeom(b);
     if (ra && rb) {
-      selfPairs_.push_back(p);
+      selfPairs_.push_back(pair(margin));
     } else if (ra || rb) {
-      robotPairs_.push_back(p);
+      robotPairs_.push_back(pair(std::max(margin, clearanceOfGeom(ra ? b : a))));
     } else {
       const int oa = objectOfBody_[static_cast<size_t>(m->geom_bodyid[a])];
       const int ob = objectOfBody_[static_cast<size_t>(m->geom_bodyid[b])];
-      if (oa >= 0 && oa != ob) objectPairs_[static_cast<size_t>(oa)].push_back(p);
-      if (ob >= 0 && ob != oa) objectPairs_[static_cast<size_t>(ob)].push_back(p);
+      if (oa >= 0 && oa != ob)
+        objectPairs_[static_cast<size_t>(oa)].push_back(pair(std::max(margin, clearanceOfGeom(b))));
+      if (ob >= 0 && ob != oa)
+        objectPairs_[static_cast<size_t>(ob)].push_back(pair(std::max(margin, clearanceOfGeom(a))));
     }
   };
   for (int i = 0; i < m->npair; ++i)
@@ -196,8 +232,19 @@ void Scene::buildPairs() {
 }
 
 double Scene::keepOut(int g1, int g2) const {
-  if (const auto it = explicitMargin_.find(std::minmax(g1, g2)); it != explicitMargin_.end()) return it->second;
-  return mujocoWouldCollide(g1, g2) ? std::max(model_->geom_margin[g1], model_->geom_margin[g2]) : 0.0;
+  double keep = 0.0;
+  if (const auto it = explicitMargin_.find(std::minmax(g1, g2)); it != explicitMargin_.end())
+    keep = it->second;
+  else if (mujocoWouldCollide(g1, g2))
+    keep = std::max(model_->geom_margin[g1], model_->geom_margin[g2]);
+  else
+    return 0.0;
+  for (const int g : {g1, g2}) {
+    const BodyKind k = kinds_[static_cast<size_t>(model_->geom_bodyid[g])];
+    if (k != BodyKind::Robot && k != BodyKind::Gripper)
+      keep = std::max(keep, clearanceDistance(model_->geom_bodyid[g]));
+  }
+  return keep;
 }
 
 bool Scene::withinLimits(const ArmConfig& q) const {

@@ -31,6 +31,16 @@ enum class LoadStatus {
   FileNotFound,    // the path does not name a readable file
   ParseError,      // MuJoCo rejected the XML (message has MuJoCo's text with line numbers)
   NotARobotScene,  // the model compiled but lacks the Gen3 arm names listed above
+  BadClearance,    // a clearance names a body the scene does not have, or a distance that is not >= 0
+};
+
+// A class of the scene's bodies and the distance the robot, and what it holds, keeps from each of them (a program's
+// `clearance person: "user" >= 5 cm;`). Every collision check of the Scene's pairs requires it.
+struct BodyClearance {
+  std::string name;                 // "person"
+  std::vector<std::string> bodies;  // body names; each covers the bodies below it in the scene tree
+  double distance = 0;              // metres, >= 0
+  std::string declaredAt;           // "file:line:col" of the declaration, for messages; may be empty
 };
 
 class Scene;
@@ -66,8 +76,9 @@ struct FixtureInfo {
 
 class Scene {
  public:
-  // Loads an MJCF file; includes resolve relative to the file's directory.
-  static SceneLoadResult loadFile(const std::string& path);
+  // Loads an MJCF file; includes resolve relative to the file's directory. `clearances` become part of every
+  // candidate pair's keep-out (below).
+  static SceneLoadResult loadFile(const std::string& path, const std::vector<BodyClearance>& clearances = {});
 
   ~Scene();
   Scene(const Scene&) = delete;
@@ -110,8 +121,9 @@ class Scene {
   // Candidate geom pairs for the robot's collision checks, ordered so that geom_type[g1] <= geom_type[g2]: the
   // pairs MuJoCo's own filters let through (contype/conaffinity, same weld body, parent-child, <exclude>), with the
   // larger of the two geoms' margins, and the explicit <contact><pair> elements, with the pair's margin. As in
-  // MuJoCo 2.2.2, an explicit pair replaces the filtered pair of the same two geoms (and only that one), so a
-  // <pair> can give one geom pair a keep-out distance of its own (the feeding scene's fork near the face).
+  // MuJoCo 2.2.2, an explicit pair replaces the filtered pair of the same two geoms (and only that one).
+  // A pair's margin is at least the clearance of the body the robot (or the held object) meets: robot × world pairs
+  // take the world geom's clearance, object pairs (used when that object is held) the other geom's.
   struct GeomPair {
     int g1, g2;
     double margin;  // metres: closer than this counts as penetrating by the difference
@@ -123,8 +135,21 @@ class Scene {
   // Geoms of object `index` × scenery and other objects' geoms (used when that object is held).
   const std::vector<GeomPair>& objectPairs(int index) const { return objectPairs_[static_cast<size_t>(index)]; }
   // The keep-out distance the collision checks apply between geoms g1 and g2 (metres): the explicit pair's margin,
-  // else the larger geom margin when MuJoCo's filters let the pair collide, else 0 (the pair is never checked).
+  // else the larger geom margin when MuJoCo's filters let the pair collide, else 0 (the pair is never checked); and at
+  // least the clearance of each of the two that is not a robot geom.
   double keepOut(int g1, int g2) const;
+
+  // The clearances the scene was loaded with, and the one that applies to body `b` (the largest distance among
+  // the classes it belongs to), or null.
+  const std::vector<BodyClearance>& clearances() const { return clearances_; }
+  const BodyClearance* clearanceOfBody(int b) const {
+    const int c = clearanceOf_[static_cast<size_t>(b)];
+    return c < 0 ? nullptr : &clearances_[static_cast<size_t>(c)];
+  }
+  double clearanceDistance(int body) const {
+    const BodyClearance* c = clearanceOfBody(body);
+    return c ? c->distance : 0.0;
+  }
   // The largest margin any candidate pair of geom g uses (its own, or an explicit pair's), for the broad phase.
   double reachMargin(int g) const { return reachMargin_[static_cast<size_t>(g)]; }
 
@@ -152,6 +177,7 @@ class Scene {
 
  private:
   void buildPairs();
+  std::string applyClearances(const std::vector<BodyClearance>& clearances);  // error message, empty on success
   bool mujocoWouldCollide(int g1, int g2) const;
 
   explicit Scene(mjModel* m);
@@ -174,6 +200,8 @@ class Scene {
   std::vector<double> reachMargin_;
   std::map<std::pair<int, int>, double> explicitMargin_;  // the <pair> margins, keyed by (lower, higher) geom id
   std::vector<std::vector<GeomPair>> objectPairs_;
+  std::vector<BodyClearance> clearances_;
+  std::vector<int> clearanceOf_;  // per body: index into clearances_, or -1
   KinematicSubtree armSubtree_, baseSubtree_;
   std::vector<KinematicSubtree> objectSubtrees_;
   std::unique_ptr<MotionCache> motionCache_;

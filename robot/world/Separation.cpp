@@ -30,21 +30,29 @@ CollisionStatus classify(const Scene& s, int held, int b1, int b2) {
 // Whether geom g belongs to the moving part an allowance names.
 bool isPart(const Scene& s, int held, int g, ContactAllowance::Part part) {
   const int b = s.model()->geom_bodyid[g];
-  if (part == ContactAllowance::Part::HeldObject) return held >= 0 && s.objectOfBody(b) == held;
-  return s.bodyKind(b) == BodyKind::Gripper;
+  switch (part) {
+    case ContactAllowance::Part::HeldObject:
+      return held >= 0 && s.objectOfBody(b) == held;
+    case ContactAllowance::Part::Gripper:
+      return s.bodyKind(b) == BodyKind::Gripper;
+    case ContactAllowance::Part::Robot:
+      return isRobot(s.bodyKind(b));
+  }
+  return false;
 }
 
 bool names(const Scene& s, const ContactAllowance& a, int g) {
   return g == a.geom || (a.geom < 0 && a.body >= 0 && s.model()->geom_bodyid[g] == a.body);
 }
 
-// The separation the pair (g1, g2) must keep: its keep-out, or minus the deepest allowance that covers it.
+// The separation the pair (g1, g2) must keep: its keep-out, or the smallest separation an allowance that covers it
+// grants.
 double requiredSeparation(const Scene& s, int held, const CollisionOptions& o, int g1, int g2, double keepOut) {
   double required = keepOut;
   for (const ContactAllowance& a : o.allowances) {
     const bool covers =
         (isPart(s, held, g1, a.part) && names(s, a, g2)) || (isPart(s, held, g2, a.part) && names(s, a, g1));
-    if (covers) required = std::min(required, -a.depth);
+    if (covers) required = std::min(required, a.separation);
   }
   return required;
 }
@@ -90,6 +98,11 @@ void build(const Workspace& ws, const CollisionOptions& o, std::vector<CheckedPa
 }
 
 }  // namespace
+
+double requiredSeparation(const Workspace& ws, const CollisionOptions& options, int g1, int g2) {
+  const Scene& s = ws.scene();
+  return requiredSeparation(s, ws.heldObject(), options, g1, g2, s.keepOut(g1, g2));
+}
 
 const std::vector<CheckedPair>& pairsFor(const Workspace& ws, const CollisionOptions& options) {
   thread_local PairCache cache;

@@ -5,7 +5,7 @@
 // The pairs are the Scene's candidates (MuJoCo's filters, the <pair> elements), classified for the held object:
 // robot × world (RobotWorld), robot × robot (SelfCollision), held object × world and held object × non-gripper
 // robot links (HeldObject); held object × gripper pairs are dropped. Each pair's `required` separation is its
-// keep-out (Scene::keepOut), or minus the depth of a ContactAllowance that covers it.
+// keep-out (Scene::keepOut: margins and clearances), or the smaller separation of a ContactAllowance that covers it.
 //
 // Two measures per pair: lowerBound(), a few flops from the bounding spheres and, for boxes and planes, their true
 // extent (valid whatever the shapes: never above the true distance), and exact(), GeomDistance's separation. A
@@ -29,6 +29,10 @@ struct CheckedPair {
 // The pairs to check with `ws`'s held object and `options`' allowances, in the Scene's order (robot × world, then
 // self, then the held object's). The reference stays valid until the calling thread's next call.
 const std::vector<CheckedPair>& pairsFor(const Workspace& ws, const CollisionOptions& options);
+
+// The separation the pair (g1, g2) must keep with `ws`'s held object and `options`' allowances: its keep-out
+// (Scene::keepOut), or the smaller separation of an allowance that covers it.
+double requiredSeparation(const Workspace& ws, const CollisionOptions& options, int g1, int g2);
 
 // A lower bound on the separation of geoms g1 and g2 at the current poses (never above the exact one).
 double lowerBound(const mjModel* m, const mjData* d, int g1, int g2);

@@ -90,8 +90,15 @@ bool moveArmInternal(World& w, const ArmConfig& q, std::vector<ArmConfig>& path,
   const ArmConfig start = ws.state().arm;
   const ArmPlan plan = planArmCached(ws, q, w.planning);
   if (!plan.solved()) {
-    ws.setArm(start);
     detail = toString(plan.status);
+    // Say which pair, and which clearance, makes the start or the goal invalid: the dry run's verdict, and so the
+    // task's explanation, then names the declaration.
+    if (plan.status == PlanStatus::InvalidGoal || plan.status == PlanStatus::InvalidStart) {
+      ws.setArm(plan.status == PlanStatus::InvalidGoal ? q : start);
+      if (const CollisionReport c = checkRobotCollisions(ws, w.planning.collision); !c.free())
+        detail += ": " + c.describe();
+    }
+    ws.setArm(start);
     return false;
   }
   path.insert(path.end(), plan.path.begin() + 1, plan.path.end());
@@ -164,7 +171,15 @@ ActionResult moveBase(World& w, const Pose2& goal) {
   Workspace& ws = w.workspace();
   if (!ws.scene().hasMobileBase()) return fail(ActionStatus::InvalidArgument, "the scene has no mobile base");
   const BasePlan plan = planBaseCached(ws, goal, w.planning);
-  if (!plan.solved()) return fail(ActionStatus::NoPath, toString(plan.status));
+  if (!plan.solved()) {
+    std::string detail = toString(plan.status);
+    if (plan.status == PlanStatus::InvalidGoal) {
+      ws.setBase(goal);  // the guard puts the base back
+      if (const CollisionReport c = checkRobotCollisions(ws, w.planning.collision); !c.free())
+        detail += ": " + c.describe();
+    }
+    return fail(ActionStatus::NoPath, detail);
+  }
   ws.setBase(goal);
   w.noteBaseMotion(plan.path, w.planning.collision);
   ActionResult r;

@@ -20,6 +20,27 @@ struct Compiler {
   rt::ProgramCompiler::Scope scope;
   std::uint32_t top = 0;
 
+  void compileAllowance(const ir::Allowance& allow, const std::string& at, CompiledAction& c) {
+    static constexpr const char* kParts[] = {"robot", "gripper", "held"};  // ir::AllowPart order
+    const auto part = static_cast<std::size_t>(allow.part);
+    if (part >= std::size(kParts)) throw rt::RuntimeError(at, "an 'allow' for an unknown part of the robot");
+    c.exception.part = kParts[part];
+    c.exception.separation = allow.separation;
+    c.exception.declaredAt = at;
+    if (!allow.clearance.empty()) {
+      const ir::Clearance* found = nullptr;
+      for (const ir::Clearance& cl : program.graph().clearances)
+        if (cl.name == allow.clearance) found = &cl;
+      if (found == nullptr) throw rt::RuntimeError(at, fmt::format("no clearance '{}' is declared", allow.clearance));
+      c.exception.names = found->bodies;
+    } else if (allow.target) {
+      c.args.push_back(expressions.compile(*allow.target, scope));
+      c.argTypes.push_back(program.typeOf(allow.target->type));
+    } else {
+      throw rt::RuntimeError(at, "an 'allow' names neither a clearance nor a body");
+    }
+  }
+
   CompiledAction compile(const ir::Action& a) {
     CompiledAction c;
     c.kind = a.kind;
@@ -60,6 +81,10 @@ struct Compiler {
       scope.locals = saved;
       return c;
     }
+    if (a.kind == ir::ActionKind::Allow) {
+      if (!a.allow) throw rt::RuntimeError(at, "an 'allow' without its exception");
+      compileAllowance(*a.allow, at, c);
+    }
     if (a.kind == ir::ActionKind::If && a.condition) c.condition = expressions.compile(*a.condition, scope);
     for (const auto& b : a.body) c.body.push_back(compile(b));
     for (const auto& b : a.elseBody) c.elseBody.push_back(compile(b));
@@ -69,8 +94,9 @@ struct Compiler {
 
 constexpr std::size_t kMaxCalls = 100000;
 
+// `allowed`: the exceptions of the `allow` blocks around `actions`, outermost first.
 void run(const rt::Program& program, const std::vector<CompiledAction>& actions, rt::EvalContext& ctx,
-         std::vector<sim::ActionCall>& out) {
+         std::vector<sim::ClearanceException>& allowed, std::vector<sim::ActionCall>& out) {
   const auto& pool = program.pool();
   for (const auto& a : actions) {
     if (out.size() >= kMaxCalls) return;
@@ -82,7 +108,18 @@ void run(const rt::Program& program, const std::vector<CompiledAction>& actions,
         pool.eval(a.args[i], ctx, v);
         call.args.push_back(toSimValue(program, a.argTypes[i], v));
       }
+      call.exceptions = allowed;
       out.push_back(std::move(call));
+    } else if (a.kind == ir::ActionKind::Allow) {
+      sim::ClearanceException e = a.exception;
+      if (!a.args.empty()) {
+        double v[rt::kMaxValueWidth];
+        pool.eval(a.args[0], ctx, v);
+        e.names = {toSimValue(program, a.argTypes[0], v).text};
+      }
+      allowed.push_back(std::move(e));
+      run(program, a.body, ctx, allowed, out);
+      allowed.pop_back();
     } else if (a.kind == ir::ActionKind::For) {
       double lo = 0, hi = static_cast<double>(a.memberCount) - 1;
       if (a.lo) {
@@ -93,12 +130,12 @@ void run(const rt::Program& program, const std::vector<CompiledAction>& actions,
       std::size_t iterations = 0;
       for (double i = lo; i <= hi && out.size() < kMaxCalls && iterations < kMaxCalls; i += 1, ++iterations) {
         ctx.frame[a.binderSlot] = i;
-        run(program, a.body, ctx, out);
+        run(program, a.body, ctx, allowed, out);
       }
     } else if (a.kind == ir::ActionKind::If) {
-      run(program, (!a.condition || pool.evalBool(*a.condition, ctx)) ? a.body : a.elseBody, ctx, out);
+      run(program, (!a.condition || pool.evalBool(*a.condition, ctx)) ? a.body : a.elseBody, ctx, allowed, out);
     } else {
-      run(program, a.body, ctx, out);
+      run(program, a.body, ctx, allowed, out);
     }
   }
 }
@@ -110,6 +147,7 @@ void collectActionReads(const ir::ConstraintGraph& graph, const ir::Action& a, s
   for (const auto& e : a.args) ir::collectReadVars(graph, e, out);
   if (a.set) ir::collectReadVars(graph, *a.set, out);
   if (a.condition) ir::collectReadVars(graph, *a.condition, out);
+  if (a.allow && a.allow->target) ir::collectReadVars(graph, *a.allow->target, out);
   for (const auto& b : a.body) collectActionReads(graph, b, out, names);
   for (const auto& b : a.elseBody) collectActionReads(graph, b, out, names);
 }
@@ -156,7 +194,8 @@ void TaskActions::unrollStage(const rt::Program& program, std::size_t stage, con
                               std::vector<sim::ActionCall>& out) const {
   std::vector<double> frame(std::max<std::size_t>(frameWidth_, program.frameSize()) + 1, 0.0);
   rt::EvalContext ctx{x, obs, frame.data(), program.callContext()};
-  run(program, stages_.at(stage), ctx, out);
+  std::vector<sim::ClearanceException> allowed;
+  run(program, stages_.at(stage), ctx, allowed, out);
 }
 
 std::vector<sim::ActionCall> TaskActions::unroll(const rt::Program& program, const std::vector<double>& solution,

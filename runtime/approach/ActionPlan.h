@@ -23,8 +23,9 @@ namespace cbtl::approach {
 struct CompiledAction {
   ir::ActionKind kind = ir::ActionKind::Block;
   std::string name;
-  std::vector<std::uint32_t> args;
+  std::vector<std::uint32_t> args;  // a call's arguments; an allow's target (when it is not a declared clearance)
   std::vector<rt::ValueType> argTypes;
+  sim::ClearanceException exception;  // allow: the exception, with the clearance's bodies when it names one
   std::uint32_t binderSlot = 0;
   std::uint32_t memberCount = 0;        // for over an enum / item set
   std::optional<std::uint32_t> lo, hi;  // for over an integer range
@@ -38,7 +39,7 @@ class TaskActions {
   TaskActions(rt::Program& program, const ir::Task& task);
 
   // The calls for a solution, in order, every stage evaluated in the same world. Loops are capped at 100,000
-  // calls in total.
+  // calls in total. Each call carries the exceptions of the `allow` blocks around it, outermost first.
   std::vector<sim::ActionCall> unroll(const rt::Program& program, const std::vector<double>& solution,
                                       const std::vector<double>& observation) const;
   // Appends the calls of stage `stage` for the assignment `x` and observation `obs` (laid out as the program

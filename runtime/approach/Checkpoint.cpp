@@ -102,13 +102,27 @@ void flattenInto(const json& j, const std::string& prefix, std::map<std::string,
 json toJson(const sim::ActionCall& call) {
   json args = json::array();
   for (const auto& a : call.args) args.push_back(toJson(a));
-  return {{"name", call.name}, {"args", args}};
+  json j{{"name", call.name}, {"args", args}};
+  // Only calls inside an `allow` carry exceptions; others keep the shape they always had.
+  if (!call.exceptions.empty()) {
+    json allow = json::array();
+    for (const auto& e : call.exceptions)
+      allow.push_back(
+          {{"part", e.part}, {"names", e.names}, {"separation", e.separation}, {"declared_at", e.declaredAt}});
+    j["allow"] = std::move(allow);
+  }
+  return j;
 }
 
 sim::ActionCall actionCallFromJson(const json& j) {
   sim::ActionCall call;
   call.name = j.at("name").get<std::string>();
   for (const auto& a : j.at("args")) call.args.push_back(valueFromJson(a));
+  if (j.contains("allow")) {
+    for (const auto& e : j.at("allow"))
+      call.exceptions.push_back({e.at("part").get<std::string>(), e.at("names").get<std::vector<std::string>>(),
+                                 e.at("separation").get<double>(), e.at("declared_at").get<std::string>()});
+  }
   return call;
 }
 

@@ -56,9 +56,9 @@ struct ClearanceException {
 };
 
 struct ActionCall {
-  std::string name;         // the extern action's name in the .cbtl file
-  std::vector<Value> args;  // in declaration order
-  std::vector<ClearanceException> exceptions;  // innermost `allow` last; empty outside any
+  std::string name;                                 // the extern action's name in the .cbtl file
+  std::vector<Value> args;                          // in declaration order
+  std::vector<ClearanceException> exceptions = {};  // innermost `allow` last; empty outside any
 };
 
 struct FeedbackEvent {

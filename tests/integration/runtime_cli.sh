@@ -35,6 +35,14 @@ sample a ~ uniform;
 CBTL
 expect 3 "impossible +.*infeasible.cbtl:3:1" -- "$cbtl" solve "$work/infeasible.cbtl" --max-iters 200
 
+# A clearance no plan can keep (the user of Books 1.5 m away from the robot: the handover base is closer) makes the
+# request unsolvable, and the failure names the declaration with its place.
+sed -e 's|world "../home/home.xml";|world "'"$domains"'/home/home.xml";|' \
+    -e 's|clearance person: "user" >= 5 cm;|clearance person: "user" >= 150 cm;|' \
+    "$domains/books/books.cbtl" >"$work/farbooks.cbtl"
+expect 3 "every collision check keeps clearance person: 1500 mm from user \\(.*farbooks.cbtl:[0-9]+:1\\)" -- \
+  "$cbtl" solve "$work/farbooks.cbtl" --max-iters 300
+
 # Bad input: clear errors and exit codes, never a crash.
 expect 2 "unknown approach 'ours'" -- "$cbtl" run "$cooking" --approach ours
 expect 2 "" -- "$cbtl" run "$cooking" --steps notanumber

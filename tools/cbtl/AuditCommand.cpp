@@ -1,7 +1,7 @@
 // `cbtl audit RUN...`: re-checks every motion the runs recorded (app/audit/MotionAudit.h) and prints, per run, the
 // motions, segments and states checked, every violation (the first 20 listed), and the closest approach to each
-// body class, the person's first. Exit codes: 0 every run passed, 1 a violation or a run that cannot be audited,
-// 2 usage, 70 internal error.
+// body class, the program's clearances first. Exit codes: 0 every run passed, 1 a violation or a run that cannot be
+// audited, 2 usage, 70 internal error.
 #include "tools/cbtl/CommandRegistry.h"
 #include "tools/cbtl/ErrorHandling.h"
 #include "tools/cbtl/OptionChecks.h"
@@ -31,7 +31,7 @@ void printReport(const cbtl::app::AuditReport& r) {
   for (const auto& v : r.violations)
     fmt::print("  violation: {}: {} / {} {:.4f} m apart, {:.4f} m required\n", v.where, v.first, v.second, v.separation,
                v.required);
-  for (const char* cls : {"person", "scenery", "objects", "self"}) {
+  for (const std::string& cls : r.classes) {
     const auto it = r.closest.find(cls);
     if (it == r.closest.end()) continue;
     fmt::print("  closest to {}: {:.4f} m ({} / {}), at {}\n", cls, it->second.distance, it->second.first,

@@ -104,7 +104,7 @@ TEST(MotionAudit, AContactPassesOnlyWithinTheAllowanceItsRecordDeclares) {
     if (allowed > 0) {
       world::ContactAllowance a;
       a.geom = shelf;
-      a.depth = allowed;
+      a.separation = -allowed;
       h.allowances.push_back(a);
     }
     return world::motionToJson(scene, h);

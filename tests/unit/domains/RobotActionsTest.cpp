@@ -3,6 +3,7 @@
 #include "domains/home/HomeEpisode.h"
 #include "domains/home/HomeScene.h"
 #include "robot/actions/CallArguments.h"
+#include "robot/actions/ClearanceExceptions.h"
 #include "robot/actions/RobotActions.h"
 #include "robot/actions/StandardGrasps.h"
 #include "robot/actions/SurfaceGeometry.h"
@@ -13,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numbers>
 #include <optional>
 #include <random>
@@ -344,3 +346,50 @@ TEST_F(RobotActionsTest, MoveToolFollowsTheToolLineWhereTheJointSegmentTouches) 
     EXPECT_TRUE(world::armSegmentFree(ws, r.armPath[k - 1], r.armPath[k])) << "step " << k;
   EXPECT_EQ(run("grasp", {Value::name("book_4")}).status, ActionStatus::Done);
 }
+
+namespace {
+
+// A skill's `allow` reaches the executor as names: a body covers its whole subtree, a geom itself.
+TEST(ClearanceExceptions, NamesResolveToBodiesWithTheirSubtreesOrToGeoms) {
+  const auto& scene = *cbtl::test::homeScene();
+  std::vector<world::ContactAllowance> out;
+  std::string error;
+  ASSERT_TRUE(actions::resolveClearanceExceptions(
+      scene, {{"held", {"mobile_base", "user_forearm_r"}, -0.002, "b.cbtl:9:5"}}, out, error))
+      << error;
+  std::size_t bodies = 0, geoms = 0;
+  for (const auto& a : out) {
+    EXPECT_EQ(a.part, world::ContactAllowance::Part::HeldObject);
+    EXPECT_DOUBLE_EQ(a.separation, -0.002);
+    if (a.geom >= 0) {
+      ++geoms;
+      EXPECT_EQ(scene.geomName(a.geom), "user_forearm_r");
+    } else {
+      ++bodies;
+    }
+  }
+  EXPECT_EQ(geoms, 1u);
+  // The mobile base carries the whole arm: its subtree reaches the gripper.
+  EXPECT_GT(bodies, 8u);
+  const int ee = scene.bodyId("end_effector_link");
+  EXPECT_TRUE(std::any_of(out.begin(), out.end(), [&](const auto& a) { return a.body == ee; }));
+
+  out.clear();
+  EXPECT_FALSE(actions::resolveClearanceExceptions(scene, {{"held", {"nobody"}, 0.01, "b.cbtl:9:5"}}, out, error));
+  EXPECT_EQ(error, "allow at b.cbtl:9:5: the scene has no body or geom 'nobody'");
+  EXPECT_FALSE(actions::resolveClearanceExceptions(scene, {{"elbow", {"user"}, 0.01, ""}}, out, error));
+  EXPECT_NE(error.find("'elbow' is not a part of the robot"), std::string::npos) << error;
+}
+
+// The executor refuses a call whose exception names nothing in the scene, and changes nothing.
+TEST_F(RobotActionsTest, AnExceptionNamingNoBodyFailsTheAction) {
+  const world::WorldState before = w.workspace().state();
+  ActionCall call{"moveArmToNamed", {Value::name("retract")}, {{"held", {"nobody"}, 0.01, "b.cbtl:9:5"}}};
+  const auto r = actions.execute(w, call);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->status, ActionStatus::InvalidArgument);
+  EXPECT_NE(r->detail.find("no body or geom 'nobody'"), std::string::npos) << r->detail;
+  EXPECT_EQ(w.workspace().state().arm, before.arm);
+}
+
+}  // namespace

@@ -11,6 +11,8 @@
 #include "domains/cleaning/CleaningSimulator.h"
 #include "domains/home/HomeEpisode.h"
 #include "domains/home/HomeScene.h"
+#include "robot/world/MotionRecord.h"
+#include "robot/world/Separation.h"
 #include "runtime/approach/Experiment.h"
 #include "runtime/approach/Planner.h"
 #include "runtime/approach/ValueBridge.h"
@@ -18,6 +20,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 
@@ -203,9 +207,9 @@ TEST(RobotDomainsEndToEnd, FeedingEveryTaskOnSeedsZeroToNine) {
 }
 
 // Every served bite and drink reports the closest the robot came to the user (RobotDistance.h) and its slack to
-// the keep-out distances feeding.xml declares, which IK, the planners, the dry run and the re-check all apply: the
-// robot and what it holds stay 2 cm from the user's head and body, the held utensil's fork and arm 5 mm from the
-// head (a <pair> margin: the fork has to reach the mouth). No waypoint of any executed path enters a keep-out.
+// the separations feeding.cbtl declares, which IK, the planners, the dry run and the re-check all apply: the robot
+// and what it holds stay 5 cm from the user's head and body (`clearance person`), the held utensil 5 mm from the
+// head during the bite (its `allow`: the fork has to reach the mouth). No waypoint of any executed path comes closer.
 TEST(RobotDomainsEndToEnd, FeedingReportsTheClearanceToTheUserOfEveryBite) {
   auto lp = loadDomain("feeding");
   int reported = 0;
@@ -332,4 +336,86 @@ TEST(RobotDomainsEndToEnd, BooksTrainingWorldOfSeedFiveNeverGetsStuck) {
 // away at the yaw of the scene's own slots on each surface (books.cbtl, stowYaw).
 TEST(RobotDomainsEndToEnd, BooksStowedOnASideTableCanBeFetchedAgain) {
   expectNeverStuck(trainBooksWithoutPersonalization(0, 1490), 100);
+}
+
+namespace {
+
+// The fork tip's path over the recorded motion, sampled every `step` radians (L∞) of the joint path.
+struct ForkSample {
+  Eigen::Vector3d tip;
+  double toHead = 0;  // the fork's separation from the head (metres)
+};
+std::vector<ForkSample> forkAlong(world::Workspace& ws, const world::ExecutedMotion& m, double step) {
+  EXPECT_EQ(ws.setState(m.start), world::StateStatus::Ok);
+  const world::Scene& s = ws.scene();
+  const int tip = s.siteId("utensil_tip"), fork = s.geomId("utensil_fork"), head = s.geomId("user_head_geom");
+  std::vector<ForkSample> out;
+  for (std::size_t i = 0; i + 1 < m.arm.size(); ++i) {
+    world::ArmConfig delta{};  // continuous joints the short way round, as the record's segments go
+    double linf = 0;
+    for (int j = 0; j < world::kArmDof; ++j) {
+      delta[j] = s.armContinuous(j) ? world::angleDiff(m.arm[i + 1][j], m.arm[i][j]) : m.arm[i + 1][j] - m.arm[i][j];
+      linf = std::max(linf, std::abs(delta[j]));
+    }
+    const int n = std::max(1, static_cast<int>(std::ceil(linf / step)));
+    for (int k = i == 0 ? 0 : 1; k <= n; ++k) {
+      world::ArmConfig q{};
+      for (int j = 0; j < world::kArmDof; ++j) q[j] = m.arm[i][j] + delta[j] * k / n;
+      ws.setArm(q);
+      out.push_back({ws.sitePose(tip).position, world::exactSeparation(ws, fork, head)});
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+// The bite reaches the mouth along a straight line in its last 10 cm (moveToolStraight inside the bite's `allow`):
+// over the executed joint path, sampled every 1 mrad, the fork tip stays within 2 mm of the line from where the
+// approach begins to the mouth (the tool follows its line to the IK's 1 mm / 0.01 rad, and the tip is 23 cm out), and
+// its distance to the face never grows on the way in (within 0.1 mm). The worst deviation is printed for
+// docs/domains-feeding.md.
+TEST(RobotDomainsEndToEnd, FeedingBringsTheForkToTheMouthInAStraightLine) {
+  auto lp = loadDomain("feeding");
+  auto sim = domains::createSimulator("feeding", app::simulatorFacts(*lp), {}, 0);
+  solver::Solver solver(app::domainSolverOptions("feeding"), 0);
+  model::UserModel user(lp->graph());
+  world::Workspace ws(lp->scene());
+  double worstDeviation = 0, worstGrowth = 0, closest = 1;
+  int approaches = 0;
+  for (int request = 0; request < 8 && approaches < 3; ++request) {
+    lp->syncWorld(*sim);
+    const std::size_t task = lp->taskFor(*sim, 0);
+    const auto obs = approach::observationVector(lp->program(), sim->observe());
+    approach::Plan plan = approach::makePlan(*lp, task, obs, approach::evaluationChoice(), true, solver, user);
+    ASSERT_TRUE(plan.ok) << lp->graph().tasks[task].name;
+    bool inward = true;  // the first straight move of a bite goes in, the second comes back out
+    for (const auto& call : plan.calls) {
+      const sim::StepResult r = sim->act(call);
+      ASSERT_NE(r.status, sim::ActionStatus::Ignored) << call.name << ": " << r.message;
+      if (call.name == "moveToolStraight" && inward) {
+        ASSERT_EQ(r.motions.size(), 1u);
+        const auto samples = forkAlong(ws, world::motionFromJson(*lp->scene(), r.motions[0]), 0.001);
+        const Eigen::Vector3d a = samples.front().tip, b = samples.back().tip, dir = (b - a).normalized();
+        EXPECT_GT((b - a).norm(), 0.09);
+        for (std::size_t k = 0; k < samples.size(); ++k) {
+          const Eigen::Vector3d v = samples[k].tip - a;
+          worstDeviation = std::max(worstDeviation, (v - v.dot(dir) * dir).norm());
+          if (k > 0) worstGrowth = std::max(worstGrowth, samples[k].toHead - samples[k - 1].toHead);
+          closest = std::min(closest, samples[k].toHead);
+        }
+        ++approaches;
+      }
+      if (call.name == "moveToolStraight") inward = !inward;
+      if (r.taskDone) break;
+    }
+  }
+  ASSERT_GE(approaches, 3);
+  std::printf(
+      "bite approaches: %d; fork tip off the straight line at most %.3f mm; fork-face distance grows at most "
+      "%.4f mm between samples on the way in; closest %.2f mm\n",
+      approaches, worstDeviation * 1e3, worstGrowth * 1e3, closest * 1e3);
+  EXPECT_LT(worstDeviation, 0.002);
+  EXPECT_LT(worstGrowth, 0.0001);
+  EXPECT_GE(closest, 0.005);  // the bite's exception: 5 mm from the face
 }

@@ -120,7 +120,7 @@ TEST(WorldMotionCache, EveryInputOfAPlanIsInTheKey) {
   PlanOptions allowing = o;
   ContactAllowance touch;
   touch.geom = 0;
-  touch.depth = 0.001;
+  touch.separation = -0.001;
   allowing.collision.allowances.push_back(touch);
   EXPECT_NE(armQuery(ws, goal, allowing).fingerprint, base);
 

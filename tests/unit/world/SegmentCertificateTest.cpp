@@ -146,7 +146,7 @@ TEST(WorldSegmentCertificate, ContactAllowancesAreHonouredOnlyForWhatTheyName) {
   };
   ContactAllowance onShelf;
   onShelf.geom = shelf;
-  onShelf.depth = 0.001;
+  onShelf.separation = -0.001;
   CollisionOptions allowed;
   allowed.allowances = {onShelf};
   ContactAllowance elsewhere = onShelf;

@@ -35,10 +35,11 @@ struct TempRun {
   void config(const std::string& program) const {
     std::ofstream(dir / "config.json") << "{\"file\": \"" << program << "\"}\n";
   }
-  void motions(const std::vector<std::string>& records) const {
+  // `call`: the call each motion is recorded with (its "allow" is what the skill declared).
+  void motions(const std::vector<std::string>& records,
+               const std::string& call = R"({"name":"forged","args":[]})") const {
     std::ofstream out(dir / "motions.jsonl");
-    for (const auto& r : records)
-      out << R"({"phase":"train","step":1,"call":{"name":"forged","args":[]},"motion":)" << r << "}\n";
+    for (const auto& r : records) out << R"({"phase":"train","step":1,"call":)" << call << R"(,"motion":)" << r << "}\n";
   }
 };
 
@@ -120,6 +121,19 @@ TEST(MotionAudit, AContactPassesOnlyWithinTheAllowanceItsRecordDeclares) {
   ASSERT_FALSE(deep.passed());
   EXPECT_EQ(deep.violations.front().second, "shelf_layer_1");
   EXPECT_NEAR(deep.violations.front().separation, -0.002, 1e-4);
+
+  // Deeper than a resting contact: the record's allowance must be one the call's `allow` declared.
+  run.motions({atDepth(0.003, 0.004)});
+  const AuditReport forged = auditRun(run.dir.string(), {});
+  ASSERT_FALSE(forged.passed());
+  EXPECT_NE(forged.violations.front().where.find("no `allow` of the call declares"), std::string::npos)
+      << forged.violations.front().where;
+  run.motions({atDepth(0.003, 0.004)},
+              R"({"name":"place","args":[],"allow":[{"part":"held","names":["shelf_layer_1"],"separation":-0.004,)"
+              R"("declared_at":"books.cbtl:1:1"}]})");
+  const AuditReport declared = auditRun(run.dir.string(), {});
+  EXPECT_TRUE(declared.passed()) << declared.error << " " << declared.violationCount
+                                 << (declared.violations.empty() ? "" : " " + declared.violations.front().where);
 }
 
 TEST(MotionAudit, SaysWhyARunCannotBeAudited) {
@@ -139,11 +153,13 @@ std::string readAll(const fs::path& p) {
 }
 
 // A CBTL run of `domain` into `dir`: `steps` training steps, an evaluation (one task) every `evalEvery`.
+// `program`: the domain's .cbtl file by default.
 approach::ExperimentResult runDomain(const std::string& domain, const std::string& dir, approach::RunMode mode,
                                      std::int64_t steps, std::int64_t evalEvery,
-                                     std::function<void(const char*, std::int64_t)> hook = {}) {
-  const auto lp = LoadedProgram::load(domainFile(domain));
-  EXPECT_TRUE(lp->ok()) << domain;
+                                     std::function<void(const char*, std::int64_t)> hook = {},
+                                     const std::string& program = "") {
+  const auto lp = LoadedProgram::load(program.empty() ? domainFile(domain) : program);
+  EXPECT_TRUE(lp->ok()) << domain << ": " << lp->errors();
   const auto facts = std::make_shared<domains::ProgramFacts>(simulatorFacts(*lp));
   approach::ExperimentConfig c;
   c.approach.kind = approach::ApproachKind::Cbtl;
@@ -190,6 +206,49 @@ TEST(MotionAudit, RealRunsOfEveryRobotDomainPass) {
     EXPECT_TRUE(r.passed()) << domain << ": " << r.error << " " << r.violationCount
                             << (r.violations.empty() ? "" : " " + r.violations.front().where);
     EXPECT_GT(r.motions, 5) << domain;
+  }
+}
+
+// Writes a copy of `domain`'s program into `dir` whose world is its scene with `extra` (MJCF) added to the
+// worldbody; returns the program's path.
+std::string changedWorld(const std::string& domain, const fs::path& dir, const std::string& extra) {
+  const std::string sceneName = domain == "feeding" ? "feeding/feeding.xml" : "home/home.xml";
+  std::string scene = readAll(fs::path(CBTL_DOMAINS_DIR) / sceneName);
+  scene.replace(scene.find("</worldbody>"), 0, extra + "\n");
+  // Beside a copy of the arm's file, where the scene's include (../assets/gen3.xml) finds it.
+  fs::create_directories(dir / "scene");
+  fs::create_directories(dir / "assets");
+  fs::copy_file(fs::path(CBTL_DOMAINS_DIR) / "assets" / "gen3.xml", dir / "assets" / "gen3.xml");
+  std::ofstream(dir / "scene" / "changed.xml") << scene;
+  std::string program = readAll(domainFile(domain));
+  const std::size_t at = program.find("world \"");
+  program.replace(at, program.find(';', at) - at, "world \"scene/changed.xml\"");
+  const fs::path path = dir / (domain + ".cbtl");
+  std::ofstream(path) << program;
+  return path.string();
+}
+
+// The world changes and every executed plan is still certified: a chair in the home scene's room (beside the bed,
+// where the robot drives to hand over a book: the old checks let it touch the user there), a box on Feeding's
+// table. The runs adapt to the new scene (it is the program's world) and their records pass the audit.
+TEST(MotionAudit, RunsInAChangedWorldPassTheAudit) {
+  const std::string chair =
+      R"(<body name="chair" pos="1.3 -0.45 0"><geom name="chair_seat" type="box" pos="0 0 0.45" size="0.22 0.22 0.03"/>)"
+      R"(<geom name="chair_back" type="box" pos="0.2 0 0.75" size="0.02 0.22 0.3"/></body>)";
+  const std::string box = R"(<body name="box" pos="0.16 0.78 0.19"><geom name="box_geom" type="box" size="0.03 0.03 0.04"/></body>)";
+  for (const std::string domain : {"cleaning", "books", "feeding"}) {
+    TempRun run("changed_" + domain);
+    const std::string program = changedWorld(domain, run.dir, domain == "feeding" ? box : chair);
+    const fs::path out = run.dir / "run";
+    runDomain(domain, out.string(), approach::RunMode::Force, 40, 40, {}, program);
+    AuditOptions o;
+    o.program = program;
+    const AuditReport r = auditRun(out.string(), o);
+    EXPECT_TRUE(r.passed()) << domain << ": " << r.error << " " << r.violationCount
+                            << (r.violations.empty() ? "" : " " + r.violations.front().where);
+    EXPECT_GT(r.motions, 5) << domain;
+    const std::string added = domain == "feeding" ? "box_geom" : "chair_seat";
+    EXPECT_NE(readAll(run.dir / "scene" / "changed.xml").find(added), std::string::npos);
   }
 }
 

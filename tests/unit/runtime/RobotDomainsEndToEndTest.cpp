@@ -12,6 +12,7 @@
 #include "domains/home/HomeEpisode.h"
 #include "domains/home/HomeScene.h"
 #include "robot/world/MotionRecord.h"
+#include "robot/world/RobotDistance.h"
 #include "robot/world/Separation.h"
 #include "runtime/approach/Experiment.h"
 #include "runtime/approach/Planner.h"
@@ -418,4 +419,60 @@ TEST(RobotDomainsEndToEnd, FeedingBringsTheForkToTheMouthInAStraightLine) {
   EXPECT_LT(worstDeviation, 0.002);
   EXPECT_LT(worstGrowth, 0.0001);
   EXPECT_GE(closest, 0.005);  // the bite's exception: 5 mm from the face
+}
+
+// After a handover the Books robot backs away from the user before the arm folds: the move right after handOver()
+// is a straight tool line (moveToolStraight) along which the robot's distance to the user never shrinks (sampled
+// every 1 mrad of the executed joint path, within 0.1 mm), and no state of it is within the 5 cm clearance.
+TEST(RobotDomainsEndToEnd, BooksBacksAwayFromTheUserAfterAHandover) {
+  auto lp = loadDomain("books");
+  auto sim = domains::createSimulator("books", app::simulatorFacts(*lp), {}, 1);
+  solver::Solver solver(app::domainSolverOptions("books"), 1);
+  model::UserModel user(lp->graph());
+  world::Workspace ws(lp->scene());
+  const std::vector<int> person{lp->scene()->bodyId("user")};
+  int retreats = 0;
+  double worstShrink = 0, closest = 1;
+  for (int request = 0; request < 6 && retreats < 3; ++request) {
+    lp->syncWorld(*sim);
+    const std::size_t task = lp->taskFor(*sim, 0);
+    const auto obs = approach::observationVector(lp->program(), sim->observe());
+    approach::Plan plan = approach::makePlan(*lp, task, obs, approach::evaluationChoice(), true, solver, user);
+    ASSERT_TRUE(plan.ok) << lp->graph().tasks[task].name;
+    std::string previous;
+    for (const auto& call : plan.calls) {
+      const sim::StepResult r = sim->act(call);
+      ASSERT_NE(r.status, sim::ActionStatus::Ignored) << call.name << ": " << r.message;
+      if (previous == "handOver") {
+        EXPECT_EQ(call.name, "moveToolStraight");
+        ASSERT_EQ(r.motions.size(), 1u);
+        const world::ExecutedMotion m = world::motionFromJson(*lp->scene(), r.motions[0]);
+        ASSERT_EQ(ws.setState(m.start), world::StateStatus::Ok);
+        double last = -1;
+        for (std::size_t i = 0; i + 1 < m.arm.size(); ++i) {
+          for (int k = i == 0 ? 0 : 1; k <= 20; ++k) {
+            world::ArmConfig q{};
+            for (int j = 0; j < world::kArmDof; ++j) {
+              const double d = lp->scene()->armContinuous(j) ? world::angleDiff(m.arm[i + 1][j], m.arm[i][j])
+                                                             : m.arm[i + 1][j] - m.arm[i][j];
+              q[j] = m.arm[i][j] + d * k / 20;
+            }
+            ws.setArm(q);
+            const double d = world::robotDistanceTo(ws, person, 0.5).distance;
+            if (last >= 0) worstShrink = std::max(worstShrink, last - d);
+            closest = std::min(closest, d);
+            last = d;
+          }
+        }
+        ++retreats;
+      }
+      previous = call.name;
+      if (r.taskDone) break;
+    }
+  }
+  ASSERT_GE(retreats, 1);
+  std::printf("Books retreats: %d; the distance to the user shrinks at most %.4f mm between samples; closest %.1f mm\n",
+              retreats, worstShrink * 1e3, closest * 1e3);
+  EXPECT_LT(worstShrink, 0.0001);
+  EXPECT_GE(closest, 0.05);
 }

@@ -39,7 +39,8 @@ struct TempRun {
   void motions(const std::vector<std::string>& records,
                const std::string& call = R"({"name":"forged","args":[]})") const {
     std::ofstream out(dir / "motions.jsonl");
-    for (const auto& r : records) out << R"({"phase":"train","step":1,"call":)" << call << R"(,"motion":)" << r << "}\n";
+    for (const auto& r : records)
+      out << R"({"phase":"train","step":1,"call":)" << call << R"(,"motion":)" << r << "}\n";
   }
 };
 
@@ -235,7 +236,8 @@ TEST(MotionAudit, RunsInAChangedWorldPassTheAudit) {
   const std::string chair =
       R"(<body name="chair" pos="1.3 -0.45 0"><geom name="chair_seat" type="box" pos="0 0 0.45" size="0.22 0.22 0.03"/>)"
       R"(<geom name="chair_back" type="box" pos="0.2 0 0.75" size="0.02 0.22 0.3"/></body>)";
-  const std::string box = R"(<body name="box" pos="0.16 0.78 0.19"><geom name="box_geom" type="box" size="0.03 0.03 0.04"/></body>)";
+  const std::string box =
+      R"(<body name="box" pos="0.16 0.78 0.19"><geom name="box_geom" type="box" size="0.03 0.03 0.04"/></body>)";
   for (const std::string domain : {"cleaning", "books", "feeding"}) {
     TempRun run("changed_" + domain);
     const std::string program = changedWorld(domain, run.dir, domain == "feeding" ? box : chair);

@@ -184,12 +184,14 @@ ActionResult moveToolIn(world::World& w, const world::Pose3& target, ExecutionMo
   return moveArmIn(w, ik.q, mode);
 }
 
-// The tool along the straight line to `target` (CartesianPath.h), or a failure: never a joint-space detour. The same
-// computation in every mode, so that Effects ends where Execute does.
+// The tool along the straight line to `target` (CartesianPath.h), or a failure: never a joint-space detour. Effects
+// mode follows the same IK chain without the collision checks (they decide acceptance, not the configurations), so
+// it ends where Execute does whenever Execute succeeds.
 ActionResult moveToolStraightIn(world::World& w, const world::Pose3& target, ExecutionMode mode) {
   world::Workspace& ws = w.workspace();
   world::CartesianPathOptions line;
   line.collision = w.planning.collision;
+  line.checkCollisions = mode == ExecutionMode::Execute;
   ActionResult r;
   auto path = world::cartesianToolPath(ws, target, w.ik, line);
   if (!path) {

@@ -36,7 +36,8 @@
 //                               move to the IK solution, not a Cartesian servo.
 //   moveToolStraight(tool: SE3) the tool frame along the straight line to `tool` (world/CartesianPath.h: 1 cm /
 //                               0.05 rad steps, IK seeded at the previous step, each joint segment certified);
-//                               NoPath when no such line exists (never a joint-space detour). Same in every mode.
+//                               NoPath when no such line exists (never a joint-space detour). Effects mode
+//                               follows the same IK chain without collision checks.
 //   moveArmToNamed(name)        moveArm to the scene's named configuration (NamedConfigurations.h, as std.kinova's
 //                               namedConf); an unknown name fails (InvalidArgument, the detail lists the known
 //                               names).

@@ -18,7 +18,7 @@ std::optional<std::vector<ArmConfig>> cartesianToolPath(Workspace& ws, const Pos
   const int steps = std::isfinite(wanted) ? static_cast<int>(std::clamp(wanted, 1.0, double(options.maxSteps))) : 1;
   IkOptions stepIk = ik;
   stepIk.maxAttempts = 1;  // from the previous configuration only: a restart would leave the line's branch
-  stepIk.requireCollisionFree = true;
+  stepIk.requireCollisionFree = options.checkCollisions;
   stepIk.collision = options.collision;
   const JointSpace space = armSpace(ws.scene());
   std::vector<ArmConfig> path{saved.arm};
@@ -33,7 +33,7 @@ std::optional<std::vector<ArmConfig>> cartesianToolPath(Workspace& ws, const Pos
     ok = r.solved() &&
          linfDistance(space, Waypoint(previous.begin(), previous.end()), Waypoint(r.q.begin(), r.q.end())) <=
              options.maxJointStep &&
-         armSegmentFree(ws, previous, r.q, options.collision);
+         (!options.checkCollisions || armSegmentFree(ws, previous, r.q, options.collision));
     if (ok) path.push_back(r.q);
   }
   ws.setState(saved);

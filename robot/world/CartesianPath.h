@@ -28,6 +28,9 @@ struct CartesianPathOptions {
   double maxJointStep = 0.25;  // rad (L∞) between consecutive configurations: larger is a branch jump
   int maxSteps = 500;          // a longer move takes larger steps (bounded work; the joint checks still hold)
   CollisionOptions collision;
+  // false: no collision check at all (IK steps and joint segments), for an end state only (an executor's Effects
+  // mode). The configurations are the same as with the checks, which only decide whether the line is accepted.
+  bool checkCollisions = true;
 };
 
 // The waypoints (current configuration first), or nullopt when some step has no collision-free IK near the

@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <map>
 
@@ -341,18 +342,14 @@ TEST(RobotDomainsEndToEnd, BooksStowedOnASideTableCanBeFetchedAgain) {
 
 namespace {
 
-// The fork tip's path over the recorded motion, sampled every `step` radians (L∞) of the joint path.
-struct ForkSample {
-  Eigen::Vector3d tip;
-  double toHead = 0;  // the fork's separation from the head (metres)
-};
-std::vector<ForkSample> forkAlong(world::Workspace& ws, const world::ExecutedMotion& m, double step) {
-  EXPECT_EQ(ws.setState(m.start), world::StateStatus::Ok);
+// Puts `ws` at every state of a recorded arm motion, every `step` radians (L∞) of its joint path (continuous joints
+// the short way round, as the record's segments go), and calls `visit` at each.
+void forEachState(world::Workspace& ws, const world::ExecutedMotion& m, double step,
+                  const std::function<void()>& visit) {
+  ASSERT_EQ(ws.setState(m.start), world::StateStatus::Ok);
   const world::Scene& s = ws.scene();
-  const int tip = s.siteId("utensil_tip"), fork = s.geomId("utensil_fork"), head = s.geomId("user_head_geom");
-  std::vector<ForkSample> out;
   for (std::size_t i = 0; i + 1 < m.arm.size(); ++i) {
-    world::ArmConfig delta{};  // continuous joints the short way round, as the record's segments go
+    world::ArmConfig delta{};
     double linf = 0;
     for (int j = 0; j < world::kArmDof; ++j) {
       delta[j] = s.armContinuous(j) ? world::angleDiff(m.arm[i + 1][j], m.arm[i][j]) : m.arm[i + 1][j] - m.arm[i][j];
@@ -363,9 +360,23 @@ std::vector<ForkSample> forkAlong(world::Workspace& ws, const world::ExecutedMot
       world::ArmConfig q{};
       for (int j = 0; j < world::kArmDof; ++j) q[j] = m.arm[i][j] + delta[j] * k / n;
       ws.setArm(q);
-      out.push_back({ws.sitePose(tip).position, world::exactSeparation(ws, fork, head)});
+      visit();
     }
   }
+}
+
+// The fork tip's path over a recorded motion, sampled every `step` radians.
+struct ForkSample {
+  Eigen::Vector3d tip;
+  double toHead = 0;  // the fork's separation from the head (metres)
+};
+std::vector<ForkSample> forkAlong(world::Workspace& ws, const world::ExecutedMotion& m, double step) {
+  const world::Scene& s = ws.scene();
+  const int tip = s.siteId("utensil_tip"), fork = s.geomId("utensil_fork"), head = s.geomId("user_head_geom");
+  std::vector<ForkSample> out;
+  forEachState(ws, m, step, [&] {
+    out.push_back({ws.sitePose(tip).position, world::exactSeparation(ws, fork, head)});
+  });
   return out;
 }
 
@@ -446,24 +457,13 @@ TEST(RobotDomainsEndToEnd, BooksBacksAwayFromTheUserAfterAHandover) {
       if (previous == "handOver") {
         EXPECT_EQ(call.name, "moveToolStraight");
         ASSERT_EQ(r.motions.size(), 1u);
-        const world::ExecutedMotion m = world::motionFromJson(*lp->scene(), r.motions[0]);
-        ASSERT_EQ(ws.setState(m.start), world::StateStatus::Ok);
         double last = -1;
-        for (std::size_t i = 0; i + 1 < m.arm.size(); ++i) {
-          for (int k = i == 0 ? 0 : 1; k <= 20; ++k) {
-            world::ArmConfig q{};
-            for (int j = 0; j < world::kArmDof; ++j) {
-              const double d = lp->scene()->armContinuous(j) ? world::angleDiff(m.arm[i + 1][j], m.arm[i][j])
-                                                             : m.arm[i + 1][j] - m.arm[i][j];
-              q[j] = m.arm[i][j] + d * k / 20;
-            }
-            ws.setArm(q);
-            const double d = world::robotDistanceTo(ws, person, 0.5).distance;
-            if (last >= 0) worstShrink = std::max(worstShrink, last - d);
-            closest = std::min(closest, d);
-            last = d;
-          }
-        }
+        forEachState(ws, world::motionFromJson(*lp->scene(), r.motions[0]), 0.001, [&] {
+          const double d = world::robotDistanceTo(ws, person, 0.5).distance;
+          if (last >= 0) worstShrink = std::max(worstShrink, last - d);
+          closest = std::min(closest, d);
+          last = d;
+        });
         ++retreats;
       }
       previous = call.name;

@@ -51,9 +51,10 @@ struct RequestLog {
 
 // One request: the task the world asks for, solved with the personalized constraints (an untrained user model,
 // so they hold everywhere; with `fallback`, re-solved without them if they cannot hold) and executed call by call
-// until its task ends or its calls are used up.
+// until its task ends or its calls are used up. `onStep` (when given) sees each call with its step.
+using StepHook = std::function<void(const sim::ActionCall&, const sim::StepResult&)>;
 RequestLog runRequest(app::LoadedProgram& lp, sim::DomainSimulator& world, solver::Solver& solver,
-                      model::UserModel& user, bool fallback = true) {
+                      model::UserModel& user, bool fallback = true, const StepHook& onStep = {}) {
   RequestLog log;
   lp.syncWorld(world);
   const std::size_t task = lp.taskFor(world, 0);
@@ -67,6 +68,7 @@ RequestLog runRequest(app::LoadedProgram& lp, sim::DomainSimulator& world, solve
     sim::StepResult r = world.act(call);
     EXPECT_NE(r.status, sim::ActionStatus::UnknownAction) << call.name << ": " << r.message;
     if (r.status == sim::ActionStatus::Ignored && log.failure.empty()) log.failure = call.name + ": " + r.message;
+    if (onStep) onStep(call, r);
     if (!r.feedback.empty()) {
       const auto report = lp.learner().learn(r.feedback, user, approach::StepWorld{plan.solve.assignment, obs});
       EXPECT_TRUE(report.problems.empty()) << report.problems.front();
@@ -395,33 +397,25 @@ TEST(RobotDomainsEndToEnd, FeedingBringsTheForkToTheMouthInAStraightLine) {
   world::Workspace ws(lp->scene());
   double worstDeviation = 0, worstGrowth = 0, closest = 1;
   int approaches = 0;
-  for (int request = 0; request < 8 && approaches < 3; ++request) {
-    lp->syncWorld(*sim);
-    const std::size_t task = lp->taskFor(*sim, 0);
-    const auto obs = approach::observationVector(lp->program(), sim->observe());
-    approach::Plan plan = approach::makePlan(*lp, task, obs, approach::evaluationChoice(), true, solver, user);
-    ASSERT_TRUE(plan.ok) << lp->graph().tasks[task].name;
-    bool inward = true;  // the first straight move of a bite goes in, the second comes back out
-    for (const auto& call : plan.calls) {
-      const sim::StepResult r = sim->act(call);
-      ASSERT_NE(r.status, sim::ActionStatus::Ignored) << call.name << ": " << r.message;
-      if (call.name == "moveToolStraight" && inward) {
-        ASSERT_EQ(r.motions.size(), 1u);
-        const auto samples = forkAlong(ws, world::motionFromJson(*lp->scene(), r.motions[0]), 0.001);
-        const Eigen::Vector3d a = samples.front().tip, b = samples.back().tip, dir = (b - a).normalized();
-        EXPECT_GT((b - a).norm(), 0.09);
-        for (std::size_t k = 0; k < samples.size(); ++k) {
-          const Eigen::Vector3d v = samples[k].tip - a;
-          worstDeviation = std::max(worstDeviation, (v - v.dot(dir) * dir).norm());
-          if (k > 0) worstGrowth = std::max(worstGrowth, samples[k].toHead - samples[k - 1].toHead);
-          closest = std::min(closest, samples[k].toHead);
-        }
-        ++approaches;
-      }
-      if (call.name == "moveToolStraight") inward = !inward;
-      if (r.taskDone) break;
+  bool inward = true;  // the first straight move of a bite goes in, the second comes back out
+  const StepHook measure = [&](const sim::ActionCall& call, const sim::StepResult& r) {
+    if (call.name != "moveToolStraight") return;
+    inward = !inward;
+    if (inward) return;  // this one came back out
+    ASSERT_EQ(r.motions.size(), 1u);
+    const auto samples = forkAlong(ws, world::motionFromJson(*lp->scene(), r.motions[0]), 0.001);
+    const Eigen::Vector3d a = samples.front().tip, b = samples.back().tip, dir = (b - a).normalized();
+    EXPECT_GT((b - a).norm(), 0.09);
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      const Eigen::Vector3d v = samples[k].tip - a;
+      worstDeviation = std::max(worstDeviation, (v - v.dot(dir) * dir).norm());
+      if (k > 0) worstGrowth = std::max(worstGrowth, samples[k].toHead - samples[k - 1].toHead);
+      closest = std::min(closest, samples[k].toHead);
     }
-  }
+    ++approaches;
+  };
+  for (int request = 0; request < 8 && approaches < 3; ++request)
+    expectCompetent(runRequest(*lp, *sim, solver, user, true, measure), 0);
   ASSERT_GE(approaches, 3);
   std::printf(
       "bite approaches: %d; fork tip off the straight line at most %.3f mm; fork-face distance grows at most "
@@ -444,32 +438,24 @@ TEST(RobotDomainsEndToEnd, BooksBacksAwayFromTheUserAfterAHandover) {
   const std::vector<int> person{lp->scene()->bodyId("user")};
   int retreats = 0;
   double worstShrink = 0, closest = 1;
-  for (int request = 0; request < 6 && retreats < 3; ++request) {
-    lp->syncWorld(*sim);
-    const std::size_t task = lp->taskFor(*sim, 0);
-    const auto obs = approach::observationVector(lp->program(), sim->observe());
-    approach::Plan plan = approach::makePlan(*lp, task, obs, approach::evaluationChoice(), true, solver, user);
-    ASSERT_TRUE(plan.ok) << lp->graph().tasks[task].name;
-    std::string previous;
-    for (const auto& call : plan.calls) {
-      const sim::StepResult r = sim->act(call);
-      ASSERT_NE(r.status, sim::ActionStatus::Ignored) << call.name << ": " << r.message;
-      if (previous == "handOver") {
-        EXPECT_EQ(call.name, "moveToolStraight");
-        ASSERT_EQ(r.motions.size(), 1u);
-        double last = -1;
-        forEachState(ws, world::motionFromJson(*lp->scene(), r.motions[0]), 0.001, [&] {
-          const double d = world::robotDistanceTo(ws, person, 0.5).distance;
-          if (last >= 0) worstShrink = std::max(worstShrink, last - d);
-          closest = std::min(closest, d);
-          last = d;
-        });
-        ++retreats;
-      }
-      previous = call.name;
-      if (r.taskDone) break;
+  std::string previous;
+  const StepHook measure = [&](const sim::ActionCall& call, const sim::StepResult& r) {
+    if (previous == "handOver") {
+      EXPECT_EQ(call.name, "moveToolStraight");
+      ASSERT_EQ(r.motions.size(), 1u);
+      double last = -1;
+      forEachState(ws, world::motionFromJson(*lp->scene(), r.motions[0]), 0.001, [&] {
+        const double d = world::robotDistanceTo(ws, person, 0.5).distance;
+        if (last >= 0) worstShrink = std::max(worstShrink, last - d);
+        closest = std::min(closest, d);
+        last = d;
+      });
+      ++retreats;
     }
-  }
+    previous = call.name;
+  };
+  for (int request = 0; request < 6 && retreats < 3; ++request)
+    expectCompetent(runRequest(*lp, *sim, solver, user, true, measure), 1);
   ASSERT_GE(retreats, 1);
   std::printf("Books retreats: %d; the distance to the user shrinks at most %.4f mm between samples; closest %.1f mm\n",
               retreats, worstShrink * 1e3, closest * 1e3);

@@ -30,6 +30,10 @@ using json = nlohmann::json;
 // Metres the held object may sink into the face it rests on while it is lifted off or set down (the executor's
 // robot/actions kRestingContact, restated: the audit does not read the executor's constants).
 constexpr double kRestingContact = 0.001;
+// Metres the gripper's pads may sink into what they hold (robot/world GraspClosure.h kGraspCompliance, restated).
+constexpr double kGripCompliance = 0.001;
+constexpr const char* kGripClass = "grip";  // the held object against the gripper that holds it
+constexpr double kGripTouch = 1e-4;         // metres: a finger this near what it holds touches it
 using world::BodyKind;
 
 struct AuditPair {
@@ -63,6 +67,7 @@ class Auditor {
     }
     ++report_.motions;
     pairs(motion);
+    if (ws_.heldObject() >= 0) checkGrip(where);
     if (motion.kind == world::ExecutedMotion::Kind::Arm) {
       for (std::size_t i = 0; i + 1 < motion.arm.size(); ++i)
         armSegment(motion.arm[i], motion.arm[i + 1], i == 0, where);
@@ -79,8 +84,8 @@ class Auditor {
   }
   bool isHeld(int body) const { return ws_.heldObject() >= 0 && scene_->objectOfBody(body) == ws_.heldObject(); }
 
-  // The pairs a motion must respect, from the scene's candidate pairs: robot and held object against the rest,
-  // never the held object against the gripper.
+  // The pairs a motion must respect, from the scene's candidate pairs: robot and held object against the rest;
+  // then the held object against the gripper holding it (class "grip").
   void pairs(const world::ExecutedMotion& motion) {
     const mjModel* m = scene_->model();
     pairs_.clear();
@@ -114,8 +119,41 @@ class Auditor {
     };
     for (const auto& p : scene_->robotPairs()) add(p.g1, p.g2, p.margin);
     for (const auto& p : scene_->selfPairs()) add(p.g1, p.g2, p.margin);
-    if (ws_.heldObject() >= 0)
+    if (ws_.heldObject() >= 0) {
       for (const auto& p : scene_->objectPairs(ws_.heldObject())) add(p.g1, p.g2, p.margin);
+    }
+  }
+  static bool solid(const mjModel* m, int g) { return (m->geom_contype[g] | m->geom_conaffinity[g]) != 0; }
+
+  // The grip of a held object: each finger touches it, and no part of the gripper presses into it beyond the pads'
+  // compliance. Checked once per motion: a record's held object and gripper opening are fixed in the gripper's frame
+  // for the whole motion, so every state of it has the same grip.
+  void checkGrip(const std::string& where) {
+    const mjModel* m = scene_->model();
+    std::vector<int> held;
+    for (int h = 0; h < m->ngeom; ++h)
+      if (solid(m, h) && isHeld(m->geom_bodyid[h])) held.push_back(h);
+    for (int g = 0; g < m->ngeom; ++g) {
+      if (!solid(m, g) || scene_->bodyKind(m->geom_bodyid[g]) != BodyKind::Gripper) continue;
+      double nearest = std::numeric_limits<double>::infinity();
+      int at = -1;
+      for (int h : held) {
+        const double sep = separation(g, h);
+        if (sep < nearest) nearest = sep, at = h;
+      }
+      if (at < 0) continue;
+      // The class's figure is the deepest press of the run.
+      const auto known = report_.closest.find(kGripClass);
+      if (known == report_.closest.end() || nearest < known->second.distance)
+        report_.closest[kGripClass] = {nearest, where, scene_->geomName(g), scene_->geomName(at)};
+      if (nearest < -kGripCompliance)
+        addViolation(where, scene_->geomName(g), scene_->geomName(at), nearest, -kGripCompliance,
+                     "the gripper presses into what it holds beyond the pads' compliance");
+      const bool finger = m->geom_bodyid[g] != scene_->endEffectorBody();
+      if (finger && nearest > kGripTouch)
+        addViolation(where, scene_->geomName(g), scene_->geomName(at), nearest, kGripTouch,
+                     "a finger does not touch what the gripper holds");
+    }
   }
 
   void armSegment(const world::ArmConfig& a, const world::ArmConfig& b, bool first, const std::string& where) {
@@ -303,6 +341,7 @@ AuditReport auditRun(const std::string& runDir, const AuditOptions& options) {
     report.classes.push_back(c);
     report.classes.push_back(c + kUnderAllow);
   }
+  report.classes.push_back(kGripClass);
   Auditor auditor(loaded->scene(), options, report);
   std::size_t at = 0;
   for (long number = 1; at < all.size(); ++number) {

@@ -13,7 +13,9 @@
 // which must keep its distance unless the motion's record declares an exception), then self (robot × robot and the
 // held object × the arm), objects (movable objects not held) and scenery (everything else). Pairs whose requirement
 // an exception of the motion lowered (a skill's `allow`) count in a class of their own, "<class> under an allow":
-// the closest approach of a class is what held where no exception applied.
+// the closest approach of a class is what held where no exception applied. Last, "grip": the gripper's fingers and
+// palm against the object they hold, which may press in by the pads' compliance (1 mm, robot/world GraspClosure.h)
+// and no further; its "closest approach" is the deepest press (negative).
 // Units: metres, radians.
 #pragma once
 

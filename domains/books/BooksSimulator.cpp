@@ -188,7 +188,7 @@ void BooksSimulator::restockWhenEmpty() {
 void BooksSimulator::caregiverReset() {
   world::WorldState s = world().workspace().state();
   home::caregiverReset(s, scene());
-  world().workspace().setState(s);
+  setWorldState(s);
   restockWhenEmpty();
   judged_ = false;
 }

@@ -131,7 +131,7 @@ StepResult CleaningSimulator::afterApplied(const sim::ActionCall& call, const ac
 void CleaningSimulator::caregiverReset() {
   world::WorldState s = world().workspace().state();
   home::caregiverReset(s, scene());
-  world().workspace().setState(s);
+  setWorldState(s);
   judged_ = false;
   coverOneSurface();
 }

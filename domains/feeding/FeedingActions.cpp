@@ -87,26 +87,35 @@ actions::RobotActionResult FeedingActions::graspDrink(world::World& w, actions::
   const auto drink = ws.objectPose("drink");
   if (!drink) return failed(ActionStatus::InvalidArgument, "no movable object 'drink'");
   const Pose3 handle = drinkHandlePose(*drink);
+  Pose3 behind = handle;
+  behind.position.y() -= kDrinkApproach;
   // IK from random starts (seeded at the folded arm, every converged solution reaches around the table); the
   // starts are drawn from a stream that is a function of the state and the handle.
   std::vector<double> key(ws.state().arm.begin(), ws.state().arm.end());
   key.insert(key.end(), {handle.position.x(), handle.position.y(), handle.position.z()});
   world::Rng rng(world::fingerprintOf(key));
   std::optional<world::ArmConfig> q;
-  for (int attempt = 0; attempt < kDrinkIkDraws && !q; ++attempt) q = world::builtins::sampleIk(w, handle, rng);
+  for (int attempt = 0; attempt < kDrinkIkDraws && !q; ++attempt) q = world::builtins::sampleIk(w, behind, rng);
   if (!q) {
-    return failed(
-        ActionStatus::NoIk,
-        fmt::format("grasp(drink): no collision-free IK solution for the handle of the drink at ({:.3f}, {:.3f})",
-                    drink->position.x(), drink->position.y()));
+    return failed(ActionStatus::NoIk,
+                  fmt::format("grasp(drink): no collision-free IK solution behind the handle of the drink at "
+                              "({:.3f}, {:.3f})",
+                              drink->position.x(), drink->position.y()));
   }
   const world::WorldState before = ws.state();
   const world::builtins::ActionResult approach = actions::moveArmIn(w, *q, mode);
   if (!approach.done()) return failed(approach.status, "grasp(drink): approach: " + approach.detail);
-  ws.setHeld(std::string("drink"));
-  world::WorldState closed = ws.state();
-  closed.gripper = 0.0;
-  ws.setState(closed);
+  // The open fingers slide along the handle's sides: a straight line, never a detour around it.
+  const world::builtins::ActionResult in = actions::moveToolStraightIn(w, handle, mode);
+  if (!in.done()) {
+    ws.setState(before);
+    return failed(in.status, "grasp(drink): onto the handle: " + in.detail);
+  }
+  const world::builtins::ActionResult closed = world::builtins::grasp(w, "drink", 1.0);
+  if (!closed.done()) {
+    ws.setState(before);
+    return failed(closed.status, "grasp(drink): " + closed.detail);
+  }
   Pose3 lifted = ws.toolPose();
   lifted.position.z() += kDrinkLift;
   // The lift starts with the drink on the table: that contact, and only that, is allowed, and the joint move up
@@ -128,6 +137,7 @@ actions::RobotActionResult FeedingActions::graspDrink(world::World& w, actions::
   if (mode == actions::ExecutionMode::Execute) w.noteArmMotion({grasped, up.q}, liftIk.collision);
   actions::RobotActionResult r;
   r.armPath = approach.armPath;
+  r.armPath.insert(r.armPath.end(), in.armPath.begin() + (in.armPath.empty() ? 0 : 1), in.armPath.end());
   r.armPath.push_back(up.q);
   return r;
 }

@@ -2,11 +2,12 @@
 // plans out and the runtime's world model that dry-runs them (robot/actions/RobotActions.h DomainActions):
 //
 //   movePlate(xy), moveDrink(xy)  the caregiver slides the plate or the drink (TableSlide.h).
-//   grasp("drink")                the drink is taken by its handle: a collision-free IK solution for the tool just
-//                                 short of the handle (tool z along world +y), the arm moved there, the drink
-//                                 attached where it stands and lifted kDrinkLift (only the lift's end is checked:
-//                                 it starts with the drink on the table, a contact the planner would reject);
-//                                 feeding.cbtl then carries it to its post-grasp pose and sets it down again.
+//   grasp("drink")                the drink is taken by its handle: a collision-free IK solution for the tool
+//                                 kDrinkApproach behind the grasp (tool z along world +y), the arm moved there, the
+//                                 open fingers slid along the handle's sides in a straight line to the grasp, the
+//                                 gripper closed on the handle (world/GraspClosure.h: a grasp on air fails), and the
+//                                 drink lifted kDrinkLift (a certified segment that may start with the drink resting
+//                                 on the table); feeding.cbtl then carries it to its post-grasp pose and sets it down.
 //   release() holding the utensil the utensil goes back on its mount: the tool must be within kMountTolerance
 //                                 of the mount's grasp pose; the utensil is set to its mount pose (the scene's).
 //   acquireFood()                 the held utensil must be over the plate (its fork tip, site utensil_tip,
@@ -25,7 +26,10 @@
 
 namespace cbtl::domains::feeding {
 
-inline constexpr double kDrinkGraspStandoff = 0.10;  // metres short of the handle (world -y) where the tool stops
+// The tool frame stops this far short of the handle's centre (world -y): the finger pads (0.02 m behind to 0.05 m
+// past the tool frame) then cover the handle's first 3 cm, its whole height, and the palm stays 4.5 cm clear.
+inline constexpr double kDrinkGraspStandoff = 0.05;
+inline constexpr double kDrinkApproach = 0.06;  // metres further back where the straight approach starts
 inline constexpr double kUtensilGraspDepth =
     0.05955;                                     // metres from the tool frame to the utensil's grasp frame (finger_tip)
 inline constexpr double kDrinkLift = 0.01;       // metres the tool rises after closing on the handle

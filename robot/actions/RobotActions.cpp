@@ -3,6 +3,7 @@
 #include "robot/actions/ClearanceExceptions.h"
 
 #include "robot/world/CartesianPath.h"
+#include "robot/world/GraspClosure.h"
 #include "robot/world/MotionPlanner.h"
 #include "robot/world/MotionQuery.h"
 #include "robot/world/NamedConfigurations.h"
@@ -300,10 +301,7 @@ RobotActionResult RobotActions::standard(world::World& w, const sim::ActionCall&
     if (!(closure >= 0 && closure <= 1)) {
       return failed(ActionStatus::InvalidArgument, fmt::format("closeGripper: closure {} is outside [0, 1]", closure));
     }
-    world::WorldState st = w.workspace().state();
-    st.gripper = 1.0 - closure;
-    w.workspace().setState(st);
-    return RobotActionResult{};
+    return closeGripper(w, closure);
   }
   if (n == "release") {
     if (auto e = checkArguments(call, {}); !e.empty()) return illFormed(e);
@@ -382,6 +380,30 @@ RobotActionResult RobotActions::grasp(world::World& w, const std::string& body, 
   r.armPath.insert(r.armPath.end(), lift.armPath.begin(), lift.armPath.end());
   restore.commit();
   return r;
+}
+
+RobotActionResult RobotActions::closeGripper(world::World& w, double closure) const {
+  world::Workspace& ws = w.workspace();
+  const world::WorldState before = ws.state();
+  world::WorldState st = before;
+  st.gripper = 1.0 - closure;
+  ws.setState(st);
+  // The fingers may not close into anything: the world (contact is contact) or what they hold (beyond the pads'
+  // compliance).
+  const world::CollisionReport c = world::checkRobotCollisions(ws, w.planning.collision);
+  std::string why = c.free() ? std::string() : c.describe();
+  if (why.empty() && ws.heldObject() >= 0) {
+    const world::GripperContact held = world::gripperContact(ws, ws.heldObject());
+    if (held.separation < -world::kGraspCompliance)
+      why = fmt::format("{} would sink {:.1f} mm into {} (the pads give {:.0f} mm)",
+                        ws.scene().geomName(held.gripperGeom), -1000 * held.separation,
+                        ws.scene().geomName(held.objectGeom), 1000 * world::kGraspCompliance);
+  }
+  if (!why.empty()) {
+    ws.setState(before);
+    return failed(ActionStatus::Blocked, "closeGripper: " + why);
+  }
+  return RobotActionResult{};
 }
 
 RobotActionResult RobotActions::handOver(world::World& w) const {

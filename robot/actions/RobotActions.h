@@ -45,12 +45,15 @@
 //   grasp(body)                 fails AlreadyHolding / InvalidArgument (unknown body). A body with standard
 //                               grasps (StandardGrasps.h: the duster) is grasped where the tool is when it is
 //                               within 1 cm / 0.1 rad of one of them, else grasp 0 is approached first; other
-//                               bodies must be between the
-//                               fingers already (finger tip within 0.15 m of the body's origin, OutOfReach
-//                               otherwise). Then the gripper closes, the body is attached at its current
-//                               relative pose, and the tool lifts kLift straight up (NoIk / NoPath if not).
+//                               bodies must be between the fingers already (finger tip within 0.15 m of the
+//                               body's origin, OutOfReach otherwise). Then the fingers close until both touch the
+//                               body (world/GraspClosure.h: pads pressed kGraspSqueeze in, the body pushed to the
+//                               centre by at most kGraspMaxPush; NoGrip when they would close on air or the open
+//                               gripper overlaps it), the body is attached at its relative pose, and the tool
+//                               lifts kLift straight up (NoIk / NoPath if not).
 //   closeGripper(closure)       gripper opening = 1 - closure, closure in [0, 1] (InvalidArgument outside);
-//                               attaches nothing and drops nothing.
+//                               attaches nothing and drops nothing. Blocked (nothing changes) when the fingers
+//                               would touch the world or sink into a held body beyond kGraspCompliance.
 //   release()                   NotHolding if empty-handed. The body must land: its bottom within kDropHeight
 //                               above a resting surface (SurfaceGeometry.h restingSurfaces) whose face holds
 //                               its footprint; it is then settled onto that face with the gripper open.
@@ -139,6 +142,7 @@ class RobotActions {
   RobotActionResult standard(world::World& w, const sim::ActionCall& call, ExecutionMode mode) const;
   RobotActionResult grasp(world::World& w, const std::string& body, ExecutionMode mode) const;
   RobotActionResult release(world::World& w) const;
+  RobotActionResult closeGripper(world::World& w, double closure) const;
   RobotActionResult handOver(world::World& w) const;
   RobotActionResult place(world::World& w, const std::string& surface, const world::Pose3& pose,
                           ExecutionMode mode) const;
@@ -155,5 +159,8 @@ std::vector<world::ContactAllowance> restingContacts(world::World& w);
 // Moves the tool to `target` from the current joints: IK seeded there (so the arm stays in its branch; restarts
 // seeded from the state and target), then moveArmIn.
 world::builtins::ActionResult moveToolIn(world::World& w, const world::Pose3& target, ExecutionMode mode);
+// Moves the tool along the straight line to `target` (world/CartesianPath.h), or fails NoPath: never a joint-space
+// detour. Effects mode follows the same IK chain without collision checks.
+world::builtins::ActionResult moveToolStraightIn(world::World& w, const world::Pose3& target, ExecutionMode mode);
 
 }  // namespace cbtl::actions

@@ -1,5 +1,6 @@
 #include "robot/actions/RobotSimulator.h"
 
+#include "robot/world/GraspClosure.h"
 #include "runtime/sim/SimulatorBase.h"
 
 #include <stdexcept>
@@ -20,9 +21,16 @@ RobotSimulator::RobotSimulator(Setup setup)
 void RobotSimulator::startEpisode(const world::WorldState& state) {
   idleRun_ = 0;
   world_->utterances().clear();
-  if (world_->workspace().setState(state) != world::StateStatus::Ok) {
-    throw std::logic_error(domain_ + ": the episode's start state is invalid");
-  }
+  setWorldState(state);
+}
+
+void RobotSimulator::setWorldState(const world::WorldState& state) {
+  world::Workspace& ws = world_->workspace();
+  if (ws.setState(state) != world::StateStatus::Ok) throw std::logic_error(domain_ + ": the world state is invalid");
+  if (ws.heldObject() < 0) return;
+  const world::GraspClosure grip = world::gripHeld(ws);
+  if (!grip.holds())
+    throw std::logic_error(domain_ + ": the gripper cannot hold " + state.held->object + ": " + grip.detail);
 }
 
 sim::StepResult RobotSimulator::failTask(sim::StepResult step) {

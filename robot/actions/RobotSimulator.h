@@ -56,6 +56,10 @@ class RobotSimulator : public sim::DomainSimulator {
   // Makes `state` the world's state at an episode start and forgets what the robot said and how long it idled. A
   // state the world rejects is a bug of the domain: std::logic_error naming the domain.
   void startEpisode(const world::WorldState& state);
+  // Makes `state` the world's state (an episode start, a caregiver's reset); an object it has in hand is gripped as
+  // a grasp would grip it (world/GraspClosure.h gripHeld: the fingers closed to where they touch it). A state the
+  // world rejects, or a held object the fingers cannot hold, is a bug of the domain: std::logic_error.
+  void setWorldState(const world::WorldState& state);
 
   // Step 1 of act(): nullopt when `call` is not such an action.
   virtual std::optional<sim::StepResult> actOnSimulatorState(const sim::ActionCall&) { return std::nullopt; }

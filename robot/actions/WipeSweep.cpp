@@ -1,6 +1,8 @@
 #include "robot/actions/WipeSweep.h"
 
+#include "robot/world/CartesianPath.h"
 #include "robot/world/SegmentCertificate.h"
+#include "robot/world/Separation.h"
 
 #include "robot/actions/SurfaceGeometry.h"
 
@@ -8,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -87,6 +90,42 @@ ActionResult sweepSurface(world::World& w, const std::string& surface, const wor
 
   // Contact with the face wiped, like any other, only as far as the skill declares it (`allow held touch ...`).
   const world::CollisionOptions& contact = w.planning.collision;
+  // Down onto the face in a straight line, the held object's lowest point kWipePress into it: a duster that
+  // touches what it wipes (the pre-wipe pose leaves it hovering a few millimetres above).
+  const world::Pose3 above = ws.toolPose();
+  const int faceGeom = ws.scene().geomId(surface);
+  double height = std::numeric_limits<double>::infinity();
+  int lowest = -1;
+  for (int g = 0; g < ws.model()->ngeom; ++g)
+    if (ws.scene().objectOfBody(ws.model()->geom_bodyid[g]) == ws.heldObject() &&
+        (ws.model()->geom_contype[g] | ws.model()->geom_conaffinity[g]) != 0) {
+      const double h = world::exactSeparation(ws, g, faceGeom);
+      if (h < height) height = h, lowest = g;
+    }
+  // Touching the face is contact like any other: the call must carry the skill's exception for it.
+  const double allowed = world::requiredSeparation(ws, contact, lowest, faceGeom);
+  if (allowed > -kWipeAllowanceNeeded) {
+    ws.setState(saved);
+    return fail(ActionStatus::Blocked,
+                fmt::format("the sweep presses {} onto {} ({:.0f} mm in), a contact no `allow` of the skill declares "
+                            "(e.g. `allow held touch \"{}\" 5 mm {{ wipe(...); }}`; it allows {:.1f} mm)",
+                            held, surface, 1000 * kWipePress, surface, std::max(0.0, -1000 * allowed)));
+  }
+  world::Pose3 pressed = above;
+  pressed.position.z() -= height + kWipePress;
+  world::CartesianPathOptions line;
+  line.collision = contact;
+  line.maxStep = 0.002;  // short steps: the redundant arm's IK then stays near the previous configuration
+  const auto down = world::cartesianToolPath(ws, pressed, w.ik, line);
+  if (!down) {
+    ws.setState(saved);
+    return fail(ActionStatus::NoPath, fmt::format("pressing {} onto {}: no straight line down keeps the separations "
+                                                  "the skill allows",
+                                                  held, surface));
+  }
+  ws.setArm(down->back());
+  w.noteArmMotion(*down, contact);
+  r.armPath = *down;
   Eigen::Vector2d from = s;
   for (const Eigen::Vector2d& to : targets) {
     const world::Pose2 a{base.x + (from - s).x(), base.y + (from - s).y(), base.yaw};
@@ -105,6 +144,11 @@ ActionResult sweepSurface(world::World& w, const std::string& surface, const wor
     from = to;
   }
   ws.setBase(base);
+  // And up again the way it came: the world is the one the way down was certified in (the base is back at `base`).
+  const std::vector<world::ArmConfig> up(down->rbegin(), down->rend());
+  ws.setArm(up.back());
+  w.noteArmMotion(up, contact);
+  r.armPath.insert(r.armPath.end(), up.begin() + 1, up.end());
   return r;
 }
 

@@ -1,5 +1,6 @@
 #include "robot/world/WorldOperations.h"
 
+#include "robot/world/GraspClosure.h"
 #include "robot/world/MotionQuery.h"
 #include "robot/world/SurfaceFace.h"
 
@@ -55,6 +56,8 @@ const char* toString(ActionStatus s) {
       return "already holding an object";
     case ActionStatus::Blocked:
       return "placement blocked";
+    case ActionStatus::NoGrip:
+      return "no grip";
   }
   return "unknown";
 }
@@ -197,9 +200,15 @@ ActionResult grasp(World& w, const std::string& object, double maxDistance) {
   const Pose3 grip = tip >= 0 ? ws.sitePose(tip) : ws.toolPose();
   const double d = (grip.position - pose->position).norm();
   if (d > maxDistance) return fail(ActionStatus::OutOfReach, fmt::format("{} is {:.3f} m from the gripper", object, d));
+  const int index = ws.scene().objectIndex(object);
+  const GraspClosure closure = closeOn(ws, index);
+  if (!closure.holds()) return fail(ActionStatus::NoGrip, closure.detail);
   WorldState st = ws.state();
-  st.gripper = 0.0;
+  st.gripper = closure.gripper;
   st.held.reset();
+  Pose3 pushed = *pose;
+  pushed.position += closure.pushWorld;
+  st.objects[object] = pushed;
   ws.setState(st);
   ws.setHeld(object);
   return {};

@@ -89,6 +89,7 @@ enum class ActionStatus {
   NotHolding,       // the action needs a held object
   AlreadyHolding,   // grasp while holding something
   Blocked,          // the requested object placement collides
+  NoGrip,           // the fingers would not hold the object (GraspClosure.h: closes on air, blocked, off centre)
 };
 
 const char* toString(ActionStatus s);
@@ -106,8 +107,11 @@ struct ActionResult {
 ActionResult moveArm(World& w, const ArmConfig& goal);
 // Plans the mobile base to `goal` (arm fixed) and moves there (planBaseCached, likewise pure).
 ActionResult moveBase(World& w, const Pose2& goal);
-// Attaches `object` to the gripper at its current relative pose and closes the gripper; the object's
-// origin must be within `maxDistance` metres of the finger tip.
+// Closes the gripper on `object` (GraspClosure.h: the fingers stop where they touch it, pushing it to the centre by
+// at most kGraspMaxPush) and attaches it at its relative pose then; the object's origin must be within `maxDistance`
+// metres of the finger tip. Fails NoGrip (the world unchanged) when the fingers would close on air or the open
+// gripper already overlaps the object. The closing itself is not checked against the rest of the world: the
+// motion that follows (a lift) starts in the closed state and is certified.
 ActionResult grasp(World& w, const std::string& object, double maxDistance = 0.15);
 // Detaches the held object where it is and opens the gripper.
 ActionResult release(World& w);

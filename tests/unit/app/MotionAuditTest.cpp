@@ -6,6 +6,8 @@
 #include "app/LoadedProgram.h"
 #include "app/SimulatorFacts.h"
 #include "domains/DomainRegistry.h"
+#include "robot/world/GraspClosure.h"
+#include "robot/world/InverseKinematics.h"
 #include "robot/world/MotionRecord.h"
 #include "robot/world/Scene.h"
 #include "runtime/approach/Experiment.h"
@@ -16,6 +18,7 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <optional>
 #include <string>
 
 namespace cbtl::app {
@@ -81,28 +84,56 @@ TEST(MotionAudit, AFreeMotionPassesAndAMotionIntoTheTableFails) {
   EXPECT_LT(bad.violations.front().separation, 0.0);
 }
 
+// The robot holding `book` between its fingers (the book's centre 7 cm past the tool frame, its thickness across
+// them), the gripper closed on it as a grasp closes: base at `base`, the tool at `tool` (an IK solution from kHome;
+// `tool` should point along +y with its x along world x).
+// nullopt when IK fails.
+std::optional<world::WorldState> holdingBook(const std::string& book, const world::Pose2& base,
+                                             const world::Pose3& tool) {
+  world::Workspace ws(homeScene());
+  world::WorldState st;
+  st.arm = world::configs::kHome;
+  st.base = base;
+  if (ws.setState(st) != world::StateStatus::Ok) return std::nullopt;
+  world::Rng rng(3);
+  world::IkOptions ik;
+  ik.requireCollisionFree = false;
+  ik.positionTolerance = 1e-6;  // the tests press the book in by fractions of a millimetre
+  ik.rotationTolerance = 1e-5;
+  ik.maxIterations = 1000;
+  const world::IkResult r = world::solveIk(ws, tool, world::configs::kHome, rng, ik);
+  if (!r.solved()) return std::nullopt;
+  st.arm = r.q;
+  // Upright in the gripper reaching along +y: the book's z along the tool's -y (world up), its thickness (x) across
+  // the fingers, its 10 cm depth along the approach.
+  st.held =
+      world::Grasp{book, {{0, 0, 0.07}, Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()))}};
+  for (int k = 0; k < 9; ++k)  // every other book far outside the room
+    if ("book_" + std::to_string(k) != book)
+      st.objects["book_" + std::to_string(k)] = world::Pose3::fromPosition({20.0 + k, 20, 0});
+  if (ws.setState(st) != world::StateStatus::Ok || !world::gripHeld(ws).holds()) return std::nullopt;
+  return ws.state();
+}
+
 // A held book pushed 0.5 mm into the shelf it stands on: a contact unless the motion's record allows it, and then
 // only up to the allowed depth.
 TEST(MotionAudit, AContactPassesOnlyWithinTheAllowanceItsRecordDeclares) {
   TempRun run("allowance");
   run.config(domainFile("books"));
   const world::Scene& scene = *homeScene();
-  world::ExecutedMotion m = freeBaseMotion();
   const int shelf = scene.geomId("shelf_layer_1");
-  // shelf_layer_1: centre (0, 0.75, 0), half-height 0.05; the book's half-height is 0.08.
-  // Holding requires the grasp relative to the tool: compute it from the start state's tool pose.
-  world::Workspace ws(homeScene());
-  world::WorldState st;
-  st.arm = m.start.arm;
-  st.base = m.start.base;
-  ASSERT_EQ(ws.setState(st), world::StateStatus::Ok);
-  // The base stands still (a zero-length motion would be dropped): move it 1 mm.
-  m.base = {m.start.base, {m.start.base.x + 0.001, m.start.base.y, 0}};
+  // shelf_layer_1: centre (0, 0.75, 0), half-height 0.05, top at z 0.05; a book's half-height is 0.08. The gripper
+  // reaches into the shelf along +y from the base at the origin, its fingers closing along world x.
+  const Eigen::Quaterniond intoShelf(Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()));
   auto atDepth = [&](double depth, double allowed) {
-    world::ExecutedMotion h = m;
-    const world::Pose3 book = world::Pose3::fromPosition({0.3, 0.75, 0.05 + 0.08 - depth});
-    h.start.held = world::Grasp{"book_4", ws.toolPose().inverse() * book};
-    h.start.objects["book_4"] = book;
+    const world::Pose3 tool{{0.0, 0.75 - 0.07, 0.05 + 0.08 - depth}, intoShelf};
+    const auto start = holdingBook("book_4", {0, 0, 0}, tool);
+    EXPECT_TRUE(start.has_value());
+    world::ExecutedMotion h;
+    h.kind = world::ExecutedMotion::Kind::Base;
+    h.start = start.value_or(world::WorldState{});
+    // The base moves 1 mm along x (a zero-length motion would be dropped): the book slides on the shelf.
+    h.base = {h.start.base, {h.start.base.x + 0.001, h.start.base.y, 0}};
     if (allowed > 0) {
       world::ContactAllowance a;
       a.geom = shelf;
@@ -135,6 +166,46 @@ TEST(MotionAudit, AContactPassesOnlyWithinTheAllowanceItsRecordDeclares) {
   const AuditReport declared = auditRun(run.dir.string(), {});
   EXPECT_TRUE(declared.passed()) << declared.error << " " << declared.violationCount
                                  << (declared.violations.empty() ? "" : " " + declared.violations.front().where);
+}
+
+// The grip is audited too: a held book the fingers close into (the gripper fully closed on a 4 cm book) or that no
+// finger touches (held in the air) fails, as a grip closed to the book's width passes.
+TEST(MotionAudit, AGripMustTouchWhatItHoldsWithoutPressingIntoIt) {
+  TempRun run("grip");
+  run.config(domainFile("books"));
+  const world::Scene& scene = *homeScene();
+  const Eigen::Quaterniond intoShelf(Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()));
+  const auto start = holdingBook("book_4", {0, 0, 0}, {{0.0, 0.68, 0.2}, intoShelf});  // between two shelf layers
+  ASSERT_TRUE(start.has_value());
+  auto record = [&](const world::WorldState& s) {
+    world::ExecutedMotion m;
+    m.kind = world::ExecutedMotion::Kind::Base;
+    m.start = s;
+    m.base = {s.base, {s.base.x - 0.01, s.base.y, 0}};
+    return world::motionToJson(scene, m);
+  };
+  run.motions({record(*start)});
+  const AuditReport gripped = auditRun(run.dir.string(), {});
+  EXPECT_TRUE(gripped.passed()) << gripped.error << " " << gripped.violationCount
+                                << (gripped.violations.empty() ? "" : " " + gripped.violations.front().where);
+  ASSERT_EQ(gripped.closest.count("grip"), 1u);
+  EXPECT_NEAR(gripped.closest.at("grip").distance, -world::kGraspSqueeze, 2e-4);
+
+  world::WorldState crushed = *start;
+  crushed.gripper = 0.0;
+  run.motions({record(crushed)});
+  const AuditReport tooDeep = auditRun(run.dir.string(), {});
+  ASSERT_FALSE(tooDeep.passed());
+  EXPECT_NE(tooDeep.violations.front().where.find("beyond the pads' compliance"), std::string::npos)
+      << tooDeep.violations.front().where;
+  EXPECT_LT(tooDeep.violations.front().separation, -0.015);
+
+  world::WorldState floating = *start;
+  floating.held->toolToObject = world::Pose3::fromPosition({0, 0, 0.30});
+  run.motions({record(floating)});
+  const AuditReport air = auditRun(run.dir.string(), {});
+  ASSERT_FALSE(air.passed());
+  EXPECT_NE(air.violations.front().where.find("does not touch"), std::string::npos) << air.violations.front().where;
 }
 
 TEST(MotionAudit, SaysWhyARunCannotBeAudited) {

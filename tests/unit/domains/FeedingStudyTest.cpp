@@ -202,10 +202,13 @@ TEST(FeedingDemo, ComplaintsFollowTheHiddenThresholdAndCbtlKeepsTheViewClear) {
         kept += steps[1].plateTo == steps[1].plateFrom ? 1 : 0;
       }
     }
-    // Held up at its post-grasp configuration the drink is in the view: without learning, where the caregiver put
-    // it, it blocks the view.
-    EXPECT_GT(trial.steps.at("no-personalization")[3].complaints, 0);
   }
+  // Held up at its post-grasp configuration the drink is in the view: without learning, where the caregiver put it
+  // (0.32, 0.67), it blocks the view. (In one of the two trials No Personalization draws another spot for the drink,
+  // low in y, where the held drink is out of view; which trial depends on its draws.)
+  int blocked = 0;
+  for (const auto& trial : r.trials) blocked += trial.steps.at("no-personalization")[3].complaints > 0 ? 1 : 0;
+  EXPECT_GT(blocked, 0);
   EXPECT_GT(unchanged, 0);
   EXPECT_GT(kept, 0) << "none of " << unchanged << " second bites kept the plate where it was";
 }

@@ -8,6 +8,7 @@
 #include "robot/actions/StandardGrasps.h"
 #include "robot/actions/SurfaceGeometry.h"
 #include "robot/world/Collision.h"
+#include "robot/world/GraspClosure.h"
 #include "robot/world/InverseKinematics.h"
 #include "robot/world/MotionPlanner.h"
 #include "tests/unit/domains/HomeTestSupport.h"
@@ -139,7 +140,18 @@ TEST_F(RobotActionsTest, GraspDusterApproachesAttachesAndLifts) {
   ASSERT_TRUE(r.done()) << r.detail;
   ASSERT_TRUE(w.workspace().state().held.has_value());
   EXPECT_EQ(w.workspace().state().held->object, "duster");
-  EXPECT_EQ(w.workspace().state().gripper, 0.0);
+  // The fingers stop on the 2 cm pole, touching it within the pads' compliance (world/GraspClosure.h).
+  EXPECT_GT(w.workspace().state().gripper, 0.0);
+  EXPECT_LT(w.workspace().state().gripper, 1.0);
+  const world::GripperContact grip = world::gripperContact(w.workspace(), w.workspace().heldObject());
+  EXPECT_LE(grip.separation, 0.0);
+  EXPECT_GE(grip.separation, -world::kGraspCompliance);
+  // Closing further would press the fingers into the pole: refused, nothing changes.
+  const double opening = w.workspace().state().gripper;
+  const RobotActionResult squeeze = run("closeGripper", {Value::num(1.0)});
+  EXPECT_EQ(squeeze.status, ActionStatus::Blocked);
+  EXPECT_NE(squeeze.detail.find("duster_pole"), std::string::npos) << squeeze.detail;
+  EXPECT_EQ(w.workspace().state().gripper, opening);
   EXPECT_NEAR(w.workspace().objectPose("duster")->position.z(), zBefore + actions::kLift, 2e-3);
 
   // A second grasp is refused; the duster stays in hand.

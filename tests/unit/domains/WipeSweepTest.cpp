@@ -4,6 +4,7 @@
 #include "robot/actions/RobotActions.h"
 #include "robot/actions/StandardGrasps.h"
 #include "robot/actions/WipeSweep.h"
+#include "robot/world/Separation.h"
 #include "tests/unit/domains/HomeTestSupport.h"
 
 #include <gtest/gtest.h>
@@ -56,14 +57,35 @@ TEST_F(WipeSweepTest, WipesEveryHomeSurfaceFromItsApproachBase) {
     SCOPED_TRACE(surface);
     ASSERT_TRUE(readyToWipe(surface, base));
     const world::ArmConfig arm = w.workspace().state().arm;
+    // The sweep may touch the face, as the skill's `allow held touch ... 5 mm` does.
+    world::ContactAllowance touch;
+    touch.geom = w.workspace().scene().geomId(surface);
+    touch.separation = -0.005;
+    w.planning.collision.allowances = {touch};
+    w.setRecording(true);
+    w.takeMotions();
     const auto r =
         actions.execute(w, ActionCall{"wipe", {Value::name(surface), Value::vec({base.x, base.y, base.yaw})}});
+    w.setRecording(false);
+    w.planning.collision.allowances.clear();
     ASSERT_TRUE(r.has_value());
     ASSERT_TRUE(r->done()) << r->detail;
     EXPECT_GE(r->basePath.size(), 3u);  // at least one stroke there and back, plus the return
     EXPECT_NEAR(w.workspace().state().base.x, base.x, 1e-9);
     EXPECT_NEAR(w.workspace().state().base.y, base.y, 1e-9);
-    EXPECT_EQ(w.workspace().state().arm, arm);  // the arm stays fixed
+    EXPECT_EQ(w.workspace().state().arm, arm);  // down to the face and back up the same way
+    // Every stroke runs with the duster on the face: touching it, pressed in by at most the allowed 5 mm.
+    int strokes = 0;
+    for (const world::ExecutedMotion& m : w.takeMotions()) {
+      if (m.kind != world::ExecutedMotion::Kind::Base) continue;
+      ++strokes;
+      ASSERT_EQ(w.workspace().setState(m.start), world::StateStatus::Ok);
+      const double head =
+          world::exactSeparation(w.workspace(), w.workspace().scene().geomId("duster_head"), touch.geom);
+      EXPECT_LE(head, 0.0) << "stroke " << strokes;
+      EXPECT_GE(head, -0.005) << "stroke " << strokes;
+    }
+    EXPECT_GE(strokes, 2);
   }
 }
 
@@ -87,10 +109,24 @@ TEST_F(WipeSweepTest, ABlockedSweepLeavesTheWorldAsItWas) {
   // A book standing in the middle of the middle layer is in the duster's way.
   w.workspace().setObjectPose("book_0", world::Pose3::fromPosition(Eigen::Vector3d(-0.2, 0.675, 0.13)));
   const world::WorldState before = w.workspace().state();
+  ActionCall call{"wipe", {Value::name("shelf_layer_1"), Value::vec({0, 0, 0})}};
+  call.exceptions.push_back({"held", {"shelf_layer_1"}, -0.005, "cleaning.cbtl:137:5"});
+  const auto r = actions.execute(w, call);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->status, ActionStatus::NoPath) << r->detail;
+  EXPECT_EQ(w.workspace().state().base.x, before.base.x);
+  EXPECT_EQ(w.workspace().state().arm, before.arm);
+}
+
+// The duster touches what it wipes: a call without the skill's `allow` for that contact is refused, and says what
+// to declare.
+TEST_F(WipeSweepTest, AWipeWithoutAnAllowForTheSurfaceIsRefused) {
+  ASSERT_TRUE(readyToWipe("shelf_layer_1", {0, 0, 0}));
+  const world::WorldState before = w.workspace().state();
   const auto r = actions.execute(w, ActionCall{"wipe", {Value::name("shelf_layer_1"), Value::vec({0, 0, 0})}});
   ASSERT_TRUE(r.has_value());
-  EXPECT_EQ(r->status, ActionStatus::NoPath);
-  EXPECT_EQ(w.workspace().state().base.x, before.base.x);
+  EXPECT_EQ(r->status, ActionStatus::Blocked);
+  EXPECT_NE(r->detail.find("allow held touch \"shelf_layer_1\""), std::string::npos) << r->detail;
   EXPECT_EQ(w.workspace().state().arm, before.arm);
 }
 

@@ -57,6 +57,47 @@ std::vector<Eigen::Vector2d> strokeWaypoints(const SurfaceFace& face, const Eige
   return out;
 }
 
+// The tool's straight path down onto box geom `surface` until the held object's lowest point is kWipePress into it
+// (a duster that touches what it wipes: the pre-wipe pose leaves it hovering a few millimetres above), in
+// ActionResult::armPath; the Workspace is left as it was. Blocked when the call's exceptions do not allow that
+// contact, NoPath when no straight line keeps the separations they allow.
+ActionResult pressOnto(world::World& w, const std::string& surface) {
+  world::Workspace& ws = w.workspace();
+  const std::string& held = ws.state().held->object;
+  const world::CollisionOptions& contact = w.planning.collision;
+  const int faceGeom = ws.scene().geomId(surface);
+  double height = std::numeric_limits<double>::infinity();
+  int lowest = -1;
+  for (int g = 0; g < ws.model()->ngeom; ++g)
+    if (ws.scene().objectOfBody(ws.model()->geom_bodyid[g]) == ws.heldObject() &&
+        (ws.model()->geom_contype[g] | ws.model()->geom_conaffinity[g]) != 0) {
+      const double h = world::exactSeparation(ws, g, faceGeom);
+      if (h < height) height = h, lowest = g;
+    }
+  // Touching the face is contact like any other: the call must carry the skill's exception for it.
+  const double allowed = world::requiredSeparation(ws, contact, lowest, faceGeom);
+  if (allowed > -kWipeAllowanceNeeded) {
+    return fail(ActionStatus::Blocked,
+                fmt::format("the sweep presses {} onto {} ({:.0f} mm in), a contact no `allow` of the skill declares "
+                            "(e.g. `allow held touch \"{}\" 5 mm {{ wipe(...); }}`; it allows {:.1f} mm)",
+                            held, surface, 1000 * kWipePress, surface, std::max(0.0, -1000 * allowed)));
+  }
+  world::Pose3 pressed = ws.toolPose();
+  pressed.position.z() -= height + kWipePress;
+  world::CartesianPathOptions line;
+  line.collision = contact;
+  line.maxStep = 0.002;  // short steps: the redundant arm's IK then stays near the previous configuration
+  auto down = world::cartesianToolPath(ws, pressed, w.ik, line);
+  if (!down) {
+    return fail(ActionStatus::NoPath,
+                fmt::format("pressing {} onto {}: no straight line down keeps the separations the skill allows", held,
+                            surface));
+  }
+  ActionResult r;
+  r.armPath = std::move(*down);
+  return r;
+}
+
 }  // namespace
 
 ActionResult sweepSurface(world::World& w, const std::string& surface, const world::Pose2& base) {
@@ -90,42 +131,14 @@ ActionResult sweepSurface(world::World& w, const std::string& surface, const wor
 
   // Contact with the face wiped, like any other, only as far as the skill declares it (`allow held touch ...`).
   const world::CollisionOptions& contact = w.planning.collision;
-  // Down onto the face in a straight line, the held object's lowest point kWipePress into it: a duster that
-  // touches what it wipes (the pre-wipe pose leaves it hovering a few millimetres above).
-  const world::Pose3 above = ws.toolPose();
-  const int faceGeom = ws.scene().geomId(surface);
-  double height = std::numeric_limits<double>::infinity();
-  int lowest = -1;
-  for (int g = 0; g < ws.model()->ngeom; ++g)
-    if (ws.scene().objectOfBody(ws.model()->geom_bodyid[g]) == ws.heldObject() &&
-        (ws.model()->geom_contype[g] | ws.model()->geom_conaffinity[g]) != 0) {
-      const double h = world::exactSeparation(ws, g, faceGeom);
-      if (h < height) height = h, lowest = g;
-    }
-  // Touching the face is contact like any other: the call must carry the skill's exception for it.
-  const double allowed = world::requiredSeparation(ws, contact, lowest, faceGeom);
-  if (allowed > -kWipeAllowanceNeeded) {
+  ActionResult down = pressOnto(w, surface);
+  if (!down.done()) {
     ws.setState(saved);
-    return fail(ActionStatus::Blocked,
-                fmt::format("the sweep presses {} onto {} ({:.0f} mm in), a contact no `allow` of the skill declares "
-                            "(e.g. `allow held touch \"{}\" 5 mm {{ wipe(...); }}`; it allows {:.1f} mm)",
-                            held, surface, 1000 * kWipePress, surface, std::max(0.0, -1000 * allowed)));
+    return down;
   }
-  world::Pose3 pressed = above;
-  pressed.position.z() -= height + kWipePress;
-  world::CartesianPathOptions line;
-  line.collision = contact;
-  line.maxStep = 0.002;  // short steps: the redundant arm's IK then stays near the previous configuration
-  const auto down = world::cartesianToolPath(ws, pressed, w.ik, line);
-  if (!down) {
-    ws.setState(saved);
-    return fail(ActionStatus::NoPath, fmt::format("pressing {} onto {}: no straight line down keeps the separations "
-                                                  "the skill allows",
-                                                  held, surface));
-  }
-  ws.setArm(down->back());
-  w.noteArmMotion(*down, contact);
-  r.armPath = *down;
+  ws.setArm(down.armPath.back());
+  w.noteArmMotion(down.armPath, contact);
+  r.armPath = down.armPath;
   Eigen::Vector2d from = s;
   for (const Eigen::Vector2d& to : targets) {
     const world::Pose2 a{base.x + (from - s).x(), base.y + (from - s).y(), base.yaw};
@@ -145,7 +158,7 @@ ActionResult sweepSurface(world::World& w, const std::string& surface, const wor
   }
   ws.setBase(base);
   // And up again the way it came: the world is the one the way down was certified in (the base is back at `base`).
-  const std::vector<world::ArmConfig> up(down->rbegin(), down->rend());
+  const std::vector<world::ArmConfig> up(down.armPath.rbegin(), down.armPath.rend());
   ws.setArm(up.back());
   w.noteArmMotion(up, contact);
   r.armPath.insert(r.armPath.end(), up.begin() + 1, up.end());

@@ -329,7 +329,7 @@ RobotActionResult RobotActions::standard(world::World& w, const sim::ActionCall&
       w.workspace().setBase(*base);
       return RobotActionResult{};
     }
-    return from(sweepSurface(w, a[0].text, *base));
+    return from(sweepSurface(w, a[0].text, *base, mode == ExecutionMode::Effects));
   }
   if (n == "say") {
     if (auto e = checkArguments(call, {kNameArg}); !e.empty()) return illFormed(e);

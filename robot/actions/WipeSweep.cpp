@@ -61,7 +61,7 @@ std::vector<Eigen::Vector2d> strokeWaypoints(const SurfaceFace& face, const Eige
 // (a duster that touches what it wipes: the pre-wipe pose leaves it hovering a few millimetres above), in
 // ActionResult::armPath; the Workspace is left as it was. Blocked when the call's exceptions do not allow that
 // contact, NoPath when no straight line keeps the separations they allow.
-ActionResult pressOnto(world::World& w, const std::string& surface) {
+ActionResult pressOnto(world::World& w, const std::string& surface, bool effectsOnly) {
   world::Workspace& ws = w.workspace();
   const std::string& held = ws.state().held->object;
   const world::CollisionOptions& contact = w.planning.collision;
@@ -87,6 +87,7 @@ ActionResult pressOnto(world::World& w, const std::string& surface) {
   world::CartesianPathOptions line;
   line.collision = contact;
   line.maxStep = 0.002;  // short steps: the redundant arm's IK then stays near the previous configuration
+  line.checkCollisions = !effectsOnly;
   auto down = world::cartesianToolPath(ws, pressed, w.ik, line);
   if (!down) {
     return fail(ActionStatus::NoPath,
@@ -100,7 +101,7 @@ ActionResult pressOnto(world::World& w, const std::string& surface) {
 
 }  // namespace
 
-ActionResult sweepSurface(world::World& w, const std::string& surface, const world::Pose2& base) {
+ActionResult sweepSurface(world::World& w, const std::string& surface, const world::Pose2& base, bool effectsOnly) {
   world::Workspace& ws = w.workspace();
   if (ws.heldObject() < 0 || !ws.state().held) return fail(ActionStatus::NotHolding, "wiping needs a held duster");
   const auto face = surfaceFace(ws, surface);
@@ -131,7 +132,7 @@ ActionResult sweepSurface(world::World& w, const std::string& surface, const wor
 
   // Contact with the face wiped, like any other, only as far as the skill declares it (`allow held touch ...`).
   const world::CollisionOptions& contact = w.planning.collision;
-  ActionResult down = pressOnto(w, surface);
+  ActionResult down = pressOnto(w, surface, effectsOnly);
   if (!down.done()) {
     ws.setState(saved);
     return down;
@@ -143,7 +144,7 @@ ActionResult sweepSurface(world::World& w, const std::string& surface, const wor
   for (const Eigen::Vector2d& to : targets) {
     const world::Pose2 a{base.x + (from - s).x(), base.y + (from - s).y(), base.yaw};
     const world::Pose2 b{base.x + (to - s).x(), base.y + (to - s).y(), base.yaw};
-    const world::SegmentReport c = world::certifyBaseSegment(ws, a, b, contact);
+    const world::SegmentReport c = effectsOnly ? world::SegmentReport{} : world::certifyBaseSegment(ws, a, b, contact);
     if (!c.free()) {
       ws.setState(saved);
       return fail(ActionStatus::NoPath,

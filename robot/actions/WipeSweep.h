@@ -46,6 +46,10 @@ inline constexpr double kWipeAllowanceNeeded = kWipePress + 0.001;
 using world::preWipeToolPose;
 
 // The sweep described above (the base is planned to `base` with world::builtins::moveBase).
-world::builtins::ActionResult sweepSurface(world::World& w, const std::string& surface, const world::Pose2& base);
+// `effectsOnly` (an executor's Effects mode: a dry run's end state): the press follows the same IK chain without its
+// collision checks and the strokes are not certified (the checks decide acceptance, not the configurations), so it
+// ends where a checked sweep does; only an executed sweep is certified.
+world::builtins::ActionResult sweepSurface(world::World& w, const std::string& surface, const world::Pose2& base,
+                                           bool effectsOnly = false);
 
 }  // namespace cbtl::actions

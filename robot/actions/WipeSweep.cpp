@@ -63,7 +63,7 @@ std::vector<Eigen::Vector2d> strokeWaypoints(const SurfaceFace& face, const Eige
 // contact, NoPath when no straight line keeps the separations they allow.
 ActionResult pressOnto(world::World& w, const std::string& surface, bool effectsOnly) {
   world::Workspace& ws = w.workspace();
-  const std::string& held = ws.state().held->object;
+  const std::string held = ws.state().held->object;  // a copy: the line below resets the state
   const world::CollisionOptions& contact = w.planning.collision;
   const int faceGeom = ws.scene().geomId(surface);
   double height = std::numeric_limits<double>::infinity();

@@ -163,6 +163,12 @@ GraspClosure closeOn(Workspace& ws, int object) {
     return out;
   }
   const std::vector<int> geoms = objectGeoms(ws, object);
+  if (geoms.empty()) {
+    ws.setState(before);
+    out.status = GraspStatus::ClosesOnAir;
+    out.detail = fmt::format("{} has no solid geom the fingers could touch", name);
+    return out;
+  }
   const double openGap = exactSeparation(ws, f[0].geoms.front(), f[1].geoms.front());
   const GripperContact open0 = gripperContact(ws, object);
   if (open0.separation < -kGraspCompliance) {

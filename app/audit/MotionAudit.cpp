@@ -34,12 +34,17 @@ constexpr double kRestingContact = 0.001;
 constexpr double kGripCompliance = 0.001;
 constexpr const char* kGripClass = "grip";  // the held object against the gripper that holds it
 constexpr double kGripTouch = 1e-4;         // metres: a finger this near what it holds touches it
+// Metres a GJK distance of FCL may be off (its default tolerance is 1e-6 m; ten times that, to be safe).
+constexpr double kDistanceTolerance = 1e-5;
 using world::BodyKind;
 
 struct AuditPair {
   int g1, g2;
   double required;
-  std::string bodyClass;  // of the pair: person, scenery, objects, self
+  int bodyClass;  // of the pair (person, scenery, objects, self), an index of Auditor::classes_
+  // The pair is not measured while odometer(g1) + odometer(g2) < skipBelow: at the state where it was last measured
+  // its distance exceeded what could matter by skipBelow minus the odometers' sum then (see Auditor::travel).
+  double skipBelow = -std::numeric_limits<double>::infinity();
 };
 
 class Auditor {
@@ -48,6 +53,15 @@ class Auditor {
       : scene_(std::move(scene)), ws_(scene_), options_(o), report_(report) {
     const mjModel* m = scene_->model();
     for (int g = 0; g < m->ngeom; ++g) shapes_.push_back(world::fclShapeOf(m, g));
+    odometer_.assign(static_cast<std::size_t>(m->ngeom), 0.0);
+    lastPos_.assign(static_cast<std::size_t>(3 * m->ngeom), 0.0);
+    lastRot_.assign(static_cast<std::size_t>(9 * m->ngeom), 0.0);
+  }
+
+  // The closest approach of every class, into the report (kept in a table while auditing: looked up per pair).
+  void finish() {
+    for (std::size_t c = 0; c < classes_.size(); ++c)
+      if (!closest_[c].where.empty()) report_.closest[classes_[c]] = closest_[c];
   }
 
   // Checks one recorded motion; `where` names it in the report. `declared`: the allowances the call's `allow`
@@ -89,6 +103,8 @@ class Auditor {
   void pairs(const world::ExecutedMotion& motion) {
     const mjModel* m = scene_->model();
     pairs_.clear();
+    moving_.clear();
+    freshMotion_ = true;
     auto add = [&](int g1, int g2, double keepOut) {
       const int b1 = m->geom_bodyid[g1], b2 = m->geom_bodyid[g2];
       const bool moving1 = isRobot(b1) || isHeld(b1), moving2 = isRobot(b2) || isHeld(b2);
@@ -115,13 +131,50 @@ class Auditor {
                                                                       : "scenery";
       // Approaches a skill declared are reported apart: the class's own figure is what held without exceptions.
       if (required < keepOut) cls += kUnderAllow;
-      pairs_.push_back({g1, g2, required, std::move(cls)});
+      pairs_.push_back({g1, g2, required, classIndex(cls)});
+      for (int g : {g1, g2})
+        if (isRobot(m->geom_bodyid[g]) || isHeld(m->geom_bodyid[g])) moving_.push_back(g);
     };
     for (const auto& p : scene_->robotPairs()) add(p.g1, p.g2, p.margin);
     for (const auto& p : scene_->selfPairs()) add(p.g1, p.g2, p.margin);
     if (ws_.heldObject() >= 0) {
       for (const auto& p : scene_->objectPairs(ws_.heldObject())) add(p.g1, p.g2, p.margin);
     }
+    std::sort(moving_.begin(), moving_.end());
+    moving_.erase(std::unique(moving_.begin(), moving_.end()), moving_.end());
+  }
+
+  int classIndex(const std::string& name) {
+    const auto known = std::find(classes_.begin(), classes_.end(), name);
+    if (known != classes_.end()) return static_cast<int>(known - classes_.begin());
+    classes_.push_back(name);
+    closest_.push_back({options_.cap, "", "", ""});
+    return static_cast<int>(classes_.size()) - 1;
+  }
+
+  // Adds to each moving geom's odometer a bound on how far any point of it moved since the previous state: its
+  // centre's displacement plus its bounding radius times the change of its rotation (|(R' - R) v| <= |R' - R|_F |v|
+  // for every point v of the geom, |v| <= its bounding radius). Measured on the states themselves, so a pair's
+  // distance at this state is at least its distance where it was last measured minus the sum of its geoms'
+  // odometer readings since: a pair far from mattering is skipped until its geoms have travelled that far.
+  void travel() {
+    const mjModel* m = scene_->model();
+    const mjData* d = ws_.data();
+    for (int g : moving_) {
+      const double* x = d->geom_xpos + 3 * g;
+      const double* r = d->geom_xmat + 9 * g;
+      double* px = lastPos_.data() + 3 * g;
+      double* pr = lastRot_.data() + 9 * g;
+      if (!freshMotion_) {
+        double rot = 0;
+        for (int k = 0; k < 9; ++k) rot += (r[k] - pr[k]) * (r[k] - pr[k]);
+        odometer_[static_cast<std::size_t>(g)] +=
+            std::hypot(x[0] - px[0], x[1] - px[1], x[2] - px[2]) + m->geom_rbound[g] * std::sqrt(rot);
+      }
+      std::copy(x, x + 3, px);
+      std::copy(r, r + 9, pr);
+    }
+    freshMotion_ = false;
   }
   static bool solid(const mjModel* m, int g) { return (m->geom_contype[g] | m->geom_conaffinity[g]) != 0; }
 
@@ -241,17 +294,30 @@ class Auditor {
 
   void checkState(const std::string& where) {
     ++report_.states;
-    for (const AuditPair& p : pairs_) {
+    travel();
+    for (AuditPair& p : pairs_) {
       if (!shapes_[static_cast<std::size_t>(p.g1)] || !shapes_[static_cast<std::size_t>(p.g2)]) continue;
+      const double travelled = odometer_[static_cast<std::size_t>(p.g1)] + odometer_[static_cast<std::size_t>(p.g2)];
+      if (options_.skipFarPairs && travelled < p.skipBelow) continue;
       // Measured when it could be a violation, or nearer than the class's closest approach so far (within the cap).
-      const auto known = report_.closest.find(p.bodyClass);
-      const double reportable =
-          known == report_.closest.end() ? options_.cap : std::min(known->second.distance, options_.cap);
-      if (quickBound(p.g1, p.g2) > std::max(std::max(p.required, 0.0), reportable)) continue;
+      ClosestApproach& closest = closest_[static_cast<std::size_t>(p.bodyClass)];
+      const double reportable = std::min(closest.distance, options_.cap);
+      const double matters = std::max(std::max(p.required, 0.0), reportable);
+      const double bound = quickBound(p.g1, p.g2);
+      if (bound > matters) {
+        // What matters only shrinks as the audit goes on, so the skip stays sound.
+        p.skipBelow = travelled + (bound - matters);
+        continue;
+      }
       const double sep = separation(p.g1, p.g2);
-      if (sep < reportable) report_.closest[p.bodyClass] = {sep, where, scene_->geomName(p.g1), scene_->geomName(p.g2)};
+      if (sep < reportable) closest = {sep, where, scene_->geomName(p.g1), scene_->geomName(p.g2)};
       const bool violated = p.required >= 0 ? (sep < p.required || sep <= 0) : sep < p.required;
       if (violated) addViolation(where, scene_->geomName(p.g1), scene_->geomName(p.g2), sep, p.required, "");
+      // The measured distance is the tightest bound: the pair rests until its geoms could have closed the gap (less
+      // kDistanceTolerance, for GJK's own).
+      const double slack =
+          sep - kDistanceTolerance - std::max(std::max(p.required, 0.0), std::min(closest.distance, options_.cap));
+      if (slack > 0) p.skipBelow = travelled + slack;
     }
   }
 
@@ -269,6 +335,12 @@ class Auditor {
   AuditReport& report_;
   std::vector<std::shared_ptr<fcl::CollisionGeometryd>> shapes_;
   std::vector<AuditPair> pairs_;
+  std::vector<std::string> classes_;       // the pair classes met so far; closest_ is indexed alike
+  std::vector<ClosestApproach> closest_;   // each class's closest approach (the cap while nothing came nearer)
+  std::vector<int> moving_;                // the geoms of this motion's pairs that move with the robot
+  std::vector<double> odometer_;           // per geom: the bound on its points' travel summed over the states
+  std::vector<double> lastPos_, lastRot_;  // per geom: its position and rotation at the previous state
+  bool freshMotion_ = true;                // the next state starts a motion: no travel from the previous one
 };
 
 // The whole content of a gzip file (any number of members) or of a plain file (zlib reads those as they are).
@@ -359,9 +431,11 @@ AuditReport auditRun(const std::string& runDir, const AuditOptions& options) {
       auditor.audit(world::motionFromJson(*loaded->scene(), line.at("motion").dump()), declared, describe(line));
     } catch (const std::exception& e) {
       report.error = fmt::format("{}/{}:{}: {}", runDir, name, number, e.what());
+      auditor.finish();
       return report;
     }
   }
+  auditor.finish();
   return report;
 }
 

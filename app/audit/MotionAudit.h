@@ -16,6 +16,12 @@
 // the closest approach of a class is what held where no exception applied. Last, "grip": the gripper's fingers and
 // palm against the object they hold, which may press in by the pads' compliance (1 mm, robot/world GraspClosure.h)
 // and no further; its "closest approach" is the deepest press (negative).
+// Speed without a weaker check: a pair is measured only where it could matter (a violation, or nearer than its
+// class's closest approach so far, within the cap). A cheap lower bound (bounding spheres, a box's or plane's true
+// extent) or the last measured distance says how far a pair is from mattering; the pair then rests until its geoms
+// could have closed that gap, by an odometer of each moving geom summed over the sampled states (its centre's
+// displacement plus its bounding radius times |R' - R|_F: no point of it moved more). The report is the same as when
+// every pair is measured at every state (`skipFarPairs = false`, `cbtl audit --every-pair`; a test compares them).
 // Units: metres, radians.
 #pragma once
 
@@ -29,6 +35,7 @@ namespace cbtl::app {
 struct AuditOptions {
   double resolution = 0.002;  // largest step between sampled states (rad for joints and yaw, m for the base)
   double cap = 0.10;          // distances up to this are measured for the clearance report (m)
+  bool skipFarPairs = true;   // false: every candidate pair is measured at every sampled state (slower, same report)
   std::string program;        // the .cbtl file; empty: the run's config.json "file"
 };
 

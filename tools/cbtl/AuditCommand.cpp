@@ -61,6 +61,10 @@ void addAuditCommand(CLI::App& app, int& exitCode) {
       ->check(cbtl::cli::realIn(1e-5, 0.1));
   cmd->add_option("--cap", args->options.cap, "distances up to this are measured for the clearance report (m)")
       ->check(cbtl::cli::realIn(0, 10));
+  cmd->add_flag(
+      "--every-pair", [args](std::int64_t) { args->options.skipFarPairs = false; },
+      "measure every candidate pair at every state, also where a distance bound shows it cannot matter "
+      "(slower; the same report)");
   cmd->add_option("--program", args->options.program, "the runs' .cbtl file (default: each run's config.json)");
   cmd->callback([args, &exitCode] { cbtl::cli::runCommand("audit", exitCode, [&] { return runAudit(*args); }); });
 }

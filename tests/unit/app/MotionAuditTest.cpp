@@ -278,6 +278,17 @@ TEST(MotionAudit, RealRunsOfEveryRobotDomainPass) {
     EXPECT_TRUE(r.passed()) << domain << ": " << r.error << " " << r.violationCount
                             << (r.violations.empty() ? "" : " " + r.violations.front().where);
     EXPECT_GT(r.motions, 5) << domain;
+    // Pairs skipped while a distance bound shows they cannot matter change nothing: measured at every state, the
+    // report is the same.
+    o.skipFarPairs = false;
+    const AuditReport every = auditRun(run.dir.string(), o);
+    EXPECT_EQ(every.states, r.states) << domain;
+    EXPECT_EQ(every.violationCount, r.violationCount) << domain;
+    ASSERT_EQ(every.closest.size(), r.closest.size()) << domain;
+    for (const auto& [cls, c] : every.closest) {
+      ASSERT_EQ(r.closest.count(cls), 1u) << domain << " " << cls;
+      EXPECT_NEAR(r.closest.at(cls).distance, c.distance, 1e-9) << domain << " " << cls;
+    }
   }
 }
 

@@ -3,6 +3,7 @@
 #include "app/audit/MotionAudit.h"
 
 #include "app/LoadedProgram.h"
+#include "app/audit/RecordContinuity.h"
 #include "robot/actions/ClearanceExceptions.h"
 #include "robot/world/FclShapes.h"
 #include "robot/world/MotionRecord.h"
@@ -66,6 +67,13 @@ class Auditor {
 
   // Checks one recorded motion; `where` names it in the report. `declared`: the allowances the call's `allow`
   // blocks grant; every allowance of the record must be one of them or a resting contact.
+  // A motion that did not start where the record's previous one left the robot (RecordContinuity).
+  void gap(const std::string& where, double distance) {
+    addViolation(where, "", "", distance, kContinuityTolerance,
+                 fmt::format("the robot moved by {:.4g} (rad or m) since the previous motion without a recorded motion",
+                             distance));
+  }
+
   void audit(const world::ExecutedMotion& motion, const std::vector<world::ContactAllowance>& declared,
              const std::string& where) {
     if (ws_.setState(motion.start) != world::StateStatus::Ok) {
@@ -415,6 +423,16 @@ AuditReport auditRun(const std::string& runDir, const AuditOptions& options) {
   }
   report.classes.push_back(kGripClass);
   Auditor auditor(loaded->scene(), options, report);
+  RecordContinuity continuity(*loaded->scene());
+  auto tally = [&] {
+    report.continuityChecked = continuity.checked();
+    const PlanTally& t = continuity.tally();
+    report.gaps = t.gaps;
+    report.plans = t.plans;
+    report.dryRunPlans = t.dryRun;
+    report.dryRunPlansRejected = t.dryRunRejected;
+    auditor.finish();
+  };
   std::size_t at = 0;
   for (long number = 1; at < all.size(); ++number) {
     std::size_t end = all.find('\n', at);
@@ -424,18 +442,31 @@ AuditReport auditRun(const std::string& runDir, const AuditOptions& options) {
     if (text.empty()) continue;
     try {
       const json line = json::parse(text);
+      const std::string phase = line.value("phase", std::string("?"));
+      if (line.contains("reset")) {
+        continuity.reset(phase);
+        continue;
+      }
+      if (line.contains("plan")) {
+        continuity.plan(phase, line.at("plan").value("dry_run", false));
+        continue;
+      }
       std::vector<world::ContactAllowance> declared;
       std::string error;
       if (!actions::resolveClearanceExceptions(*loaded->scene(), exceptionsOf(line), declared, error))
         throw std::runtime_error(error);
-      auditor.audit(world::motionFromJson(*loaded->scene(), line.at("motion").dump()), declared, describe(line));
+      const world::ExecutedMotion motion = world::motionFromJson(*loaded->scene(), line.at("motion").dump());
+      const std::int64_t before = report.violationCount;
+      auditor.audit(motion, declared, describe(line));
+      const double gap = continuity.motion(phase, motion, report.violationCount > before);
+      if (gap > kContinuityTolerance) auditor.gap(describe(line), gap);
     } catch (const std::exception& e) {
       report.error = fmt::format("{}/{}:{}: {}", runDir, name, number, e.what());
-      auditor.finish();
+      tally();
       return report;
     }
   }
-  auditor.finish();
+  tally();
   return report;
 }
 

@@ -22,6 +22,8 @@
 // could have closed that gap, by an odometer of each moving geom summed over the sampled states (its centre's
 // displacement plus its bounding radius times |R' - R|_F: no point of it moved more). The report is the same as when
 // every pair is measured at every state (`skipFarPairs = false`, `cbtl audit --every-pair`; a test compares them).
+// The record's plans and resets (runtime/approach/RunDirectory.h) let it check that the robot moved by no motion it
+// did not see, and count the plans a dry run accepted that it rejects (app/audit/RecordContinuity.h).
 // Units: metres, radians.
 #pragma once
 
@@ -58,7 +60,12 @@ struct AuditReport {
   std::vector<AuditViolation> violations;          // the first kMaxListed
   std::map<std::string, ClosestApproach> closest;  // per body class: each clearance, scenery, objects, self
   std::vector<std::string> classes;                // the classes in report order: the clearances as declared first
-  std::string error;                               // the run could not be audited (unreadable, no scene, ...)
+  // The record's completeness and its plans (app/audit/RecordContinuity.h): whether it marks plans and resets (so
+  // that a motion not starting where the robot was left is a violation, a gap), the gaps, the plans it marks, those
+  // a dry run accepted, and those of them the audit rejects (a violation or a gap in one of their motions).
+  bool continuityChecked = false;
+  std::int64_t gaps = 0, plans = 0, dryRunPlans = 0, dryRunPlansRejected = 0;
+  std::string error;  // the run could not be audited (unreadable, no scene, ...)
   bool passed() const { return error.empty() && violationCount == 0; }
 };
 

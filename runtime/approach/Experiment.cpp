@@ -231,6 +231,18 @@ void countRecheck(ExperimentResult& result, const Plan& plan) {
   if (result.recheckViolations++ == 0) result.firstRecheckViolation = plan.recheck.violations.front();
 }
 
+// The record of what the robot did (motions.jsonl) also marks, for robot domains (a program with a world), each
+// plan the runtime accepted, before its motions, and each time the robot was put back without a motion (an
+// evaluation episode's start, a caregiver's reset): `cbtl audit` checks that between those the robot moved only by
+// recorded motions, and tells the plans a dry run accepted apart (RunDirectory.h).
+bool recordsRobot(const Trial& tr) { return tr.config.recordMotions && !tr.lp.worldPath().empty(); }
+
+std::string planLine(const std::string& where, const Plan& plan) {
+  nlohmann::json calls = nlohmann::json::array();
+  for (const sim::ActionCall& c : plan.calls) calls.push_back(c.name);
+  return fmt::format(R"({{{},"plan":{{"calls":{},"dry_run":{}}}}})", where, calls.dump(), plan.dryRun()) + "\n";
+}
+
 void evaluate(Trial& tr, std::int64_t step) {
   const ExperimentConfig& config = tr.config;
   const PreparedProgram& lp = tr.lp;
@@ -243,6 +255,8 @@ void evaluate(Trial& tr, std::int64_t step) {
   int successes = 0, satisfied = 0;
   for (int i = 0; i < config.evalTasks; ++i) {
     tr.evalWorld->reset(evaluationTaskSeed(config.seed, i));
+    if (recordsRobot(tr))
+      tr.out.motionLine(fmt::format(R"({{"phase":"eval","step":{},"task":{},"reset":"episode"}})", step, i) + "\n");
     double satisfaction = 0;
     bool done = false, failed = false;
     std::int64_t steps = 0;
@@ -256,6 +270,8 @@ void evaluate(Trial& tr, std::int64_t step) {
       ++point.competence.requests;
       if (plan.ok) ++point.competence.solved;
       if (!plan.ok || plan.calls.empty()) break;  // the robot cannot do this task: the episode fails
+      if (recordsRobot(tr))
+        tr.out.motionLine(planLine(fmt::format(R"("phase":"eval","step":{},"task":{})", step, i), plan));
       std::size_t next = 0;
       bool open = true;
       while (next < plan.calls.size() && !done && steps < config.maxEvalEpisodeSteps) {
@@ -333,6 +349,8 @@ void trainStep(Trial& tr, std::int64_t t) {
     if (plan.ok) ++result.train.solved;
     tr.planOpen = plan.ok && !plan.calls.empty();
     tr.planDryRun = plan.dryRun();
+    if (recordsRobot(tr) && plan.ok && !plan.calls.empty())
+      tr.out.motionLine(planLine(fmt::format(R"("phase":"train","step":{})", t), plan));
     tr.calls = plan.ok ? std::move(plan.calls) : std::vector<sim::ActionCall>{};
     tr.next = 0;
     tr.planWorld = StepWorld{plan.ok ? std::move(plan.solve.assignment) : std::vector<double>{}, obs};
@@ -342,6 +360,8 @@ void trainStep(Trial& tr, std::int64_t t) {
     for (const auto& m : r.motions) tr.out.motionLine(fmt::format(R"({{"phase":"train","step":{},{}}})", t, m) + "\n");
   countExecution(result.train, tr.planOpen, tr.planDryRun, r, tr.next < tr.calls.size());
   if (r.caregiverReset) ++result.train.caregiverResets;
+  if (r.caregiverReset && recordsRobot(tr))
+    tr.out.motionLine(fmt::format(R"({{"phase":"train","step":{},"reset":"caregiver"}})", t) + "\n");
   std::size_t labels = 0;
   if (tr.learning && !r.feedback.empty()) {
     // A label's feature is a query of the world (an occlusion score, a clearance): it is read in the state the user

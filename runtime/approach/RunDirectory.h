@@ -13,7 +13,11 @@
 //   motions.jsonl.gz   what the robot did, training and evaluation (gzip, one member per checkpoint, appended; kept
 //                      after completion; only for domains that report motions): JSON lines, one per executed
 //                      motion, {"phase": "train" | "eval", "step", "task" (eval), "call": the action, "motion":
-//                      the domain's record} — robot domains: robot/world/MotionRecord.h; `cbtl audit` re-checks it
+//                      the domain's record} — robot domains: robot/world/MotionRecord.h; `cbtl audit` re-checks it.
+//                      Programs with a world also mark each accepted plan before its motions, {"phase", "step",
+//                      "task" (eval), "plan": {"calls": [names], "dry_run": whether a dry run accepted it}}, and
+//                      each time the robot is put back without a motion, {"phase", "step", "task" (eval), "reset":
+//                      "episode" | "caregiver"}
 //   checkpoint.json    the last complete checkpoint (atomic; written after the files above are durable)
 //   profile.json       the final profile (atomic)
 //   llm.json           the text backend and its failure counts (atomic, at the end; textpref/RunReport.h)

@@ -28,6 +28,14 @@ void printReport(const cbtl::app::AuditReport& r) {
   }
   fmt::print("{}: {} motions, {} segments, {} states checked: {}\n", r.run, r.motions, r.segments, r.states,
              r.passed() ? "no violation" : fmt::format("{} violations", r.violationCount));
+  if (r.continuityChecked)
+    fmt::print(
+        "  record: every motion starts where the robot was left{}; {} plans, {} accepted by a dry run, {} of "
+        "those rejected here\n",
+        r.gaps == 0 ? "" : fmt::format(" except {} (violations)", r.gaps), r.plans, r.dryRunPlans,
+        r.dryRunPlansRejected);
+  else
+    fmt::print("  record: marks no plans or resets (written before they were recorded): continuity not checked\n");
   for (const auto& v : r.violations)
     fmt::print("  violation: {}: {} / {} {:.4f} m apart, {:.4f} m required\n", v.where, v.first, v.second, v.separation,
                v.required);

@@ -45,7 +45,16 @@ struct TempRun {
     for (const auto& r : records)
       out << R"({"phase":"train","step":1,"call":)" << call << R"(,"motion":)" << r << "}\n";
   }
+  // Whole lines: motions (`motionLine`), plan and reset marks.
+  void lines(const std::vector<std::string>& lines) const {
+    std::ofstream out(dir / "motions.jsonl");
+    for (const auto& l : lines) out << l << "\n";
+  }
 };
+
+std::string motionLine(const std::string& motion) {
+  return R"({"phase":"train","step":1,"call":{"name":"forged","args":[]},"motion":)" + motion + "}";
+}
 
 const std::shared_ptr<const world::Scene>& homeScene() {
   static const auto scene = world::Scene::loadFile(std::string(CBTL_DOMAINS_DIR) + "/home/home.xml").scene;
@@ -82,6 +91,61 @@ TEST(MotionAudit, AFreeMotionPassesAndAMotionIntoTheTableFails) {
   ASSERT_GT(bad.violationCount, 0);
   EXPECT_EQ(bad.violations.front().second, "table_top") << bad.violations.front().first;
   EXPECT_LT(bad.violations.front().separation, 0.0);
+}
+
+// The record marks plans and resets: a motion that does not start where the last one left the robot is a gap (the
+// robot moved in a way nobody audited), and a plan a dry run accepted with such a motion, or with a contact, is
+// counted as rejected. Between a reset and the next motion the robot may be anywhere. An unmarked record (written
+// before the marks) is not checked for gaps.
+TEST(MotionAudit, ARobotThatMovedWithoutARecordedMotionFails) {
+  TempRun run("gap");
+  run.config(domainFile("cleaning"));
+  const world::Scene& scene = *homeScene();
+  const std::string plan = R"({"phase":"train","step":1,"plan":{"calls":["moveBase"],"dry_run":true}})";
+  const std::string reset = R"({"phase":"train","step":1,"reset":"caregiver"})";
+  world::ExecutedMotion first = freeBaseMotion(), again = freeBaseMotion();  // again: from (0.3, -0.4), not (0.7, -0.4)
+  const std::string a = motionLine(world::motionToJson(scene, first)),
+                    b = motionLine(world::motionToJson(scene, again));
+
+  run.lines({plan, a, plan, b});
+  const AuditReport gap = auditRun(run.dir.string(), {});
+  EXPECT_TRUE(gap.continuityChecked);
+  EXPECT_FALSE(gap.passed());
+  EXPECT_EQ(gap.gaps, 1);
+  ASSERT_EQ(gap.violationCount, 1);
+  EXPECT_NEAR(gap.violations.front().separation, 0.4, 1e-9) << gap.violations.front().where;
+  EXPECT_EQ(gap.plans, 2);
+  EXPECT_EQ(gap.dryRunPlans, 2);
+  EXPECT_EQ(gap.dryRunPlansRejected, 1);
+
+  run.lines({plan, a, reset, plan, b});
+  const AuditReport afterReset = auditRun(run.dir.string(), {});
+  EXPECT_TRUE(afterReset.passed()) << afterReset.violationCount;
+  EXPECT_EQ(afterReset.gaps, 0);
+
+  // Continuing from where the first left the robot: no gap.
+  world::ExecutedMotion on = freeBaseMotion();
+  on.start.base = {0.7, -0.4, 0};
+  on.base = {{0.7, -0.4, 0}, {0.7, -0.1, 0}};
+  run.lines({plan, a, motionLine(world::motionToJson(scene, on))});
+  const AuditReport continued = auditRun(run.dir.string(), {});
+  EXPECT_TRUE(continued.passed()) << continued.violationCount;
+  EXPECT_EQ(continued.dryRunPlansRejected, 0);
+
+  // A plan the dry run accepted whose motion drives into the table: rejected here.
+  world::ExecutedMotion into = freeBaseMotion();
+  into.start.base = {-0.3, 0.0, 0};
+  into.base = {{-0.3, 0.0, 0}, {-0.75, 0.0, 0}};
+  run.lines({reset, plan, motionLine(world::motionToJson(scene, into))});
+  const AuditReport contact = auditRun(run.dir.string(), {});
+  EXPECT_FALSE(contact.passed());
+  EXPECT_EQ(contact.gaps, 0);
+  EXPECT_EQ(contact.dryRunPlansRejected, 1);
+
+  run.lines({a, b});
+  const AuditReport unmarked = auditRun(run.dir.string(), {});
+  EXPECT_FALSE(unmarked.continuityChecked);
+  EXPECT_TRUE(unmarked.passed());
 }
 
 // The robot holding `book` between its fingers (the book's centre 7 cm past the tool frame, its thickness across
@@ -278,6 +342,12 @@ TEST(MotionAudit, RealRunsOfEveryRobotDomainPass) {
     EXPECT_TRUE(r.passed()) << domain << ": " << r.error << " " << r.violationCount
                             << (r.violations.empty() ? "" : " " + r.violations.front().where);
     EXPECT_GT(r.motions, 5) << domain;
+    // The record is whole (every motion starts where the robot was left), and every plan was dry-run.
+    EXPECT_TRUE(r.continuityChecked) << domain;
+    EXPECT_EQ(r.gaps, 0) << domain;
+    EXPECT_GT(r.plans, 0) << domain;
+    EXPECT_EQ(r.dryRunPlans, r.plans) << domain;
+    EXPECT_EQ(r.dryRunPlansRejected, 0) << domain;
     // Pairs skipped while a distance bound shows they cannot matter change nothing: measured at every state, the
     // report is the same.
     o.skipFarPairs = false;

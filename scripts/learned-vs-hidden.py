@@ -130,7 +130,10 @@ def main():
         d for d in os.listdir(root) if os.path.isdir(os.path.join(root, d)) and not d.startswith("."))
     for approach in approaches:
         folder = os.path.join(root, approach)
-        seeds = sorted((d for d in os.listdir(folder) if d.startswith("seed")), key=lambda d: int(d[4:]))
+        # Trial folders only (seed0, seed1, ...): files beside them, such as an audit's report, are not trials.
+        seeds = sorted((d for d in os.listdir(folder)
+                        if d.startswith("seed") and d[4:].isdigit() and os.path.isdir(os.path.join(folder, d))),
+                       key=lambda d: int(d[4:]))
         runs = [(seed, os.path.join(folder, seed)) for seed in seeds]
         {"books": books, "cleaning": cleaning, "feeding": feeding}[sys.argv[1]](approach, runs)
 

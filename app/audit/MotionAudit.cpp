@@ -332,7 +332,7 @@ class Auditor {
   void addViolation(const std::string& where, std::string first, std::string second, double sep, double required,
                     const std::string& note) {
     ++report_.violationCount;
-    if (report_.violations.size() < kMaxListedViolations)
+    if (report_.violations.size() < options_.listed)
       report_.violations.push_back(
           {note.empty() ? where : where + ": " + note, std::move(first), std::move(second), sep, required});
   }

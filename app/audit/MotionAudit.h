@@ -38,6 +38,7 @@ struct AuditOptions {
   double resolution = 0.002;  // largest step between sampled states (rad for joints and yaw, m for the base)
   double cap = 0.10;          // distances up to this are measured for the clearance report (m)
   bool skipFarPairs = true;   // false: every candidate pair is measured at every sampled state (slower, same report)
+  std::size_t listed = 20;    // violations listed in the report (all are counted)
   std::string program;        // the .cbtl file; empty: the run's config.json "file"
 };
 
@@ -57,7 +58,7 @@ struct AuditReport {
   std::string run;
   std::int64_t motions = 0, segments = 0, states = 0;
   std::int64_t violationCount = 0;
-  std::vector<AuditViolation> violations;          // the first kMaxListed
+  std::vector<AuditViolation> violations;          // the first AuditOptions::listed
   std::map<std::string, ClosestApproach> closest;  // per body class: each clearance, scenery, objects, self
   std::vector<std::string> classes;                // the classes in report order: the clearances as declared first
   // The record's completeness and its plans (app/audit/RecordContinuity.h): whether it marks plans and resets (so
@@ -69,7 +70,6 @@ struct AuditReport {
   bool passed() const { return error.empty() && violationCount == 0; }
 };
 
-inline constexpr std::size_t kMaxListedViolations = 20;
 inline constexpr const char* kUnderAllow = " under an allow";  // suffix of the classes of excepted pairs
 
 // Audits the run folder `runDir`. Never throws: problems land in `error`.

@@ -1,7 +1,7 @@
 // `cbtl audit RUN...`: re-checks every motion the runs recorded (app/audit/MotionAudit.h) and prints, per run, the
-// motions, segments and states checked, every violation (the first 20 listed), and the closest approach to each
-// body class, the program's clearances first. Exit codes: 0 every run passed, 1 a violation or a run that cannot be
-// audited, 2 usage, 70 internal error.
+// motions, segments and states checked, every violation (the first 20 listed, or --list N), and the closest approach to
+// each body class, the program's clearances first. Exit codes: 0 every run passed, 1 a violation or a run that cannot
+// be audited, 2 usage, 70 internal error.
 #include "tools/cbtl/CommandRegistry.h"
 #include "tools/cbtl/ErrorHandling.h"
 #include "tools/cbtl/OptionChecks.h"
@@ -73,6 +73,8 @@ void addAuditCommand(CLI::App& app, int& exitCode) {
       "--every-pair", [args](std::int64_t) { args->options.skipFarPairs = false; },
       "measure every candidate pair at every state, also where a distance bound shows it cannot matter "
       "(slower; the same report)");
+  cmd->add_option("--list", args->options.listed, "violations to list per run (all are counted; default 20)")
+      ->check(CLI::Range(0, 1000000));
   cmd->add_option("--program", args->options.program, "the runs' .cbtl file (default: each run's config.json)");
   cmd->callback([args, &exitCode] { cbtl::cli::runCommand("audit", exitCode, [&] { return runAudit(*args); }); });
 }

@@ -37,7 +37,7 @@ void printReport(const cbtl::app::AuditReport& r) {
   else
     fmt::print("  record: marks no plans or resets (written before they were recorded): continuity not checked\n");
   for (const auto& v : r.violations)
-    fmt::print("  violation: {}: {} / {} {:.4f} m apart, {:.4f} m required\n", v.where, v.first, v.second, v.separation,
+    fmt::print("  violation: {}: {} / {} {:.6f} m apart, {:.4f} m required\n", v.where, v.first, v.second, v.separation,
                v.required);
   for (const std::string& cls : r.classes) {
     const auto it = r.closest.find(cls);

@@ -26,23 +26,25 @@ double RecordContinuity::motion(const std::string& phase, const world::ExecutedM
   Phase& p = phases_[phase];
   double gap = 0;
   if (marked_ && p.left) {
+    const auto& [arm, base] = *p.left;
     for (int i = 0; i < world::kArmDof; ++i) {
-      const double d = scene_.armContinuous(i) ? world::angleDiff(motion.start.arm[i], p.left->arm[i])
-                                               : motion.start.arm[i] - p.left->arm[i];
+      const double d =
+          scene_.armContinuous(i) ? world::angleDiff(motion.start.arm[i], arm[i]) : motion.start.arm[i] - arm[i];
       gap = std::max(gap, std::abs(d));
     }
-    gap = std::max({gap, std::abs(motion.start.base.x - p.left->base.x), std::abs(motion.start.base.y - p.left->base.y),
-                    std::abs(world::angleDiff(motion.start.base.yaw, p.left->base.yaw))});
+    gap = std::max({gap, std::abs(motion.start.base.x - base.x), std::abs(motion.start.base.y - base.y),
+                    std::abs(world::angleDiff(motion.start.base.yaw, base.yaw))});
   }
   if (gap > kContinuityTolerance) ++tally_.gaps;
   if ((faulty || gap > kContinuityTolerance) && p.inPlan && p.dryRunPlan && !p.rejected) {
     p.rejected = true;
     ++tally_.dryRunRejected;
   }
-  world::WorldState left = motion.start;
-  if (motion.kind == world::ExecutedMotion::Kind::Arm && !motion.arm.empty()) left.arm = motion.arm.back();
-  if (motion.kind == world::ExecutedMotion::Kind::Base && !motion.base.empty()) left.base = motion.base.back();
-  p.left = std::move(left);
+  // Only the robot is compared: objects may move without a robot motion (a caregiver's restock, a new meal).
+  std::pair<world::ArmConfig, world::Pose2> left{motion.start.arm, motion.start.base};
+  if (motion.kind == world::ExecutedMotion::Kind::Arm && !motion.arm.empty()) left.first = motion.arm.back();
+  if (motion.kind == world::ExecutedMotion::Kind::Base && !motion.base.empty()) left.second = motion.base.back();
+  p.left = left;
   return gap;
 }
 

@@ -20,6 +20,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace cbtl::app {
 
@@ -48,7 +49,7 @@ class RecordContinuity {
 
  private:
   struct Phase {
-    std::optional<world::WorldState> left;  // where the last motion left the robot
+    std::optional<std::pair<world::ArmConfig, world::Pose2>> left;  // where the last motion left arm and base
     bool dryRunPlan = false, rejected = false, inPlan = false;
   };
   const world::Scene& scene_;

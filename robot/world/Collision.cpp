@@ -41,8 +41,10 @@ std::string CollisionReport::describe() const {
     text += fmt::format("{}clearance {} needs {:.1f} mm)", separation <= 0 ? "; " : "", clearance, required * 1e3);
   else if (required < 0)
     text += fmt::format("{}{:.1f} mm allowed)", separation <= 0 ? "; " : "", -required * 1e3);
-  else if (required > 0)
+  else if (required > kContactDistance)
     text += fmt::format("{}keep-out {:.1f} mm)", separation <= 0 ? "; " : "", required * 1e3);
+  else if (separation > 0)
+    text += fmt::format("within {:.3f} mm: contact)", kContactDistance * 1e3);
   else
     text += ")";
   return text;

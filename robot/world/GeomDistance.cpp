@@ -330,6 +330,33 @@ struct GeomDistance::Impl {
   }
 };
 
+double GeomDistance::translationSeparation(const mjData* d, int g1, int g2, const double v[3]) const {
+  const Solid a(impl_->model, d, g1), b(impl_->model, d, g2);
+  const Eigen::Vector3d shift(v[0], v[1], v[2]);
+  double best = -std::numeric_limits<double>::infinity();
+  // gap(a, b, u) is measured across u from a towards b: translating a by s·v raises a's support along u by s·(u·v).
+  auto tryDirection = [&](Eigen::Vector3d u) {
+    const double n = u.norm();
+    if (!(n > 1e-12)) return;
+    u /= n;
+    best = std::max(best, gap(a, b, u) - std::max(0.0, u.dot(shift)));
+  };
+  for (int i = 0; i < 3; ++i) {
+    for (const Eigen::Vector3d& axis : {Eigen::Vector3d(a.axes.col(i)), Eigen::Vector3d(b.axes.col(i))}) {
+      tryDirection(axis);
+      tryDirection(-axis);
+    }
+    for (int j = 0; j < 3; ++j) {
+      const Eigen::Vector3d c = a.axes.col(i).cross(b.axes.col(j));
+      tryDirection(c);
+      tryDirection(-c);
+    }
+  }
+  tryDirection(b.centre - a.centre);
+  tryDirection(b.centre - a.centre - shift);
+  return best;
+}
+
 GeomDistance::GeomDistance(const mjModel* m) : impl_(std::make_unique<Impl>()) {
   impl_->model = m;
   impl_->shapes.resize(static_cast<size_t>(m->ngeom));

@@ -45,6 +45,15 @@ class GeomDistance {
   double separation(const mjData* d, int g1, int g2, double enough = std::numeric_limits<double>::infinity(),
                     bool needDepth = true) const;
 
+  // A lower bound on the separation of geoms g1 and g2 at every pose of a pure translation of g1 by s·v (v in
+  // metres, world frame; s in [0, 1]) from the poses in `d`, g2 fixed. For a fixed direction u the empty slab
+  // between two solids narrows by exactly s·(u·v) when one of them translates by s·v, so the slab's width at s = 0
+  // less max(0, u·v) holds over the whole translation; the answer is the best over the candidate directions (both
+  // solids' axes and their cross products, which do not turn, and the line between the centres at each end).
+  // Never above the true signed distance anywhere on the translation; it may be far below it (a pair whose nearest
+  // direction turns as it passes). Both geoms must be supported.
+  double translationSeparation(const mjData* d, int g1, int g2, const double v[3]) const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

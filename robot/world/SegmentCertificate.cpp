@@ -1,5 +1,6 @@
 #include "robot/world/SegmentCertificate.h"
 
+#include "robot/world/GeomDistance.h"
 #include "robot/world/MotionBound.h"
 #include "robot/world/Separation.h"
 
@@ -81,15 +82,22 @@ std::vector<double> pairRates(const Workspace& ws, const std::vector<CheckedPair
 // and only a pair that still fails is tested at the piece's midpoint.
 class Certifier {
  public:
+  // `wholeSegment`, when given, may prove a pair clear over the whole segment at once (the Workspace at its start);
+  // it is asked only about pairs whose cheap bounds at the two ends do not.
   Certifier(Workspace& ws, const std::vector<CheckedPair>& pairs, std::vector<double> rates,
-            std::function<void(double)> setAt)
-      : ws_(ws), pairs_(pairs), rates_(std::move(rates)), setAt_(std::move(setAt)) {}
+            std::function<void(double)> setAt, std::function<bool(const CheckedPair&)> wholeSegment = {})
+      : ws_(ws),
+        pairs_(pairs),
+        rates_(std::move(rates)),
+        setAt_(std::move(setAt)),
+        wholeSegment_(std::move(wholeSegment)) {}
 
   SegmentReport run() {
     std::vector<int> all(pairs_.size());
     for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
     const int start = measure(0.0, all);
     const int end = measure(1.0, all);
+    if (wholeSegment_) settle(start, end, all);
     struct Node {
       int from, to;
       std::vector<int> pairs;
@@ -138,6 +146,17 @@ class Certifier {
     return out;
   }
 
+  // Drops from `subset` the pairs the cheap bounds leave open and wholeSegment_ proves clear.
+  void settle(int start, int end, std::vector<int>& subset) {
+    const std::vector<int> open = failing(start, end, subset, 1.0);
+    if (open.empty()) return;
+    setAt_(0.0);
+    ++report_.states;
+    std::vector<char> settled(pairs_.size(), 0);
+    for (int i : open) settled[static_cast<std::size_t>(i)] = wholeSegment_(pairs_[static_cast<std::size_t>(i)]);
+    std::erase_if(subset, [&](int i) { return settled[static_cast<std::size_t>(i)] != 0; });
+  }
+
   // The cheap bounds of `subset` at parameter t, as a new state.
   int measure(double t, const std::vector<int>& subset) {
     setAt_(t);
@@ -184,7 +203,7 @@ class Certifier {
   void fail(SegmentStatus status, const CheckedPair& p, double depth, double t) {
     const Scene& sc = ws_.scene();
     report_.status = status;
-    report_.contact = {p.kind, sc.geomName(p.g1), sc.geomName(p.g2), depth};
+    report_.contact = {p.kind, sc.geomName(p.g1), sc.geomName(p.g2), depth, p.required, {}};
     report_.at = t;
   }
 
@@ -192,6 +211,7 @@ class Certifier {
   const std::vector<CheckedPair>& pairs_;
   std::vector<double> rates_;
   std::function<void(double)> setAt_;
+  std::function<bool(const CheckedPair&)> wholeSegment_;
   std::vector<State> states_;
   SegmentReport report_;
 };
@@ -232,11 +252,28 @@ SegmentReport certifyBaseSegment(Workspace& ws, const Pose2& a, const Pose2& b, 
     if (k >= 0) delta[static_cast<std::size_t>(k)] = std::abs(steps[i]);
   }
   const std::vector<CheckedPair>& pairs = pairsFor(ws, options);
-  Certifier c(ws, pairs, pairRates(ws, pairs, delta), [&](double t) {
+  auto setAt = [&](double t) {
     if (t >= 1.0) return ws.setBase(b);
     ws.setBase(Pose2{a.x + t * dx, a.y + t * dy, wrapAngle(a.yaw + t * dyaw)});
-  });
-  return c.run();
+  };
+  const bool slides = jointNamed(s, "base_x") >= 0 && jointNamed(s, "base_y") >= 0;
+  if (dyaw != 0 || (dx == 0 && dy == 0) || !slides)
+    return Certifier(ws, pairs, pairRates(ws, pairs, delta), setAt).run();
+  // A pure translation (a wipe stroke, a straight drive): every robot geom and the held object shift by the same
+  // vector, the slides' world axes (fixed: they precede the yaw hinge) times their steps, and turn not at all, so a
+  // pair of a moving and a fixed geom can be settled over the whole segment by GeomDistance's translation bound.
+  double shift[3] = {0, 0, 0};
+  for (const auto& [name, step] : {std::pair{"base_x", dx}, std::pair{"base_y", dy}}) {
+    const double* axis = ws.data()->xaxis + 3 * jointNamed(s, name);
+    for (int k = 0; k < 3; ++k) shift[k] += step * axis[k];
+  }
+  const GeomDistance& exact = s.geomDistance();
+  auto wholeSegment = [&](const CheckedPair& p) {
+    if (moverOf(ws, p.g1).body < 0 || moverOf(ws, p.g2).body >= 0) return false;
+    if (!exact.supports(p.g1) || !exact.supports(p.g2)) return false;
+    return exact.translationSeparation(ws.data(), p.g1, p.g2, shift) - p.required > 0;
+  };
+  return Certifier(ws, pairs, pairRates(ws, pairs, delta), setAt, wholeSegment).run();
 }
 
 }  // namespace cbtl::world

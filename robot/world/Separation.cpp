@@ -57,8 +57,10 @@ double requiredSeparation(const Scene& s, int held, const CollisionOptions& o, i
   return required;
 }
 
-// Puts the moving geom first (the held object's geom, or the robot's).
+// Puts the moving geom first (the held object's geom, or the robot's); a requirement at or above zero keeps at least
+// kContactDistance.
 CheckedPair oriented(const Scene& s, int held, int g1, int g2, double required, CollisionStatus kind) {
+  if (required >= 0) required = std::max(required, kContactDistance);
   const mjModel* m = s.model();
   auto moving = [&](int g) {
     const int b = m->geom_bodyid[g];

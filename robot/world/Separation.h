@@ -20,9 +20,16 @@
 
 namespace cbtl::world {
 
+// Two solids nearer than this are in contact, whatever the required separation says (10 µm). Not a clearance: the
+// resolution at which two exact checkers agree. The exact geometry here (separating axes, closed forms) and FCL's
+// box-box and GJK tests, which `cbtl audit` uses, can disagree by about a micrometre at touching: a finger certified
+// 0.9 µm from a book was in contact for FCL (issue 40's Books grid). Every pair whose required separation is at or
+// above zero must keep at least this much; an allowed contact depth (a negative requirement) is left as declared.
+inline constexpr double kContactDistance = 1e-5;
+
 struct CheckedPair {
   int g1 = -1, g2 = -1;  // g1 moves with the robot (a robot geom or a geom of the held object)
-  double required = 0;   // metres the pair must stay apart (negative: an allowed contact depth)
+  double required = 0;   // metres the pair must stay apart: kContactDistance or more, or negative (an allowed depth)
   CollisionStatus kind = CollisionStatus::RobotWorld;
 };
 

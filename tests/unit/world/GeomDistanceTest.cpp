@@ -190,6 +190,63 @@ TEST(WorldGeomDistance, RoundShapesInClosedForm) {
   EXPECT_NEAR(pointBoxDistance(x, c, eye, h), std::sqrt(2.0), 1e-12);
 }
 
+// The translation bound (a lower bound on the separation all along a straight shift of one box) never exceeds the
+// true signed distance at any point of the shift: measured at 201 points of each of 3,000 random shifts of boxes
+// turned any way, against the exact overlap depth (separating axes) or FCL's nearest points (an upper bound).
+TEST(WorldGeomDistance, TranslationBoundHoldsAllAlongTheShift) {
+  TwoBoxes t("0.075 0.04 0.04", "0.3 0.2 0.02");
+  const GeomDistance exact(t.m);
+  auto fclUpper = [&] {
+    auto tf = [&](int g) {
+      fcl::Transform3d x = fcl::Transform3d::Identity();
+      x.linear() = t.rotation(g);
+      x.translation() = t.centre(g);
+      return x;
+    };
+    const auto a = fclShapeOf(t.m, 0), b = fclShapeOf(t.m, 1);
+    fcl::DistanceRequestd req(true);
+    req.gjk_solver_type = fcl::GST_INDEP;
+    fcl::DistanceResultd res;
+    fcl::distance(a.get(), tf(0), b.get(), tf(1), req, res);
+    return (res.nearest_points[1] - res.nearest_points[0]).norm();
+  };
+  std::mt19937 gen(5);
+  std::normal_distribution<double> n;
+  int informative = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Eigen::Quaterniond qa = i % 2 ? randomRotation(gen) : Eigen::Quaterniond::Identity();
+    const Eigen::Quaterniond qb = i % 3 ? randomRotation(gen) : Eigen::Quaterniond::Identity();
+    const Eigen::Vector3d p0 = 0.15 * Eigen::Vector3d(n(gen), n(gen), n(gen));
+    const Eigen::Vector3d v = 0.2 * Eigen::Vector3d(n(gen), n(gen), n(gen));
+    t.place(1, Eigen::Vector3d::Zero(), qb);
+    t.place(0, p0, qa);
+    const double bound = exact.translationSeparation(t.d, 0, 1, v.data());
+    if (bound > -0.05) ++informative;
+    for (int k = 0; k <= 200; ++k) {
+      t.place(0, p0 + (k / 200.0) * v, qa);
+      const double truth = boxesOverlap(t) ? exact.separation(t.d, 0, 1) : fclUpper();
+      ASSERT_LE(bound, truth + 1e-9) << "shift " << i << " at " << k / 200.0;
+    }
+  }
+  EXPECT_GT(informative, 300);
+}
+
+// A box pressed 2 mm into a slab's top and slid along it (a wipe stroke): the bound is the 2 mm overlap, exactly,
+// whatever the stroke's length; a stroke that also sinks 1 cm is bounded by the deepest end.
+TEST(WorldGeomDistance, TranslationBoundOfAStrokeAlongAFaceIsItsDepth) {
+  TwoBoxes t("0.075 0.04 0.04", "0.3 0.2 0.02");
+  const GeomDistance exact(t.m);
+  const Eigen::Quaterniond upright = Eigen::Quaterniond::Identity();
+  t.place(1, Eigen::Vector3d::Zero(), upright);
+  t.place(0, Eigen::Vector3d(-0.2, 0.05, 0.02 + 0.04 - 0.002), upright);
+  const double along[3] = {0.4, -0.1, 0.0};
+  EXPECT_NEAR(exact.translationSeparation(t.d, 0, 1, along), -0.002, 1e-12);
+  const double sinking[3] = {0.4, -0.1, -0.01};
+  EXPECT_NEAR(exact.translationSeparation(t.d, 0, 1, sinking), -0.012, 1e-12);
+  const double rising[3] = {0.4, -0.1, 0.01};
+  EXPECT_NEAR(exact.translationSeparation(t.d, 0, 1, rising), -0.002, 1e-12);
+}
+
 // An upper bound on the distance of two geoms: the distance between the two nearest points FCL's GJK reports (each
 // lies on its shape, so the true distance cannot be larger). NaN when FCL finds them overlapping or does not know
 // the shapes (planes are left out: a half-space's "nearest point" is not on a bounded surface).

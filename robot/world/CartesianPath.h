@@ -11,7 +11,8 @@
 // attempt, no random restart, collision-free with `collision`), must lie within `maxJointStep` radians (L∞) of
 // it, and the joint segment between the two must be certified free with `collision` (SegmentCertificate.h). The result
 // starts at the current configuration and ends at an IK solution of `target`; the Workspace is left in the
-// state it had. Deterministic: no random draws.
+// state it had. Deterministic: no random draws, so the answer is cached in the scene's MotionCache (MotionQuery.h,
+// kind Line) and the executor's line after a dry run's is a lookup.
 #pragma once
 
 #include "robot/world/InverseKinematics.h"

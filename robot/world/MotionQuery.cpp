@@ -72,6 +72,19 @@ MotionQuery baseQuery(const Workspace& ws, const Pose2& goal, const PlanOptions&
   return q;
 }
 
+MotionQuery lineQuery(const Workspace& ws, const Pose3& target, const CollisionOptions& collision,
+                      const std::vector<double>& lineOptions) {
+  MotionQuery q;
+  q.kind = MotionKind::Line;
+  PlanOptions o;
+  o.collision = collision;
+  q.key = stateKey(ws, q.kind, o);
+  appendPose(q.key, target);
+  q.key.insert(q.key.end(), lineOptions.begin(), lineOptions.end());
+  q.fingerprint = fingerprintOf(q.key);
+  return q;
+}
+
 std::optional<MotionAnswer> MotionCache::find(const MotionQuery& q, int budget) {
   std::lock_guard lock(mutex_);
   const auto it = entries_.find(q.fingerprint);

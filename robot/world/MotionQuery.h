@@ -35,7 +35,9 @@
 
 namespace cbtl::world {
 
-enum class MotionKind : std::uint8_t { Arm, Base };
+// Arm and Base: planArm / planBase. Line: a Cartesian tool line (CartesianPath.h), deterministic without a random
+// stream (one IK attempt per step, seeded at the previous step).
+enum class MotionKind : std::uint8_t { Arm, Base, Line };
 
 struct MotionQuery {
   MotionKind kind = MotionKind::Arm;
@@ -47,6 +49,10 @@ struct MotionQuery {
 // from the Workspace's current state with `options`.
 MotionQuery armQuery(const Workspace& ws, const ArmConfig& goal, const PlanOptions& options);
 MotionQuery baseQuery(const Workspace& ws, const Pose2& goal, const PlanOptions& options);
+// The query for a Cartesian tool line to `target` from the Workspace's current state: `collision`, the line's own
+// options and the IK options its steps use, as numbers (`lineOptions`, CartesianPath.cpp builds them).
+MotionQuery lineQuery(const Workspace& ws, const Pose3& target, const CollisionOptions& collision,
+                      const std::vector<double>& lineOptions);
 
 // FNV-1a over the bytes of `values`, finished with SplitMix64 (well mixed in every bit).
 std::uint64_t fingerprintOf(const std::vector<double>& values);
@@ -56,7 +62,7 @@ struct MotionAnswer {
   PlanStatus status = PlanStatus::BudgetExhausted;
   int budget = 0;              // the RRTConnect budget it was computed with
   int iterations = 0;          // the iterations it used
-  std::vector<ArmConfig> arm;  // MotionKind::Arm
+  std::vector<ArmConfig> arm;  // MotionKind::Arm and Line
   std::vector<Pose2> base;     // MotionKind::Base
   bool solved() const { return status == PlanStatus::Solved; }
   // Whether this answer is the one a plan with `budget` iterations would give.

@@ -1,6 +1,7 @@
 // The motion cache changes speed, never results: a cached answer equals a fresh plan of the same query, the
 // budget is not part of the key but decides whether an entry answers, every input of a plan is in the key, and
 // eviction is first in, first out.
+#include "robot/world/CartesianPath.h"
 #include "robot/world/InverseKinematics.h"
 #include "robot/world/MotionQuery.h"
 #include "tests/unit/world/WorldTestSupport.h"
@@ -57,6 +58,32 @@ TEST(WorldMotionCache, ACachedAnswerEqualsAFreshPlanOfTheSameQuery) {
   EXPECT_EQ(direct.status, first.status);
   EXPECT_EQ(direct.path, first.path);
   EXPECT_EQ(direct.iterations, first.iterations);
+}
+
+// A Cartesian tool line is cached too (kind Line): asked again from the same state it is a lookup with the same
+// waypoints; a line with other step limits is a different query.
+TEST(WorldMotionCache, ACachedToolLineEqualsTheFreshOne) {
+  auto ws = startedAt(configs::kHome);
+  const Pose3 target = ws->toolPose() * Pose3::fromPosition({0.0, 0.031, -0.047});
+  const IkOptions ik;
+  CartesianPathOptions line;
+  line.maxStep = 0.004;
+  MotionCache& cache = ws->scene().motionCache();
+  const MotionCacheStats before = cache.stats();
+  const auto first = cartesianToolPath(*ws, target, ik, line);
+  ASSERT_TRUE(first.has_value());
+  EXPECT_GT(first->size(), 5u);
+  EXPECT_EQ(cache.stats().stored, before.stored + 1);
+  auto again = startedAt(configs::kHome);
+  const auto cached = cartesianToolPath(*again, target, ik, line);
+  EXPECT_EQ(cache.stats().hits, before.hits + 1);
+  ASSERT_TRUE(cached.has_value());
+  EXPECT_EQ(*cached, *first);
+  line.maxStep = 0.005;
+  const auto coarser = cartesianToolPath(*again, target, ik, line);
+  EXPECT_EQ(cache.stats().hits, before.hits + 1);
+  ASSERT_TRUE(coarser.has_value());
+  EXPECT_LT(coarser->size(), first->size());
 }
 
 TEST(WorldMotionCache, TheBudgetDecidesWhetherAnEntryAnswers) {

@@ -42,7 +42,7 @@ void printReport(const cbtl::app::AuditReport& r) {
   for (const std::string& cls : r.classes) {
     const auto it = r.closest.find(cls);
     if (it == r.closest.end()) continue;
-    fmt::print("  closest to {}: {:.4f} m ({} / {}), at {}\n", cls, it->second.distance, it->second.first,
+    fmt::print("  closest to {}: {:.6f} m ({} / {}), at {}\n", cls, it->second.distance, it->second.first,
                it->second.second, it->second.where);
   }
 }

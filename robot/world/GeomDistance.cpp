@@ -209,6 +209,35 @@ double axesGap(const Solid& a, const Solid& b, double enough) {
   return best;
 }
 
+// axesGap for two boxes in closed form (the classic oriented-box test: B's axes in A's frame, R = AᵀB): the same
+// slab widths gap() measures across the same 15 directions, for a fraction of the work. A cross axis of two nearly
+// parallel edges (|a_i × b_j| < 1e-6) is skipped, since dividing by its length would magnify rounding; the face
+// normals decide that case, and leaving out a candidate only lowers the bound (a deeper overlap, a smaller gap).
+double boxAxesGap(const Solid& a, const Solid& b, double enough) {
+  const Eigen::Matrix3d r = a.axes.transpose() * b.axes;
+  const Eigen::Matrix3d absR = r.cwiseAbs();
+  const Eigen::Vector3d d = a.axes.transpose() * (b.centre - a.centre);
+  const Eigen::Vector3d& ha = a.size;
+  const Eigen::Vector3d& hb = b.size;
+  double best = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i) best = std::max(best, std::abs(d[i]) - ha[i] - absR.row(i).dot(hb));
+  for (int j = 0; j < 3; ++j) best = std::max(best, std::abs(r.col(j).dot(d)) - absR.col(j).dot(ha) - hb[j]);
+  if (best > enough) return best;
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const double length = std::sqrt(std::max(0.0, 1.0 - r(i, j) * r(i, j)));
+      if (length < 1e-6) continue;
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double across = std::abs(d[i2] * r(i1, j) - d[i1] * r(i2, j));
+      const double reachA = ha[i1] * absR(i2, j) + ha[i2] * absR(i1, j);
+      const double reachB = hb[j1] * absR(i, j2) + hb[j2] * absR(i, j1);
+      best = std::max(best, (across - reachA - reachB) / length);
+    }
+  }
+  return best;
+}
+
 // The gap across the direction in which a sphere, capsule or cylinder's axis comes nearest to a box (exact for a
 // sphere or capsule apart from the box: the nearest points of its axis and the box give the witness direction).
 // -inf when neither is such a pair or the axis enters the box.
@@ -256,11 +285,12 @@ double cheapGap(const Solid& a, const Solid& b, double enough, bool& settled) {
       return best;
     }
   }
-  best = std::max(best, axesGap(a, b, enough));
+  const bool boxes = a.type == mjGEOM_BOX && b.type == mjGEOM_BOX;
+  best = std::max(best, boxes ? boxAxesGap(a, b, enough) : axesGap(a, b, enough));
   // Two boxes: the separating-axis candidates decide overlap exactly and give its depth exactly; apart, their gap
   // is the distance for faces or edges facing each other (books on shelves, a gripper over a table) and a lower
   // bound otherwise, which the certificates can work with.
-  settled = a.type == mjGEOM_BOX && b.type == mjGEOM_BOX;
+  settled = boxes;
   return best;
 }
 

@@ -192,21 +192,34 @@ Eigen::Vector3d segmentBoxDirection(const Solid& box, const Eigen::Vector3d& p, 
 
 bool axial(const Solid& s) { return s.type == mjGEOM_SPHERE || s.type == mjGEOM_CAPSULE || s.type == mjGEOM_CYLINDER; }
 
-// The separating-axis candidates: each solid's axes and their cross products (complete for two boxes: two boxes
-// are apart exactly when one of these separates them, and the smallest overlap among them is their depth).
-double axesGap(const Solid& a, const Solid& b, double enough) {
-  double best = -std::numeric_limits<double>::infinity();
+// The separating-axis candidates, each in both senses (complete for two boxes: two boxes are apart exactly when one
+// of these separates them, and the smallest overlap among them is their depth): each solid's axes (the face
+// normals) to `face`, their cross products (edge against edge) to `edge`. The directions need not be unit length.
+template <class Face, class Edge>
+void visitSeparatingAxes(const Solid& a, const Solid& b, Face&& face, Edge&& edge) {
   for (int i = 0; i < 3; ++i)
-    best = std::max({best, gap(a, b, a.axes.col(i)), gap(a, b, -a.axes.col(i)), gap(a, b, b.axes.col(i)),
-                     gap(a, b, -b.axes.col(i))});
-  if (best > enough) return best;  // face normals first: they decide most pairs (faces facing each other)
-  for (int i = 0; i < 3; ++i) {
+    for (const Eigen::Vector3d& u : {Eigen::Vector3d(a.axes.col(i)), Eigen::Vector3d(b.axes.col(i))}) {
+      face(u);
+      face(-u);
+    }
+  for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       const Eigen::Vector3d c = a.axes.col(i).cross(b.axes.col(j));
-      best = std::max({best, gap(a, b, c), gap(a, b, -c)});
+      edge(c);
+      edge(-c);
     }
-  }
-  return best;
+}
+
+// The widest slab across the separating-axis candidates; the edge directions only when the face normals leave the
+// gap at or below `enough` (face normals decide most pairs: faces facing each other).
+double axesGap(const Solid& a, const Solid& b, double enough) {
+  double faces = -std::numeric_limits<double>::infinity(), edges = faces;
+  visitSeparatingAxes(
+      a, b, [&](const Eigen::Vector3d& u) { faces = std::max(faces, gap(a, b, u)); },
+      [&](const Eigen::Vector3d& u) {
+        if (!(faces > enough)) edges = std::max(edges, gap(a, b, u));
+      });
+  return std::max(faces, edges);
 }
 
 // axesGap for two boxes in closed form (the classic oriented-box test: B's axes in A's frame, R = AᵀB): the same
@@ -371,17 +384,7 @@ double GeomDistance::translationSeparation(const mjData* d, int g1, int g2, cons
     u /= n;
     best = std::max(best, gap(a, b, u) - std::max(0.0, u.dot(shift)));
   };
-  for (int i = 0; i < 3; ++i) {
-    for (const Eigen::Vector3d& axis : {Eigen::Vector3d(a.axes.col(i)), Eigen::Vector3d(b.axes.col(i))}) {
-      tryDirection(axis);
-      tryDirection(-axis);
-    }
-    for (int j = 0; j < 3; ++j) {
-      const Eigen::Vector3d c = a.axes.col(i).cross(b.axes.col(j));
-      tryDirection(c);
-      tryDirection(-c);
-    }
-  }
+  visitSeparatingAxes(a, b, tryDirection, tryDirection);
   tryDirection(b.centre - a.centre);
   tryDirection(b.centre - a.centre - shift);
   return best;

@@ -46,7 +46,7 @@ bool names(const Scene& s, const ContactAllowance& a, int g) {
 }
 
 // The separation the pair (g1, g2) must keep: its keep-out, or the smallest separation an allowance that covers it
-// grants.
+// grants; at or above zero, at least kContactDistance.
 double requiredSeparation(const Scene& s, int held, const CollisionOptions& o, int g1, int g2, double keepOut) {
   double required = keepOut;
   for (const ContactAllowance& a : o.allowances) {
@@ -54,13 +54,11 @@ double requiredSeparation(const Scene& s, int held, const CollisionOptions& o, i
         (isPart(s, held, g1, a.part) && names(s, a, g2)) || (isPart(s, held, g2, a.part) && names(s, a, g1));
     if (covers) required = std::min(required, a.separation);
   }
-  return required;
+  return required >= 0 ? std::max(required, kContactDistance) : required;
 }
 
-// Puts the moving geom first (the held object's geom, or the robot's); a requirement at or above zero keeps at least
-// kContactDistance.
+// Puts the moving geom first (the held object's geom, or the robot's).
 CheckedPair oriented(const Scene& s, int held, int g1, int g2, double required, CollisionStatus kind) {
-  if (required >= 0) required = std::max(required, kContactDistance);
   const mjModel* m = s.model();
   auto moving = [&](int g) {
     const int b = m->geom_bodyid[g];

@@ -38,7 +38,8 @@ struct CheckedPair {
 const std::vector<CheckedPair>& pairsFor(const Workspace& ws, const CollisionOptions& options);
 
 // The separation the pair (g1, g2) must keep with `ws`'s held object and `options`' allowances: its keep-out
-// (Scene::keepOut), or the smaller separation of an allowance that covers it.
+// (Scene::keepOut), or the smaller separation of an allowance that covers it; at or above zero, at least
+// kContactDistance.
 double requiredSeparation(const Workspace& ws, const CollisionOptions& options, int g1, int g2);
 
 // A lower bound on the separation of geoms g1 and g2 at the current poses (never above the exact one).

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <tuple>
 #include <vector>
 
@@ -147,6 +148,33 @@ struct Solid {
   }
 };
 
+// The point of `s` farthest along the unit vector d (a point where support(d) is reached), or nullopt for a shape
+// without a closed form here (ellipsoid, plane).
+std::optional<Eigen::Vector3d> supportPoint(const Solid& s, const Eigen::Vector3d& d) {
+  const auto sign = [](double x) { return x < 0 ? -1.0 : 1.0; };
+  switch (s.type) {
+    case mjGEOM_SPHERE:
+      return Eigen::Vector3d(s.centre + s.size[0] * d);
+    case mjGEOM_CAPSULE:
+      return Eigen::Vector3d(s.centre + s.size[1] * sign(d.dot(s.axes.col(2))) * s.axes.col(2) + s.size[0] * d);
+    case mjGEOM_CYLINDER: {
+      const Eigen::Vector3d z = s.axes.col(2);
+      const Eigen::Vector3d radial = d - d.dot(z) * z;
+      const double n = radial.norm();
+      Eigen::Vector3d p = s.centre + s.size[1] * sign(d.dot(z)) * z;
+      if (n > 1e-12) p += s.size[0] / n * radial;
+      return p;
+    }
+    case mjGEOM_BOX: {
+      Eigen::Vector3d p = s.centre;
+      for (int k = 0; k < 3; ++k) p += s.size[k] * sign(d.dot(s.axes.col(k))) * s.axes.col(k);
+      return p;
+    }
+    default:
+      return std::nullopt;
+  }
+}
+
 // The width of the empty slab between a and b across direction u (from a towards b): a lower bound on their
 // distance for every u, and, when they overlap, at most minus their penetration depth. The true signed distance
 // is the largest gap over all directions.
@@ -284,6 +312,27 @@ double axisAxisGap(const Solid& a, const Solid& b) {
   return std::max(gap(a, b, u), gap(a, b, -u));
 }
 
+// The gap across a cylinder's axis (a round table top and what is above it, a cup standing on it), and whether it is
+// the distance: it is when the other solid's point nearest the cylinder's end plane lies over the end disc, since
+// that point is then exactly the slab's width from a point of the disc. -inf (not exact) unless one is a cylinder.
+double cylinderFaceGap(const Solid& a, const Solid& b, bool& exact) {
+  exact = false;
+  double best = -std::numeric_limits<double>::infinity();
+  for (const auto& [c, o, sense] : {std::tuple{&a, &b, 1.0}, std::tuple{&b, &a, -1.0}}) {
+    if (c->type != mjGEOM_CYLINDER) continue;
+    const Eigen::Vector3d axis = c->axes.col(2);
+    const Eigen::Vector3d n = (o->centre - c->centre).dot(axis) < 0 ? Eigen::Vector3d(-axis) : axis;  // c towards o
+    const double width = gap(a, b, sense * n);
+    best = std::max(best, width);
+    const auto p = supportPoint(*o, -n);
+    if (width > 0 && p) {
+      const Eigen::Vector3d off = *p - c->centre;
+      exact = exact || (off - off.dot(axis) * axis).norm() <= c->size[0];
+    }
+  }
+  return best;
+}
+
 // The cheap candidate directions, by pair kind, stopping as soon as a gap exceeds `enough`: the line between the
 // centres; for a round solid (sphere, capsule, cylinder) and a box or another round solid, the nearest-point
 // direction of their axes, taken as the answer when it shows them apart; the separating-axis candidates.
@@ -301,6 +350,12 @@ double cheapGap(const Solid& a, const Solid& b, double enough, bool& settled) {
     const bool witness = a.type != mjGEOM_CYLINDER && b.type != mjGEOM_CYLINDER;
     if (best > enough || (witness && best > 0)) {
       settled = witness && best > 0;
+      return best;
+    }
+    bool exact = false;
+    best = std::max(best, cylinderFaceGap(a, b, exact));
+    if (exact || best > enough) {
+      settled = exact;
       return best;
     }
   }

@@ -355,14 +355,17 @@ TEST(WorldGeomDistance, CheapBoundsNeverExceedTheExactSeparation) {
 }
 
 // A wide flat cylinder (the round table top of feeding.xml, radius 32 cm, 4 cm thick) and a box (the gripper's base)
-// held 16 cm above it, level or tilted, to the side of the centre: the separation is the true gap, which is the slab
-// across the cylinder's axis. The direction between the box and the cylinder's short axis segment, the answer until
-// 2026-12-07, gave 9 mm and refused every motion of the arm over the round table at 1 cm.
+// held 16 cm above it, level or tilted, to the side of the centre, or a cup standing just above it: the separation is
+// the true gap, which is the slab across the cylinder's axis. The direction between the box and the cylinder's short
+// axis segment, the answer until 2026-12-07, gave 9 mm and refused every motion of the arm over the round table at 1
+// cm.
 TEST(WorldGeomDistance, AWideCylinderIsMeasuredAcrossItsFaceNotFromItsAxis) {
   const std::string path = (std::filesystem::temp_directory_path() / "cbtl_table_and_box.xml").string();
-  std::ofstream(path) << "<mujoco><worldbody><body name='top'><freejoint/><geom name='top' type='cylinder' "
-                         "size='0.32 0.02'/></body><body name='box'><freejoint/><geom name='box' type='box' "
-                         "size='0.043 0.043 0.0475'/></body></worldbody></mujoco>";
+  std::ofstream(path)
+      << "<mujoco><worldbody><body name='top'><freejoint/><geom name='top' type='cylinder' "
+         "size='0.32 0.02'/></body><body name='box'><freejoint/><geom name='box' type='box' "
+         "size='0.043 0.043 0.0475'/></body><body name='cup'><freejoint/><geom name='cup' type='cylinder' "
+         "size='0.0435 0.065'/></body></worldbody></mujoco>";
   char error[500] = "";
   mjModel* m = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
   std::filesystem::remove(path);
@@ -374,6 +377,7 @@ TEST(WorldGeomDistance, AWideCylinderIsMeasuredAcrossItsFaceNotFromItsAxis) {
     x[0] = 0.35, x[1] = 0.45, x[2] = 0.13, x[3] = 1, x[4] = x[5] = x[6] = 0;
     x[7] = box.x(), x[8] = box.y(), x[9] = box.z();
     x[10] = q.w(), x[11] = q.x(), x[12] = q.y(), x[13] = q.z();
+    x[14] = 0.3, x[15] = 0.5, x[16] = 0.15 + 0.01 + 0.065, x[17] = 1, x[18] = x[19] = x[20] = 0;  // a cup 1 cm up
     mj_kinematics(m, d);
   };
   // Level (tool pointing down): the box's bottom face 0.36 - 0.0475 = 0.3125 m, the top's face at 0.15 m.
@@ -383,6 +387,12 @@ TEST(WorldGeomDistance, AWideCylinderIsMeasuredAcrossItsFaceNotFromItsAxis) {
   // Tilted 0.3 rad about x: the lowest corner is 0.043 sin 0.3 + 0.0475 cos 0.3 below the centre.
   place({0.2, 0.6, 0.36}, Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())));
   EXPECT_NEAR(exact.separation(d, 0, 1), 0.36 - 0.043 * std::sin(0.3) - 0.0475 * std::cos(0.3) - 0.15, 1e-6);
+  // A cup lifted 1 cm off the top, and the same cup tilted 0.2 rad: its lowest rim point over the disc.
+  EXPECT_NEAR(exact.separation(d, 0, 2), 0.01, 1e-9);
+  d->qpos[17] = std::cos(0.1), d->qpos[18] = std::sin(0.1);
+  mj_kinematics(m, d);
+  EXPECT_NEAR(exact.separation(d, 2, 0), 0.15 + 0.01 + 0.065 - 0.065 * std::cos(0.2) - 0.0435 * std::sin(0.2) - 0.15,
+              1e-9);
   // Beside the rim, level with the top: the gap is horizontal (the box's face 2 cm out from the rim).
   place({0.35 + 0.32 + 0.043 + 0.02, 0.45, 0.13}, Eigen::Quaterniond::Identity());
   EXPECT_NEAR(exact.separation(d, 0, 1), 0.02, 1e-6);

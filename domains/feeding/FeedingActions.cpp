@@ -2,6 +2,7 @@
 
 #include "domains/feeding/TableSlide.h"
 #include "robot/actions/CallArguments.h"
+#include "robot/world/MotionPlanner.h"
 #include "robot/world/MotionQuery.h"
 
 #include <fmt/format.h>
@@ -19,7 +20,7 @@ using world::builtins::ActionStatus;
 const Eigen::Vector3d kDrinkGraspOffset(-0.085, 0.0, 0.2);
 // The utensil mount's grasp pose (feeding.cbtl mountX, mountY, mountLowZ), tool pointing down.
 const Eigen::Vector3d kMountLow(0.242, -0.077, 0.07);
-constexpr int kDrinkIkDraws = 5;  // collision-free IK draws from random starts for the handle
+constexpr int kDrinkIkDraws = 5;  // IK draws from random starts behind the handle
 
 Eigen::Quaterniond towardsPlusY() { return Eigen::Quaterniond(0.0, 0.0, 0.7071067811865476, 0.7071067811865476); }
 
@@ -39,6 +40,27 @@ actions::RobotActionResult illFormed(std::string detail) {
 
 bool holding(const world::Workspace& ws, const char* object) {
   return ws.heldObject() >= 0 && ws.scene().objects()[static_cast<std::size_t>(ws.heldObject())].name == object;
+}
+
+// The arm configuration behind the handle that the approach moves to: of up to kDrinkIkDraws converged IK draws,
+// the first that the straight joint segment from the current arm reaches certified free (planning clearances),
+// else the first converged one (the approach then needs the planner). Preferring the straight segment matters: a
+// dry run with no planner budget otherwise rejects every drink the first draw's elbow cannot reach without
+// sweeping past the user's head, and the solver then moves the drink rather than plan around. Both execution
+// modes choose alike (the check is pure), so the effects they leave agree. The arm is left where it was.
+std::optional<world::ArmConfig> approachConfiguration(world::World& w, const Pose3& behind, world::Rng& rng) {
+  world::Workspace& ws = w.workspace();
+  const world::ArmConfig start = ws.state().arm;
+  std::optional<world::ArmConfig> first;
+  for (int draw = 0; draw < kDrinkIkDraws; ++draw) {
+    const std::optional<world::ArmConfig> q = world::builtins::sampleIk(w, behind, rng);
+    if (!q) continue;
+    if (!first) first = q;
+    const bool straight = world::armSegmentFree(ws, start, *q, w.planning.collision);
+    ws.setArm(start);
+    if (straight) return q;
+  }
+  return first;
 }
 
 }  // namespace
@@ -94,8 +116,7 @@ actions::RobotActionResult FeedingActions::graspDrink(world::World& w, actions::
   std::vector<double> key(ws.state().arm.begin(), ws.state().arm.end());
   key.insert(key.end(), {handle.position.x(), handle.position.y(), handle.position.z()});
   world::Rng rng(world::fingerprintOf(key));
-  std::optional<world::ArmConfig> q;
-  for (int attempt = 0; attempt < kDrinkIkDraws && !q; ++attempt) q = world::builtins::sampleIk(w, behind, rng);
+  const std::optional<world::ArmConfig> q = approachConfiguration(w, behind, rng);
   if (!q) {
     return failed(ActionStatus::NoIk,
                   fmt::format("grasp(drink): no collision-free IK solution behind the handle of the drink at "

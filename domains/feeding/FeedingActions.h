@@ -3,7 +3,8 @@
 //
 //   movePlate(xy), moveDrink(xy)  the caregiver slides the plate or the drink (TableSlide.h).
 //   grasp("drink")                the drink is taken by its handle: a collision-free IK solution for the tool
-//                                 kDrinkApproach behind the grasp (tool z along world +y), the arm moved there, the
+//                                 kDrinkApproach behind the grasp (tool z along world +y; of a few IK draws the
+//                                 first the straight joint segment reaches free), the arm moved there, the
 //                                 open fingers slid along the handle's sides in a straight line to the grasp, the
 //                                 gripper closed on the handle (world/GraspClosure.h: a grasp on air fails), and the
 //                                 drink lifted kDrinkLift (a certified segment that may start with the drink resting

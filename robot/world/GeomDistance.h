@@ -14,9 +14,13 @@
 // geometry. Meshes and height fields are not supported (no scene uses them): supports() says so and the caller
 // treats such a geom with its bounding sphere.
 //
+// A cylinder's axis segment gives the nearest direction only against spheres and capsules; for a cylinder against
+// a box, a cylinder or an ellipsoid whose nearest point lies over an end disc, the slab across the cylinder's axis is
+// taken (exact there: the disc's plane separates them), otherwise the candidates above decide as for boxes.
+//
 // Guarantee: separation() is never above the true signed distance (so never reports two touching solids apart,
-// and never an overlap shallower than it is). It is exact for round pairs, planes and two boxes that overlap, and
-// for the other pairs whenever FCL's direction is right. Units: metres.
+// and never an overlap shallower than it is). It is exact for round pairs, planes, two boxes that overlap and a
+// solid facing a cylinder's end disc, and for the other pairs whenever FCL's direction is right. Units: metres.
 // Thread safety: immutable after construction; one instance serves every thread (each call uses its own solver).
 #pragma once
 

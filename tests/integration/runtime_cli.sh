@@ -57,5 +57,14 @@ expect 1 "broken.cbtl:" -- "$cbtl" run "$work/broken.cbtl"
 expect 1 "no simulator for domain 'nothing'" -- "$cbtl" run "$work/infeasible.cbtl" --steps 10
 expect 1 "no task named 'cookDinner'" -- "$cbtl" solve "$cooking" --task cookDinner
 
+# Feeding gives the drink where the caregiver put it, far end of the table included: the first dry-run tier has no
+# planner, so the grasp's approach and the way back from the handle must be straight segments that keep the user's
+# clearance (before they were, the solver moved this drink 45 cm first).
+printf '{"drinkXY": [0.32, 0.67], "plateXY": [0.377, 0.474]}' >"$work/far-drink.json"
+for seed in 0 1 2; do
+  expect 0 '^  drinkPos = \(0\.32, 0\.67\)$' -- "$cbtl" solve "$domains/feeding/feeding.cbtl" --task giveDrink \
+    --seed "$seed" --observe "$work/far-drink.json"
+done
+
 echo "$failures failed"
 [[ $failures -eq 0 ]]

@@ -31,7 +31,10 @@ inline std::shared_ptr<const world::Scene> homeScene() {
 
 // Program facts that name only the home scene (the Cleaning simulator reads no item set).
 inline domains::ProgramFacts homeFacts() {
-  return domains::ProgramFacts{std::string(CBTL_DOMAINS_DIR) + "/home/home.xml", homeScene(), {}};
+  domains::ProgramFacts facts;
+  facts.scenePath = std::string(CBTL_DOMAINS_DIR) + "/home/home.xml";
+  facts.scene = homeScene();
+  return facts;
 }
 
 // The robot at `base` holding `object` (duster: standard grasp; a book: carry grasp), arm at kHome, every

@@ -11,9 +11,19 @@ namespace {
 
 using nlohmann::json;
 
-Expr num(double v) { return Expr{Op::Num, {TypeKind::Real, "real"}, v}; }
+Expr typed(Op op, TypeKind kind, const char* name) {
+  Expr e;
+  e.op = op;
+  e.type = {kind, name};
+  return e;
+}
+Expr num(double v) {
+  Expr e = typed(Op::Num, TypeKind::Real, "real");
+  e.number = v;
+  return e;
+}
 Expr var(VarId id) {
-  Expr e{Op::Var, {TypeKind::Real, "real"}};
+  Expr e = typed(Op::Var, TypeKind::Real, "real");
   e.id = id;
   return e;
 }
@@ -31,7 +41,7 @@ ConstraintGraph smallGraph() {
   Constraint c;
   c.name = "small";
   c.vars = {0};
-  c.expr = Expr{Op::Lt, {TypeKind::Bool, "bool"}};
+  c.expr = typed(Op::Lt, TypeKind::Bool, "bool");
   c.expr.children = {var(0), num(0.5)};
   c.scope = "global";
   c.span = {"t.cbtl", 3, 1, 3, 20};
@@ -137,7 +147,7 @@ ConstraintGraph graphWithGenerator() {
   f.lo = 0;
   f.hi = 1;
   f.params = {"v"};
-  Expr param{Op::Param, {TypeKind::Real, "real"}};
+  Expr param = typed(Op::Param, TypeKind::Real, "real");
   param.text = "v";
   param.id = 0;
   f.feature = param;

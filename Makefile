@@ -1,27 +1,39 @@
 # The two set-up commands of the README:
-#   make demo   install missing Debian packages, configure, build, run the main job
-#   make test   the same set-up, then every test through ctest
+#   make demo   install the Debian packages the demo needs, build cbtlc and cbtl only, run the main job
+#   make test   install every package the tests need, build everything, then every test through ctest
 BUILD_DIR  ?= build
 BUILD_TYPE ?= RelWithDebInfo
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure build demo test asan fuzz fuzz-runtime bench golden-update format clean
+.PHONY: all deps deps-demo configure build demo test asan fuzz fuzz-runtime bench golden-update format clean
 
 all: build
 
 deps:
 	@scripts/install-deps.sh
 
+deps-demo:
+	@scripts/install-deps.sh --demo
+
 $(BUILD_DIR)/build.ninja: | deps
 	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(CMAKE_ARGS)
 
+# A build folder `make demo` configured without tests and benchmarks gets them back here.
 configure: deps $(BUILD_DIR)/build.ninja
+	@if grep -q '^CBTL_BUILD_TESTS:BOOL=OFF' $(BUILD_DIR)/CMakeCache.txt; then \
+	  cmake -S . -B $(BUILD_DIR) -DCBTL_BUILD_TESTS=ON -DCBTL_BUILD_BENCH=ON; fi
 
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
-demo: build
+# The demo needs two executables, not the tests and benchmarks (a third of the compilation), nor SLURM, Chromium,
+# Node.js or the test frameworks.
+demo: deps-demo
+	@scripts/demo.sh --announce
+	@test -f $(BUILD_DIR)/build.ninja || cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) \
+	  -DCBTL_BUILD_TESTS=OFF -DCBTL_BUILD_BENCH=OFF $(CMAKE_ARGS)
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target cbtlc cbtl
 	@scripts/demo.sh $(BUILD_DIR)
 
 test: build

@@ -37,6 +37,36 @@ std::string renderArgs(const std::string& name, const std::vector<sim::Value>& a
   return s + ")";
 }
 
+// The variables of the constraints that rejected candidates which no sampler of the CSP writes: the solver moves
+// variables only through samplers, so these kept their starting value in every candidate (cbtlc's W0503 says the
+// same before any run). Often the whole reason a small program "cannot be solved".
+void printFrozenVariables(std::FILE* out, const solver::Csp& csp, const solver::SolveResult& r) {
+  if (csp.program == nullptr) return;
+  const rt::Program& program = *csp.program;
+  const ir::ConstraintGraph& graph = program.graph();
+  std::vector<bool> written(graph.variables.size(), false);
+  for (std::uint32_t s : csp.samplers) {
+    for (ir::VarId v : graph.samplers.at(s).writes) written.at(v) = true;
+  }
+  std::vector<ir::VarId> frozen;
+  for (const solver::ConstraintStats& s : r.constraints) {
+    if (s.rejections == 0 || s.ref.kind != solver::ConstraintKind::Hard) continue;
+    for (ir::VarId v : graph.constraints.at(s.ref.index).vars) {
+      if (!written.at(v) && std::find(frozen.begin(), frozen.end(), v) == frozen.end()) frozen.push_back(v);
+    }
+  }
+  if (frozen.empty()) return;
+  fmt::print(out, "  never changed (no sampler writes them, so every candidate kept its starting value):\n");
+  for (ir::VarId v : frozen) {
+    const rt::VarSlot& slot = program.slot(v);
+    fmt::print(out, "    {} = {}  ({}; add 'sample {} ~ ...;')\n", graph.variables[v].name,
+               slot.offset + slot.type.width <= csp.initial.size()
+                   ? program.render(slot.type, csp.initial.data() + slot.offset)
+                   : std::string("?"),
+               rt::Program::where(graph.variables[v].span), graph.variables[v].name);
+  }
+}
+
 void printStatistics(std::FILE* out, const solver::Csp& csp, const solver::SolveResult& r, const std::string& title) {
   using namespace cbtl::solver;
   fmt::print(out, "{}: {} after {} iterations ({} candidates checked, {} pruned by cost, {} improvements)\n", title,
@@ -50,6 +80,13 @@ void printStatistics(std::FILE* out, const solver::Csp& csp, const solver::Solve
     fmt::print(out, "  {:>10} {:>11}  {:<48} {}\n", s.rejections, s.evaluations, constraintName(csp, s.ref),
                constraintLocation(csp, s.ref));
   }
+  // The solver re-evaluates a constraint only when a variable it reads changed (Solver.h); its cached result still
+  // rejects every candidate it is first to fail, so the two counts differ in a way worth one line.
+  if (std::any_of(stats.begin(), stats.end(), [](const auto& s) { return s.rejections > s.evaluations; }))
+    fmt::print(out,
+               "  (rejected can exceed evaluated: a constraint whose variables did not change keeps its cached "
+               "result, which rejects again without a new evaluation)\n");
+  if (r.outcome != SolveOutcome::Solved) printFrozenVariables(out, csp, r);
   // A robot world's every collision check keeps the program's clearances: when the search failed, they may be why
   // (a constraint such as confCollisionFree rejects what comes too close), so say them with where they stand.
   if (r.outcome != SolveOutcome::Solved && csp.program != nullptr) {
@@ -94,7 +131,7 @@ void printSolution(std::FILE* out, const approach::Plan& plan) {
     fmt::print(out, "  {} = {}\n", program.graph().variables[v].name,
                program.render(slot.type, plan.solve.assignment.data() + slot.offset));
   }
-  fmt::print(out, "plan ({} calls):\n", plan.calls.size());
+  fmt::print(out, "plan ({} call{}):\n", plan.calls.size(), plan.calls.size() == 1 ? "" : "s");
   for (const auto& c : plan.calls) fmt::print(out, "  {}\n", renderCall(c));
 }
 
@@ -135,11 +172,13 @@ void printPersonal(std::FILE* out, const approach::Plan& plan, const std::vector
   const auto instances = solver::explainPersonal(plan.csp, assignment);
   if (instances.empty()) return;
   fmt::print(out, "{}:\n", heading);
-  fmt::print(out, "  {:<8} {:>7} {:>7} {:>8}  {}\n", "", "P", "accept", "entropy", "instance");
+  fmt::print(out, "  {:<8} {:>7} {:>7} {:>8} {:>6}  {}\n", "", "P", "accept", "entropy", "data", "instance");
   for (const auto& e : instances) {
     const char* status = !e.applies ? "n/a" : e.holds ? "holds" : "fails";
-    fmt::print(out, "  {:<8} {:>7.3f} {:>7.3f} {:>8.3f}  {}{}{}\n", status, e.probability, e.accept, e.entropyBits,
-               e.name, e.key.empty() ? "" : " [" + e.key + "]", e.inCsp ? "" : " (not in this CSP)");
+    // No labelled example yet: P is the declared prior's reading, not something learned about this person.
+    fmt::print(out, "  {:<8} {:>7.3f} {:>7.3f} {:>8.3f} {:>6}  {}{}{}{}\n", status, e.probability, e.accept,
+               e.entropyBits, e.evidence, e.name, e.key.empty() ? "" : " [" + e.key + "]",
+               e.inCsp ? "" : " (not in this CSP)", e.evidence == 0 ? " (no data: the prior, not learned)" : "");
     for (const auto& t : e.text) {
       fmt::print(out, "           {} = {}{}\n", t.factor, t.subject, t.context.empty() ? "" : " in " + t.context);
       fmt::print(out, "           theta: {}\n", t.theta);

@@ -109,6 +109,7 @@ std::string solutionJson(const approach::Plan& plan, const std::vector<double>& 
                           {"p", e.probability},
                           {"accept", e.accept},
                           {"entropy_bits", e.entropyBits},
+                          {"evidence", e.evidence},
                           {"in_csp", e.inCsp},
                           {"text", std::move(text)}});
     }

@@ -51,7 +51,12 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(LIBEDIT REQUIRED IMPORTED_TARGET libedit)
 pkg_check_modules(HTTPLIB REQUIRED IMPORTED_TARGET cpp-httplib)
 find_package(OpenSSL REQUIRED)                        # SHA-256 for the response cache
+find_package(ZLIB REQUIRED)                           # the run record (gzip members), PNG pictures
 
-# --- tests and benchmarks ----------------------------------------------------------------------------
-find_package(GTest CONFIG REQUIRED)
-find_package(benchmark CONFIG REQUIRED)
+# --- tests and benchmarks (not needed by `make demo`, which configures without them) ---------------------------
+if(CBTL_BUILD_TESTS)
+  find_package(GTest CONFIG REQUIRED)
+endif()
+if(CBTL_BUILD_BENCH)
+  find_package(benchmark CONFIG REQUIRED)
+endif()

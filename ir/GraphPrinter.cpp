@@ -484,23 +484,4 @@ std::string toJson(const ConstraintGraph& g) {
   return j.dump(1) + "\n";
 }
 
-std::string toDot(const ConstraintGraph& g) {
-  std::ostringstream o;
-  o << "graph cbtl {\n  graph [rankdir=LR];\n";
-  for (const auto& v : g.variables) {
-    o << fmt::format("  v{} [shape=ellipse, label={}];\n", v.id,
-                     nlohmann::json(v.name + " : " + v.type.spelling).dump());
-  }
-  for (const auto& c : g.constraints) {
-    o << fmt::format("  c{} [shape=box, label={}];\n", c.id, nlohmann::json(c.name).dump());
-    for (VarId v : c.vars) o << fmt::format("  c{} -- v{};\n", c.id, v);
-  }
-  // Clearances constrain every motion rather than some variables: nodes without edges.
-  for (std::size_t i = 0; i < g.clearances.size(); ++i) {
-    o << fmt::format("  k{} [shape=octagon, label={}];\n", i, nlohmann::json(clearanceText(g.clearances[i])).dump());
-  }
-  o << "}\n";
-  return o.str();
-}
-
 }  // namespace cbtl::ir

@@ -1,5 +1,6 @@
 // GraphPrinter.h — dumps of the ConstraintGraph: human text, JSON (the serialisation the runtime
-// reads), and Graphviz DOT (variables as ellipses, constraints as boxes, one edge per incidence).
+// reads), and Graphviz DOT (GraphDot.cpp: a cluster per task with its variables, hard constraints, samplers and the
+// personalized constraints its generators would create; clearances apart).
 // All three are deterministic: same graph, same bytes.
 //
 // The JSON is complete: ir/GraphJsonReader.h reads it back into the same graph (every field, the kind of

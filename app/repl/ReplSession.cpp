@@ -6,6 +6,7 @@
 #include "app/SimulatorSource.h"
 #include "app/SolutionJson.h"
 #include "app/repl/ValueSyntax.h"
+#include "compiler/util/Suggest.h"
 #include "domains/DomainRegistry.h"
 #include "ir/Counted.h"
 #include "runtime/approach/Experiment.h"
@@ -83,7 +84,11 @@ ReplSession::Outcome ReplSession::execute(const std::string& input) {
       {"eval", &ReplSession::cmdEval}};
   const auto it = handlers.find(name);
   if (it == handlers.end()) {
-    fail(fmt::format("unknown command '{}' (help lists the commands)", name));
+    std::vector<std::string> names = {"quit", "exit"};
+    for (const auto& [command, handler] : handlers) names.push_back(command);
+    const std::string nearest = closestMatch(name, names);
+    fail(fmt::format("unknown command '{}'{} (help lists the commands)", name,
+                     nearest.empty() ? "" : fmt::format("; did you mean '{}'?", nearest)));
     return Outcome::Failed;
   }
   if (config_.interrupt != nullptr) config_.interrupt->store(false);  // a Ctrl-C at the prompt stops nothing later
@@ -292,8 +297,13 @@ bool ReplSession::cmdSolve(const std::string& args) {
       replan = true;
     else if (lp_->program().findTask(w) != nullptr && taskName.empty())
       taskName = w;
-    else
-      return fail(fmt::format("solve [TASK] [exploit|explore|hard] [--replan]: '{}' is none of them", w));
+    else {
+      std::vector<std::string> candidates = {"exploit", "explore", "hard", "--replan"};
+      for (const auto& t : lp_->graph().tasks) candidates.push_back(t.name);
+      const std::string nearest = closestMatch(w, candidates);
+      return fail(fmt::format("solve [TASK] [exploit|explore|hard] [--replan]: '{}' is none of them{}", w,
+                              nearest.empty() ? "" : fmt::format("; did you mean '{}'?", nearest)));
+    }
   }
   const auto choice = approach::cspChoiceNamed(mode);
   int task = lp_->taskIndex(taskName);
@@ -345,9 +355,14 @@ bool ReplSession::cmdWhyNot(const std::string& args) {
           name[name.size() - a->first.size() - 1] == '.')
         bySuffix.push_back(it);
     }
-    if (bySuffix.size() != 1)
-      return fail(fmt::format("task {} has {} variable named '{}' (list variables)", task.name,
-                              bySuffix.empty() ? "no" : "more than one", a->first));
+    if (bySuffix.size() != 1) {
+      std::vector<std::string> names;
+      for (ir::VarId id : task.vars) names.push_back(program.graph().variables[id].name);
+      const std::string nearest = bySuffix.empty() ? closestMatch(a->first, names) : std::string();
+      return fail(fmt::format("task {} has {} variable named '{}'{} (list variables)", task.name,
+                              bySuffix.empty() ? "no" : "more than one", a->first,
+                              nearest.empty() ? "" : fmt::format("; did you mean '{}'?", nearest)));
+    }
     v = bySuffix.front();
   }
   const rt::VarSlot& slot = program.slot(*v);

@@ -39,6 +39,9 @@ void printParticipants(const StudyAnalysis& a, std::ostream& out) {
   }
 }
 
+// Below this many non-neutral ratings a meal's signed-rank test comes with a warning.
+constexpr std::size_t kFewestForTest = 20;
+
 // A p-value as the report shows it: four decimals, or two significant digits below 0.0001 (the paper's claim is
 // p < 0.005; "0.0000" would hide how far below).
 std::string pValue(double p) { return p < 1e-4 ? fmt::format("{:.1e}", p) : fmt::format("{:.4f}", p); }
@@ -61,6 +64,22 @@ void printRatings(const StudyAnalysis& a, std::ostream& out) {
         r.n(), meanSd, r.test.wPlus, r.test.z, pValue(r.test.pTwoSided), pValue(r.test.pGreater), r.test.effectSize,
         method, r.test.zeros);
   }
+  // Too few participants for the test to mean much: with n non-neutral ratings the exact two-sided p is at least
+  // 2 / 2^n (n = 5: 0.0625, never below 0.05), and under about 20 even a real preference is often missed.
+  std::string few;
+  std::size_t fewest = 0;
+  for (const auto& r : a.ratings) {
+    const std::size_t n = r.n() >= r.test.zeros ? r.n() - r.test.zeros : 0;
+    if (n >= kFewestForTest) continue;
+    few += fmt::format("{}{}", few.empty() ? "" : ", ", r.meal);
+    fewest = few.find(',') == std::string::npos ? n : std::min(fewest, n);
+  }
+  if (!few.empty())
+    out << fmt::format(
+        "warning: meal{} {} {} fewer than {} non-neutral ratings (as few as {}): the exact test cannot reach p < 0.05 "
+        "below 6, and its power is low below {}; read these p-values as a pilot's, not as a finding\n",
+        few.find(',') == std::string::npos ? "" : "s", few, few.find(',') == std::string::npos ? "has" : "have",
+        kFewestForTest, fewest, kFewestForTest);
 }
 
 void printAccuracy(const StudyAnalysis& a, std::ostream& out) {

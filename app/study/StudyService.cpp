@@ -27,6 +27,13 @@ struct StudyService::Session {
 
 namespace {
 
+// A value for the log: JSON text (a hostile value cannot forge a line), invalid UTF-8 replaced, at most 200 bytes.
+std::string logText(const json& value) {
+  std::string text = value.dump(-1, ' ', true, json::error_handler_t::replace);
+  if (text.size() > 200) text = text.substr(0, 200) + "...";
+  return text;
+}
+
 HttpReply jsonReply(const json& j, int status = 200) { return HttpReply{status, "application/json", j.dump()}; }
 
 // A StudyRecords failure after every check passed: the database's (busy, broken), not the request's.
@@ -158,6 +165,41 @@ std::optional<HttpReply> StudyService::ensureBuilt(Session& s, const Participant
 }
 
 HttpReply StudyService::begin(const std::string& participant) {
+  HttpReply reply = beginUnlogged(participant);
+  logReply(participant, "begin", reply);
+  return reply;
+}
+
+HttpReply StudyService::record(const std::string& participant, const std::string& body) {
+  HttpReply reply = recordUnlogged(participant, body);
+  // Which page, from the request: only the kind, meal and trial (never the answers) reach the log.
+  const json request = json::parse(body, nullptr, false);
+  std::string what = "record";
+  if (request.is_object())
+    what = fmt::format("trial {} ({}, meal {})", logText(request.value("trial_index", json())),
+                       logText(request.value("kind", json())), logText(request.value("meal", json())));
+  logReply(participant, what, reply);
+  return reply;
+}
+
+void StudyService::logReply(const std::string& participant, const std::string& what, const HttpReply& reply) {
+  if (!options_.log) return;
+  // The id is printed as JSON text: a hostile one cannot forge log lines.
+  const std::string id = logText(json(participant));
+  const json r = json::parse(reply.body, nullptr, false);
+  if (reply.status == 200) {
+    const bool hasStatus = r.is_object() && r.contains("status") && r["status"].is_string();
+    options_.log(fmt::format("participant {} {}: {}", id, what, hasStatus ? r["status"].get<std::string>() : "ok"));
+    return;
+  }
+  // The reason up to its first ": ", where messages go on to quote what was sent or stored (answers stay out).
+  std::string reason =
+      r.is_object() && r.contains("error") && r["error"].is_string() ? r["error"].get<std::string>() : "";
+  reason = reason.substr(0, reason.find(": "));
+  options_.log(fmt::format("participant {} {}: refused {} {}", id, what, reply.status, logText(json(reason))));
+}
+
+HttpReply StudyService::beginUnlogged(const std::string& participant) {
   if (!isParticipantId(participant)) return errorReply(400, invalidIdMessage(participant));
   Participant p;
   try {
@@ -244,7 +286,7 @@ std::string pageName(const StudyPage& page) {
 
 }  // namespace
 
-HttpReply StudyService::record(const std::string& participant, const std::string& body) {
+HttpReply StudyService::recordUnlogged(const std::string& participant, const std::string& body) {
   RecordRequest req;
   if (!isParticipantId(participant)) return errorReply(400, invalidIdMessage(participant));
   if (auto problem = parseRecord(participant, body, req)) return errorReply(400, *problem);

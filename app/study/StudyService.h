@@ -49,6 +49,9 @@ struct StudyServiceOptions {
   // Sessions kept at most (each holds two simulated worlds and a model, about 27 MB); beyond, the one used longest
   // ago is let go and rebuilt from the records when needed. A completed participant's is let go at once.
   std::size_t maxSessions = 64;
+  // One line per participant event (began, each page's answer stored or refused, finished), without the answers
+  // themselves; called under no lock of the service's, from the request's thread. Null: nothing is logged.
+  std::function<void(const std::string&)> log;
 };
 
 class StudyService : public StudyApi {
@@ -62,7 +65,7 @@ class StudyService : public StudyApi {
 
   HttpReply begin(const std::string& participant) override;
   HttpReply state(const std::string& participant) override;
-  HttpReply record(const std::string& participant, const std::string& body) override;
+  HttpReply record(const std::string& participant, const std::string& body) override;  // logged (options.log)
   HttpReply view(const std::string& participant, int meal, int picture) override;
   HttpReply viewMeasure(const std::string& participant, int meal, int picture) override;
 
@@ -79,6 +82,10 @@ class StudyService : public StudyApi {
   std::optional<HttpReply> ensureBuilt(Session& s, const Participant& p);
   HttpReply stateReply(Session& s, const Participant& p, const char* status = nullptr);
   HttpReply storeAnswers(Session& s, const Participant& p, const NewRecord& r);
+  HttpReply beginUnlogged(const std::string& participant);
+  HttpReply recordUnlogged(const std::string& participant, const std::string& body);
+  // options_.log's line for a request's reply: "P-1 began", "P-1 trial 3 (answers, meal 1): stored", "... 409: ...".
+  void logReply(const std::string& participant, const std::string& what, const HttpReply& reply);
   void storeProfile(Session& s, const Participant& p, const std::vector<profile::NewEvent>& events, int meal);
   // Finds picture `picture` of meal `meal` of the participant's current meal and answers it with `answer` (called
   // with the session locked), or says why there is none.

@@ -280,6 +280,15 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
        "has neither a sampler nor an initial value, so the solver cannot produce values for it.\n"
        "Example:  var free : real;  require free > 1;\nFix: add 'sample x ~ ...;', an initial value, or bound its "
        "domain."},
+      {"W0503", "variable is never sampled",
+       "A variable that is used has an initial value or a bounded or finite domain (bool, an enum, an item,\n"
+       "Conf<R>, or 'in ...') but no sampler writes it. The solver changes variables only through samplers, so\n"
+       "every candidate keeps its starting value (the initial value, else zero moved into the domain) and a\n"
+       "constraint that needs another value fails after the whole budget. When a solve fails, cbtl names these\n"
+       "variables.\n"
+       "Example:  var watered : bool;  require watered;\n"
+       "Fix:      sample watered ~ uniform;   (over the declared domain; 'uniformReal(lo, hi)' for an unbounded\n"
+       "          real), or 'const' when the value is meant to be fixed."},
   };
   return codes;
 }

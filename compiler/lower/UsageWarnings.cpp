@@ -1,6 +1,6 @@
 #include "compiler/lower/UsageWarnings.h"
 
-#include "ir/Pattern.h"
+#include "ir/GeneratorMatch.h"
 #include "ir/ReadSet.h"
 
 #include <fmt/format.h>
@@ -18,32 +18,6 @@ void varsOf(const ir::ConstraintGraph& g, const ir::Action& a, std::set<ir::VarI
   if (a.allow && a.allow->target) ir::collectReadVars(g, *a.allow->target, out);
   for (const auto& b : a.body) varsOf(g, b, out);
   for (const auto& b : a.elseBody) varsOf(g, b, out);
-}
-
-// Marks the variables that a generator's parameter can match (type and pattern; captures are not
-// correlated here): the personalized constraints it creates read them.
-void matchedByGenerators(const ir::ConstraintGraph& g, std::set<ir::VarId>& out) {
-  for (const auto& gen : g.generators) {
-    for (std::size_t i = 0; i < gen.params.size(); ++i) {
-      const ir::Pattern* pat = nullptr;
-      for (const auto& p : gen.patterns) {
-        if (p.paramIndex == i) pat = &p;
-      }
-      std::optional<GlobPattern> glob;
-      std::optional<std::regex> re;
-      std::string error;
-      std::size_t at = 0;
-      if (pat != nullptr && pat->kind == ir::PatternKind::Glob) glob = parseGlob(pat->text, error, at);
-      if (pat != nullptr && pat->kind == ir::PatternKind::Regex) re = compileRegex(pat->text, error);
-      for (const auto& v : g.variables) {
-        if (v.type.spelling != gen.params[i].type.spelling) continue;
-        std::map<std::string, std::string> bindings;
-        if (pat == nullptr || (glob && matchGlob(*glob, v.name, bindings)) || (re && std::regex_match(v.name, *re))) {
-          out.insert(v.id);
-        }
-      }
-    }
-  }
 }
 
 // True when the solver can draw a value for the variable without a sampler: finite types, Conf<R> (joint
@@ -71,7 +45,12 @@ void reportUsageWarnings(const ir::ConstraintGraph& graph, const std::vector<con
     written.insert(s.writes.begin(), s.writes.end());
   }
   for (const auto& c : graph.costs) read.insert(c.vars.begin(), c.vars.end());
-  matchedByGenerators(graph, read);
+  std::vector<ir::VarId> all;
+  for (const auto& v : graph.variables) all.push_back(v.id);
+  for (const auto& gen : graph.generators) {
+    const std::set<ir::VarId> matched = ir::variablesMatchedBy(graph, gen, all);
+    read.insert(matched.begin(), matched.end());  // the personalized constraints it creates read them
+  }
   for (const auto& t : graph.tasks) {
     for (const auto& inst : t.instances) {
       for (const auto& a : inst.actions) varsOf(graph, a, read);
@@ -90,12 +69,19 @@ void reportUsageWarnings(const ir::ConstraintGraph& graph, const std::vector<con
   }
 
   for (const VarDecl* d : order) {
-    bool used = false, unproducible = false;
+    bool used = false, unproducible = false, frozen = false, bounded = true;
     for (ir::VarId id : members[d]) {
       if (!read.count(id)) continue;
       used = true;
       const ir::Variable& v = graph.variables[id];
-      if (!written.count(id) && !v.init && !hasBoundedDomain(v)) unproducible = true;
+      if (written.count(id)) continue;
+      // Only samplers move a variable: without one, every candidate keeps the initial assignment.
+      if (!v.init && !hasBoundedDomain(v)) {
+        unproducible = true;
+      } else {
+        frozen = true;
+        bounded = bounded && hasBoundedDomain(v);
+      }
     }
     if (!used) {
       diags.warning("W0201", d->name.range, fmt::format("variable '{}' is never used", d->name.name))
@@ -106,6 +92,20 @@ void reportUsageWarnings(const ir::ConstraintGraph& graph, const std::vector<con
                    fmt::format("variable '{}' has no sampler, no initial value and an unbounded domain", d->name.name))
           .help(
               fmt::format("add 'sample {} ~ ...;', an initial value '= ...', or bound it with 'in ...'", d->name.name));
+    } else if (frozen) {
+      // Without `= init` it starts at zero moved into its domain (Program::initialAssignment).
+      const std::string start =
+          d->init ? "its initial value" : "its starting value (zero, or its domain's nearest bound or first member)";
+      diags
+          .warning("W0503", d->name.range,
+                   fmt::format("variable '{}' is never sampled, so every solution keeps {}", d->name.name, start))
+          .help(bounded
+                    ? fmt::format("let the solver choose it with 'sample {} ~ uniform;' (over its declared domain), "
+                                  "or declare it 'const' if it is fixed",
+                                  d->name.name)
+                    : fmt::format("let the solver choose it with 'sample {} ~ uniformReal(lo, hi);' (or bound it "
+                                  "with 'in ...' and sample it '~ uniform'), or declare it 'const' if it is fixed",
+                                  d->name.name));
     }
   }
 }

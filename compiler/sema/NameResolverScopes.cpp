@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
+
 namespace cbtl::detail {
 
 void NameResolver::bindLocal(const Ident& name, Symbol sym) {
@@ -65,7 +67,14 @@ NameRef NameResolver::lookupWithBinders(const std::string& name, SourceRange at,
 void NameResolver::unknownName(const std::string& name, SourceRange at) {
   Diagnostic& d = diags_.error("E0201", at, fmt::format("unknown name '{}'", name));
   const std::string guess = closestMatch(name, visibleNames());
-  if (!guess.empty()) d.help(fmt::format("did you mean '{}'?", guess));
+  std::string lower = name;
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (lower == "true" || lower == "false") {
+    // Python's and C#'s spellings: the literals are keywords, so no visible name is near them.
+    d.help(fmt::format("booleans are written in lower case: '{}'", lower));
+  } else if (!guess.empty()) {
+    d.help(fmt::format("did you mean '{}'?", guess));
+  }
   if (symbols_.types.count(name) || symbols_.skills.count(name) || symbols_.tasks.count(name) ||
       symbols_.generators.count(name) || symbols_.robots.count(name)) {
     d.note(fmt::format("'{}' names a type, robot, skill, task or generator, which is not a value", name));

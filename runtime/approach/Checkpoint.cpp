@@ -420,10 +420,18 @@ void RunOutput::openForResume(const json& config) {
     } catch (const json::exception& e) {
       throw RunDirectoryError(fmt::format("'{}' is not a completion marker: {}", path("complete.json"), e.what()));
     }
+    // Only a report of how long the run took: a timing.json that is missing or unreadable costs nothing else.
+    std::ifstream timing(path("timing.json"));
+    const json t = json::parse(timing, nullptr, false);
+    if (!t.is_discarded() && t.is_object() && t.value("seconds", json()).is_number())
+      recordedSeconds_ = t.at("seconds").get<double>();
     return;
   }
   if (!fs::exists(path("checkpoint.json"))) return;  // killed before its first checkpoint: start afresh
-  checkpoint_ = Checkpoint::fromJson(readJsonFile(path("checkpoint.json")), path("checkpoint.json"));
+  const json cp = readJsonFile(path("checkpoint.json"));
+  checkpoint_ = Checkpoint::fromJson(cp, path("checkpoint.json"));
+  if (cp.is_object() && cp.value("elapsed_seconds", json()).is_number())
+    priorSeconds_ = cp.at("elapsed_seconds").get<double>();
   std::error_code ec;
   fs::create_directories(path("models"), ec);
   train_.open(path("train.csv"), checkpoint_->trainCsvBytes);
@@ -469,7 +477,13 @@ void RunOutput::checkpoint(Checkpoint& cp, const std::string& worldLines) {
   cp.worldLogBytes = world_.size();
   cp.motionsBytes = motions_.isOpen() ? motions_.size() : 0;
   if (hook) hook("checkpoint", cp.step);
-  writeFileAtomic(path("checkpoint.json"), cp.toJson().dump() + "\n");
+  json j = cp.toJson();
+  j["elapsed_seconds"] = elapsedSeconds();
+  writeFileAtomic(path("checkpoint.json"), j.dump() + "\n");
+}
+
+double RunOutput::elapsedSeconds() const {
+  return priorSeconds_ + std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
 }
 
 void RunOutput::finish(const std::string& profileJson, const ExperimentResult& result) {
@@ -481,6 +495,8 @@ void RunOutput::finish(const std::string& profileJson, const ExperimentResult& r
   if (motions_.isOpen()) motions_.close();
   writeFileAtomic(path("profile.json"), profileJson);
   if (hook) hook("finish", result.evals.empty() ? 0 : result.evals.back().step);
+  writeFileAtomic(path("timing.json"),
+                  json{{"format", "cbtl-run-timing"}, {"seconds", elapsedSeconds()}}.dump() + "\n");
   const json marker = {{"format", "cbtl-run-complete"},
                        {"version", kVersion},
                        {"mean_eval", num(result.meanEval())},

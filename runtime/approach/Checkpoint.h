@@ -26,6 +26,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -104,6 +105,8 @@ class RunOutput {
   const std::string& dir() const { return dir_; }
   // Resume of a complete run: its result (nothing is rerun).
   const std::optional<ExperimentResult>& completed() const { return completed_; }
+  // Resume of a complete run: the wall-clock seconds its timing.json recorded (none for an earlier cbtl's run).
+  std::optional<double> recordedSeconds() const { return recordedSeconds_; }
   // Resume of an interrupted run: its last complete checkpoint.
   const std::optional<Checkpoint>& resumeFrom() const { return checkpoint_; }
   // The logged training-world calls up to the checkpoint (for RecordingSimulator::replay).
@@ -135,6 +138,12 @@ class RunOutput {
   std::string motionText_;  // lines not yet compressed
   std::optional<ExperimentResult> completed_;
   std::optional<Checkpoint> checkpoint_;
+  // Wall clock: this process's part starts at construction; the parts before it (a resumed run) are carried in
+  // checkpoint.json's "elapsed_seconds" (not part of the Checkpoint: it differs between identical runs).
+  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
+  double priorSeconds_ = 0;
+  std::optional<double> recordedSeconds_;
+  double elapsedSeconds() const;
 };
 
 }  // namespace cbtl::approach

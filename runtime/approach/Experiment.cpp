@@ -457,7 +457,12 @@ ExperimentResult runExperiment(const PreparedProgram& lp, const SimulatorFactory
   RunOutput out(config.outDir, config.runMode, configJson(lp, config, simOptions, task), trainHeader(),
                 evalHeader(config.evalTasks, world->judgedPreferences()));
   out.hook = config.testHook;
-  if (out.completed()) return *out.completed();  // --resume of a complete run
+  if (out.completed()) {  // --resume of a complete run
+    ExperimentResult done = *out.completed();
+    done.finishedEarlier = true;
+    done.recordedSeconds = out.recordedSeconds();
+    return done;
+  }
   Trial tr(lp, config, out, std::move(world), static_cast<std::size_t>(task));
   std::int64_t start = 0;
   if (out.resumeFrom()) {

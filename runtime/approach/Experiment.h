@@ -152,6 +152,10 @@ struct ExperimentResult {
   std::string firstRecheckViolation;
   // The language model's failures in this run: ratings that fell back, by kind, and the circuit breaker.
   textpref::FaultReport llmFaults;
+  // A complete run read back by --resume (nothing ran), with the wall-clock seconds it took when it ran (its
+  // timing.json; not a result, never in complete.json), unset when an earlier cbtl did not record them.
+  bool finishedEarlier = false;
+  std::optional<double> recordedSeconds;
   double meanEval() const;
 };
 

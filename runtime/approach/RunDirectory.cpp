@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* const kTopFiles[] = {"config.json",     "train.csv",    "eval.csv", "world-calls.jsonl", "motions.jsonl.gz",
-                                 "checkpoint.json", "profile.json", "llm.json", "complete.json"};
+                                 "checkpoint.json", "profile.json", "llm.json", "timing.json",       "complete.json"};
 
 bool allDigits(const std::string& s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });

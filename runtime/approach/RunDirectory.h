@@ -21,6 +21,9 @@
 //   checkpoint.json    the last complete checkpoint (atomic; written after the files above are durable)
 //   profile.json       the final profile (atomic)
 //   llm.json           the text backend and its failure counts (atomic, at the end; textpref/RunReport.h)
+//   timing.json        the run's wall-clock seconds over every resumed part (atomic, just before complete.json):
+//                      not a result (it differs between identical runs), so that `experiment --resume` reports
+//                      the time of trials finished earlier
 //   complete.json      the completion marker, written last (atomic), with the run's summary
 //   *.tmp.<pid>.<n>    temporaries of the atomic writes (left only by a killed process)
 // plus DIR/.lock, the lock file, which stays (it is empty and harmless; removing it while others wait would break

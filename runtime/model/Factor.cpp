@@ -77,4 +77,12 @@ void Factor::reset() {
   std::visit([](auto& m) { m.reset(); }, model_);
 }
 
+std::size_t Factor::evidenceCount() const {
+  if (const auto* i = std::get_if<IntervalModel>(&model_)) return i->data().size();
+  if (const auto* t = std::get_if<ThresholdModel>(&model_)) return t->data().size();
+  if (const auto* tb = std::get_if<TableModel>(&model_)) return tb->entries().size();
+  if (const auto* tx = std::get_if<TextFactor>(&model_)) return tx->historySize();
+  return 0;
+}
+
 }  // namespace cbtl::model

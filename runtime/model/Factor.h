@@ -50,6 +50,9 @@ class Factor {
   textpref::Status observe(const textpref::Item& subject, bool holds,
                            const textpref::Context& context = textpref::Context{});
   void reset();
+  // The labelled examples the factor holds (interval and threshold points, table entries, text records): 0 means
+  // what it says is its prior, not anything learned.
+  std::size_t evidenceCount() const;
 
   const Model& model() const { return model_; }
   Model& model() { return model_; }

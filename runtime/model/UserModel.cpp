@@ -53,16 +53,7 @@ std::size_t UserModel::dataCount() const {
   std::size_t n = 0;
   for (const auto& g : generators_) {
     for (const auto& [key, factors] : g.keys()) {
-      for (const auto& f : factors) {
-        if (const auto* i = std::get_if<IntervalModel>(&f.model()))
-          n += i->data().size();
-        else if (const auto* t = std::get_if<ThresholdModel>(&f.model()))
-          n += t->data().size();
-        else if (const auto* tb = std::get_if<TableModel>(&f.model()))
-          n += tb->entries().size();
-        else if (const auto* tx = std::get_if<TextFactor>(&f.model()))
-          n += tx->historySize();
-      }
+      for (const auto& f : factors) n += f.evidenceCount();
     }
   }
   return n;

@@ -33,6 +33,7 @@ std::vector<InstanceExplanation> explainPersonal(const Csp& csp, const std::vect
     e.holds = evaluator.holds(i, v);
     e.entropyBits = model::bernoulliEntropyBits(v.posterior);
     const auto& factors = csp.user->generator(inst.generator).factors(e.key);
+    for (const auto& f : factors) e.evidence += f.evidenceCount();
     for (std::size_t k = 0; k < factors.size() && k < inst.features.size(); ++k) {
       const auto* text = std::get_if<model::TextFactor>(&factors[k].model());
       if (text == nullptr) continue;

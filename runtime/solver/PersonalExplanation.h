@@ -21,14 +21,15 @@ struct TextFactorExplanation {
 };
 
 struct InstanceExplanation {
-  std::string name;        // "dipPreferred(acquireBite.dip)"
-  std::string key;         // the model key ("" for a generator without `per`)
-  bool inCsp = false;      // the CSP constrained it (PersonalMode::Include, or an `explore accepted` generator)
-  bool applies = true;     // false: its guard is false at the assignment
-  double probability = 1;  // P(holds), the reading the constraint thresholds
-  double accept = 0.5;     // the generator's `accept`
-  bool holds = true;       // probability >= accept (with the evaluator's tolerance), or it does not apply
-  double entropyBits = 0;  // Bernoulli entropy of the posterior reading
+  std::string name;          // "dipPreferred(acquireBite.dip)"
+  std::string key;           // the model key ("" for a generator without `per`)
+  bool inCsp = false;        // the CSP constrained it (PersonalMode::Include, or an `explore accepted` generator)
+  bool applies = true;       // false: its guard is false at the assignment
+  double probability = 1;    // P(holds), the reading the constraint thresholds
+  double accept = 0.5;       // the generator's `accept`
+  bool holds = true;         // probability >= accept (with the evaluator's tolerance), or it does not apply
+  double entropyBits = 0;    // Bernoulli entropy of the posterior reading
+  std::size_t evidence = 0;  // labelled examples its factors hold for its key: 0 = the prior speaks, nothing learned
   std::vector<TextFactorExplanation> text;
 };
 

@@ -86,6 +86,14 @@ expect 1 "^cbtl experiment: error: .*plainfile" -- "$cbtl" experiment "$cooking"
 expect 2 "^cbtl: error: 'repll' is not a cbtl command; did you mean 'repl'\?" -- "$cbtl" repll
 expect 2 "^cbtl: error: 'frobnicate' is not a cbtl command$" -- "$cbtl" frobnicate
 expect 2 "--seeds wants 'LO..HI' or a comma-separated list, not '0-9'" -- "$cbtl" experiment "$cooking" --seeds 0-9
+# Options: a mistyped one is named with the nearest option of its command (not CLI11's list of extra words).
+expect 2 "^cbtl run: error: unknown option '--step'; did you mean '--steps'\?" -- "$cbtl" run "$cooking" --step 10
+expect 2 "^cbtl experiment: error: unknown option '--seed'; did you mean '--seeds'\?" -- \
+  "$cbtl" experiment "$cooking" --seed 3
+expect 2 "^cbtl simulator check: error: unknown option '--sed'; did you mean '--seed'\?" -- \
+  "$cbtl" simulator check "$cooking" --sed=2
+expect 2 "^cbtl run: error: unknown option '--frobnicate'$" -- "$cbtl" run "$cooking" --frobnicate
+expect 2 "^cbtl run: error: --max-failure-rate: " -- "$cbtl" run "$cooking" --max-failure-rate 1.5
 # Help: options grouped by topic, examples at the end, for every command that runs a program.
 for command in run experiment solve repl feedback "simulator check"; do
   # shellcheck disable=SC2086

@@ -103,6 +103,30 @@ answer 5 false "there is no world 7"
 answer 6 false "no request .{1,2}teleport"
 answer 7 true
 
+# `simulator check` exercises what a run does, so a simulator that fits but breaks on acting, idling or twinning is
+# caught by it, with the request that broke the protocol.
+expect 0 "act brew\(.*\): applied, step" -- $limit "$cbtl" simulator check "$coffee"
+expect 0 "answered every request: reset, observe, act, idle, twin" -- $limit "$cbtl" simulator check "$coffee"
+check_with() { $limit "$cbtl" simulator check "$coffee" --simulator "$@"; }
+expect 1 "broke the protocol at act brew\(.*\) \(world\): .*not JSON: 'brewing a .* cup'" -- check_with "$faulty noise"
+expect 1 "broke the protocol at act brew\(.*\): .*exited with status 3" -- check_with "$faulty crash"
+expect 1 "broke the protocol at act brew\(.*\): .*the grinder jammed" -- check_with "$faulty refuse"
+expect 1 "broke the protocol at twin: .*exited with status 1" -- check_with "$faulty twin-keyerror"
+expect 1 "KeyError: 'twin'" -- check_with "$faulty twin-keyerror"
+expect 1 "broke the protocol at idle.*: .*not JSON: 'waiting...'" -- check_with "$faulty idle-noise"
+
+# A run whose training world gets stuck (the tank runs dry, so no cup can be brewed) is not an ordinary result: a
+# warning with the cause, and exit 3 unless the user accepts it.
+expect 3 "warning: [0-9]+ of [0-9]+ training requests failed \(.*above --max-failure-rate 10 %\): [0-9]+ not solved" -- \
+  $limit "$cbtl" run "$coffee" --steps 40 --eval-every 20 --eval-tasks 3 -q --simulator "$faulty dry"
+expect 3 "world 0 is reset once" -- $limit "$cbtl" run "$coffee" --steps 40 --eval-every 20 --eval-tasks 3 -q \
+  --simulator "$faulty dry"
+expect 0 "" -- $limit "$cbtl" run "$coffee" --steps 40 --eval-every 20 --eval-tasks 3 -q --simulator "$faulty dry" \
+  --max-failure-rate 1
+expect 3 "cbtl experiment: warning: [0-9]+ of [0-9]+ cbtl training requests failed" -- \
+  $limit "$cbtl" experiment "$coffee" --approaches cbtl --seeds 0..1 --steps 40 --eval-every 20 --eval-tasks 3 -q \
+  --simulator "$faulty dry"
+
 # --- what goes wrong on the other side --------------------------------------------------------------------
 run_with() { $limit "$cbtl" run "$coffee" --steps 40 --eval-every 20 --eval-tasks 3 -q --simulator "$@"; }
 expect 1 "exited with status 3 before answering request [0-9]+ \(act brew\)" -- run_with "$faulty crash"

@@ -23,6 +23,9 @@ for f in ratings.csv accuracy.csv paths.csv flows.csv; do
 done
 analyzed=$("$cbtl" study analyze "$work/h/study.sqlite" 2>&1); rc=$?
 [[ $rc -eq 0 ]] || fail "analyze exit $rc: $analyzed"
+# Three participants: the tests are shown, with the warning that so few cannot support a finding.
+grep -q "^warning: meals 1, 2, 3, 4, 5 have fewer than 20 non-neutral ratings .*read these p-values as a pilot's" \
+  <<<"$analyzed" || fail "analyze of 3 participants without the warning: $analyzed"
 out=$("$cbtl" study simulate "$domains/feeding/feeding.cbtl" --participants 3 --out "$work/h" 2>&1); rc=$?
 [[ $rc -eq 1 ]] && grep -q "already exists" <<<"$out" || fail "used study database (exit $rc): $out"
 

@@ -64,6 +64,12 @@ answered=$(record 3 answers 1 '{"dip": "noDip", "signal": "button", "verbosity":
 [[ $answered == "200 "* && $answered == *'"meal":2,'* && $answered == *'"page":"rating"'* ]] ||
   fail "answers of meal 1: $answered"
 before=$(http GET /api/participants/p1)
+# One log line per participant event on stderr, with the time, the page and what became of it (never the answers).
+grep -Eq '^[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9:]{8}Z participant "p1" begin: ' "$work/err" || fail "no begin line: $(cat "$work/err")"
+grep -q 'participant "p1" trial 3 ("answers", meal 1): stored$' "$work/err" || fail "no answers line: $(cat "$work/err")"
+record 3 answers 1 '{"dip": "dip", "signal": "button", "verbosity": "silent", "blocked": [false, true]}' >/dev/null
+grep -q 'participant "p1" trial 3 ("answers", meal 1): refused 409 ' "$work/err" || fail "no refusal line: $(cat "$work/err")"
+! grep -q 'noDip' "$work/err" || fail "the log holds an answer: $(cat "$work/err")"
 
 # A second server on the same port is refused, and the first keeps answering.
 "$cbtl" study serve "$program" --db "$work/other.sqlite" --port "$port" --no-pictures >"$work/out2" 2>&1 &

@@ -1,7 +1,8 @@
 // `cbtl experiment FILE --approaches A,B --seeds 0..9 ...`: the same trial for several approaches and seeds,
 // summarized as the paper reports it: mean and standard error over seeds of the evaluation satisfaction at
 // every checkpoint (summary.csv), each preference's met rate where the domain judges preferences
-// (preferences.csv), and tables on stdout. Exit codes: 0 ok, 1 bad input, 2 usage.
+// (preferences.csv), and tables on stdout. Exit codes: 0 ok, 1 bad input, 2 usage, 3 an approach's requests failed
+// more often than --max-failure-rate allows (app/RunFailures.h).
 // Every trial writes its own run folder (OUT/<approach>/seed<S>, approach/RunDirectory.h); summary.csv is
 // written last and atomically, so it is present only for a finished experiment. An OUT that holds a summary or
 // any trial's files is refused unless --force (replace them) or --resume (finished trials are read back from
@@ -9,8 +10,10 @@
 #include "tools/cbtl/CommandRegistry.h"
 #include "tools/cbtl/ErrorHandling.h"
 #include "tools/cbtl/ExperimentReport.h"
+#include "tools/cbtl/Interrupt.h"
 #include "tools/cbtl/RuntimeSupport.h"
 #include "tools/cbtl/TrialPool.h"
+#include "tools/cbtl/TrialProgress.h"
 
 #include "app/sweep/SweepConfig.h"
 #include "runtime/approach/RunDirectory.h"
@@ -28,6 +31,8 @@
 #include <sstream>
 #include <string>
 #include <thread>
+
+#include <unistd.h>
 
 namespace {
 
@@ -137,22 +142,54 @@ int runExperiments(const ExperimentArgs& a) {
       labels.emplace_back(kind, seed);
     }
   }
+  cli::sayOnInterrupt(cli::interruptMessage(
+      "experiment", a.out, "every finished trial, and each unfinished one up to its last checkpoint,"));
+  // On a terminal: how many trials are done and about how long the rest takes (from the trials timed so far).
+  const bool terminal = !a.quiet && ::isatty(STDERR_FILENO) != 0;
+  cli::TrialProgress progress(trials.size());
+  if (terminal)
+    fmt::print(stderr, "{} trials ({} approach{} x {} seed{}) on {} job{}\n", trials.size(), kinds.size(),
+               kinds.size() == 1 ? "" : "es", seeds.size(), seeds.size() == 1 ? "" : "s", a.jobs,
+               a.jobs == 1 ? "" : "s");
   const auto outcomes = cli::runTrials(
       *lp, a.file, a.stdlibDir, a.text, a.external, trials, a.jobs, [&](std::size_t i, const cli::TrialOutcome& o) {
+        const std::string line =
+            progress.finished(fmt::format("{} seed {}", approach::toString(labels[i].first), labels[i].second),
+                              o.seconds, !o.finishedEarlier);
         if (a.quiet || o.error) return;
-        fmt::print(stderr, "{} seed {}: mean eval {:+.3f}, final {:+.2f} ({:.2f} s)\n",
-                   approach::toString(labels[i].first), labels[i].second, o.result.meanEval(),
-                   o.result.evals.empty() ? 0.0 : o.result.evals.back().mean, o.seconds);
+        fmt::print(stderr, "{} seed {}: mean eval {:+.3f}, final {:+.2f} ({})\n", approach::toString(labels[i].first),
+                   labels[i].second, o.result.meanEval(), o.result.evals.empty() ? 0.0 : o.result.evals.back().mean,
+                   o.finishedEarlier ? (o.seconds > 0 ? fmt::format("finished earlier, {:.2f} s", o.seconds)
+                                                      : std::string("finished earlier"))
+                                     : fmt::format("{:.2f} s", o.seconds));
         if (o.result.llmFaults.any()) fmt::print(stderr, "{}", o.result.llmFaults.summary());
+        if (terminal) fmt::print(stderr, "{}\n", line);
       });
   std::vector<cli::TrialRecord> records;
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     if (outcomes[i].error) std::rethrow_exception(outcomes[i].error);
     records.push_back(cli::TrialRecord{labels[i].first, labels[i].second, &outcomes[i].result, outcomes[i].seconds});
   }
-  return cli::reportExperiment(
+  const int code = cli::reportExperiment(
       "experiment", kinds, seeds.size(), records,
       cli::ReportColumns{requestedColumns, !a.columns.empty(), a.steps, a.evalEvery, a.evalTasks}, a.out);
+  if (code != 0) return code;
+  // Each approach's phases over every seed, against --max-failure-rate (app/RunFailures.h).
+  std::vector<app::PhaseFailures> phases;
+  for (auto kind : kinds) {
+    approach::Competence train, eval;
+    for (const cli::TrialRecord& r : records) {
+      if (r.kind != kind) continue;
+      train.add(r.result->train);
+      eval.add(r.result->eval);
+    }
+    phases.push_back(app::phaseFailures(fmt::format("{} training", approach::toString(kind)), train));
+    phases.push_back(app::phaseFailures(fmt::format("{} evaluation", approach::toString(kind)), eval));
+  }
+  const auto above = app::phasesAbove(phases, a.maxFailureRate);
+  if (above.empty()) return 0;
+  fmt::print(stderr, "{}", app::failureWarning("experiment", a.file, above, a.maxFailureRate));
+  return 3;
 }
 
 void addExperiment(CLI::App& app, int& exitCode) {

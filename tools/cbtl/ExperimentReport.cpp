@@ -161,6 +161,11 @@ int reportExperiment(const std::string& command, const std::vector<approach::App
   fmt::print("{:<20}", "approach");
   for (auto c : cols) fmt::print(" {:>14}", fmt::format("step {}", c));
   fmt::print(" {:>14} {:>12} {:>12} {:>12} {:>8}\n", "all checkpts", "success", "prefs met", "met|served", "s/trial");
+  // Which spread each column shows, under its heading: the table mixes them (see the legend below it).
+  fmt::print("{:<20}", "");
+  for (std::size_t i = 0; i < cols.size(); ++i) fmt::print(" {:>14}", "mean ± s.e.");
+  fmt::print(" {:>14} {:>12} {:>12} {:>12} {:>8}\n", "mean ± s.e.", "mean ± s.d.", "mean ± s.d.", "mean ± s.d.",
+             "mean");
   for (auto kind : kinds) {
     const Summary& s = summaries.at(approach::toString(kind));
     fmt::print("{:<20}", approach::toString(kind));
@@ -175,7 +180,8 @@ int reportExperiment(const std::string& command, const std::vector<approach::App
     }
     const Stat all = stat(s.meanOverCheckpoints);
     const Stat success = stat(s.finalSuccess), prefs = stat(s.finalPrefs), served = stat(s.finalPrefsWhenServed);
-    // Trials read back from their folders were not timed here (0): "-" when none was, else the timed ones' mean.
+    // A trial read back from its folder has the time its timing.json recorded, or 0 when an earlier cbtl wrote none:
+    // "-" when no trial has a time, else the mean of those that have one.
     std::vector<double> timedSeconds;
     for (double x : s.seconds)
       if (x > 0) timedSeconds.push_back(x);
@@ -188,8 +194,8 @@ int reportExperiment(const std::string& command, const std::vector<approach::App
   }
   fmt::print(
       "columns: eval satisfaction per checkpoint and over all checkpoints (mean ± standard error over seeds); task\n"
-      "success, preferences met (of all tasks) and preferences met of the served meals at the last checkpoint\n"
-      "(mean ± standard deviation over seeds); wall-clock seconds per trial\n");
+      "success, preferences met (of all tasks) and preferences met of the tasks done (met|served) at the last\n"
+      "checkpoint (mean ± standard deviation over seeds); wall-clock seconds per trial\n");
   printPreferenceTable(preferenceRates, kinds);
   fmt::print(
       "competence over every seed: requests solved within budget, solved plans executed without a failed "

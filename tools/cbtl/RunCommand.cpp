@@ -1,9 +1,11 @@
 // `cbtl run FILE --approach A --seed S --steps N --eval-every K --eval-tasks M --out DIR`: one trial of the
-// paper's experiment in the domain's simulator. Exit codes: 0 ok, 1 bad input, 2 usage, 70 internal error.
+// paper's experiment in the domain's simulator. Exit codes: 0 ok, 1 bad input, 2 usage, 3 more requests failed than
+// --max-failure-rate allows (app/RunFailures.h), 70 internal error.
 // An --out folder that holds a run is refused unless --force (replace it) or --resume (continue it from its last
 // checkpoint); approach/RunDirectory.h lists the files and their guarantees.
 #include "tools/cbtl/CommandRegistry.h"
 #include "tools/cbtl/ErrorHandling.h"
+#include "tools/cbtl/Interrupt.h"
 #include "tools/cbtl/RuntimeSupport.h"
 
 #include "app/PlanReport.h"
@@ -76,6 +78,7 @@ int runTrial(const RunArgs& a) {
   c.testHook = approach::killHookFromEnvironment();
   const auto factory = cli::domainSimulator("run", *lp, c.simulator, a.external);
   if (!factory) return 1;
+  cli::sayOnInterrupt(cli::interruptMessage("run", a.out, "the run up to its last checkpoint"));
   const auto start = std::chrono::steady_clock::now();
   const approach::ExperimentResult r = approach::runExperiment(*lp, *factory, c);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -117,6 +120,12 @@ int runTrial(const RunArgs& a) {
                "first: {}\n",
                r.recheckViolations, r.firstRecheckViolation);
     return 70;
+  }
+  const auto above = app::phasesAbove(
+      {app::phaseFailures("training", r.train), app::phaseFailures("evaluation", r.eval)}, a.maxFailureRate);
+  if (!above.empty()) {
+    fmt::print(stderr, "{}", app::failureWarning("run", a.file, above, a.maxFailureRate));
+    return 3;
   }
   return 0;
 }

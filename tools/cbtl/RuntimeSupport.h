@@ -5,6 +5,7 @@
 
 #include "app/DomainSolverOptions.h"
 #include "app/LoadedProgram.h"
+#include "app/RunFailures.h"
 #include "app/SimulatorFacts.h"
 #include "app/SimulatorSource.h"
 #include "domains/DomainRegistry.h"
@@ -191,13 +192,15 @@ struct TrialArgs {
   std::int64_t participant = -1;
   int evalTasks = 10;
   double epsilon = 0.5, unsatisfiable = 0;
+  double maxFailureRate = app::kDefaultMaxFailureRate;  // not part of a trial: the command's verdict (RunFailures.h)
   bool replan = false, noMotionRecord = false;
   SolverArgs solver;
   TextBackendArgs text;
   ExternalSimulatorArgs external;
 };
 
-// Ranges: --steps >= 0; --eval-every, --eval-tasks, --max-eval-steps, --shift-every, --periodic-reset-every >= 1;
+// Ranges: --max-failure-rate in [0, 1]; --steps >= 0; --eval-every, --eval-tasks, --max-eval-steps, --shift-every,
+// --periodic-reset-every >= 1;
 // --epsilon and --unsatisfiable-stock in [0, 1]. A value outside is a usage error (exit 2) naming the option.
 inline void addTrialOptions(CLI::App* cmd, TrialArgs& a) {
   cmd->add_option("file", a.file, "the domain's .cbtl file, or its graph from `cbtlc emit --format json`")->required();
@@ -234,6 +237,11 @@ inline void addTrialOptions(CLI::App* cmd, TrialArgs& a) {
                   "default user)")
       ->capture_default_str()
       ->check(integerIn(-1));
+  cmd->add_option("--max-failure-rate", a.maxFailureRate,
+                  "above this share of failed requests (unsolved, or failed in execution) in training or evaluation, "
+                  "warn and exit 3; 1 accepts any")
+      ->capture_default_str()
+      ->check(realIn(0, 1));
   cmd->add_option("--stdlib", a.stdlibDir, "standard library folder (default: embedded; not used by an emitted graph)");
   addSolverOptions(cmd, a.solver);
   addTextBackendOptions(cmd, a.text);

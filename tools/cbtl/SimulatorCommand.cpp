@@ -1,11 +1,14 @@
 // `cbtl simulator check FILE [--simulator CMD]`: starts the program's external simulator, checks its manifest
-// against the program (every mismatch listed), resets and observes one world, and says what it found.
+// against the program (every mismatch listed), resets and observes one world, then exercises it as a run would
+// (app/SimulatorCheck.h: plans the solver produced acted call by call, idle, an evaluation twin) and says what it
+// found, or the first request whose answer broke the protocol.
 // `cbtl simulator serve FILE`: serves the program's in-process domain over the external simulator protocol on
 // stdin/stdout (app/SimulatorServer.h). Exit codes: 0 ok, 1 bad input (a simulator that does not fit), 2 usage.
 #include "tools/cbtl/CommandRegistry.h"
 #include "tools/cbtl/ErrorHandling.h"
 #include "tools/cbtl/RuntimeSupport.h"
 
+#include "app/SimulatorCheck.h"
 #include "app/SimulatorServer.h"
 #include "app/SimulatorSource.h"
 #include "runtime/sim/ProtocolSchema.h"
@@ -55,6 +58,22 @@ int runCheck(const SimulatorArgs& a) {
              plural(schema->tasks.size(), "task", "tasks"));
   fmt::print("observed at seed {}: {}\n", a.seed, sim::encodeObservation(*schema, observation).dump());
   if (!world.requestedTask().empty()) fmt::print("the world asks for task '{}'\n", world.requestedTask());
+
+  // What a run does next (app/SimulatorCheck.h): plans acted, idle, a twin.
+  std::vector<std::string> actions;
+  for (const auto& [name, _] : schema->actions) actions.push_back(name);
+  const app::SimulatorCheckReport report =
+      app::exerciseSimulator(*lp, world, actions, a.seed, cli::solverOptionsFor(cli::SolverArgs{}, lp->graph().domain));
+  fmt::print("exercised as a run would ({} plans solved, {} not):\n", report.plansSolved, report.plansUnsolved);
+  for (const std::string& line : report.log) fmt::print("  {}\n", line);
+  if (!report.ok()) {
+    fmt::print(stderr, "cbtl simulator check: error: the simulator broke the protocol at {}\n", report.violation);
+    return 1;
+  }
+  for (const std::string& name : report.notExercised)
+    fmt::print("note: no plan called action '{}', so it was not exercised\n", name);
+  if (!report.sawDone) fmt::print("note: no step answered `done`: a task that never ends never gets a new request\n");
+  fmt::print("simulator '{}' answered every request: reset, observe, act, idle, twin\n", world.simulatorName());
   return 0;
 }
 
@@ -73,7 +92,7 @@ void addSimulator(CLI::App& app, int& exitCode) {
 
   auto check = std::make_shared<SimulatorArgs>();
   CLI::App* c = group->add_subcommand(
-      "check", "start the program's simulator, check its manifest against the program, reset and observe it once");
+      "check", "start the program's simulator, check its manifest, then exercise it as a run would (act, idle, twin)");
   c->add_option("file", check->file, "the domain's .cbtl file")->required();
   c->add_option("--seed", check->seed, "the seed of the world observed")->capture_default_str();
   c->add_option("--stdlib", check->stdlibDir, "standard library folder (default: embedded)");

@@ -12,6 +12,7 @@
 #include <pthread.h>
 #include <csignal>
 #include <cstdio>
+#include <ctime>
 #include <thread>
 
 namespace cbtl::cli {
@@ -57,6 +58,15 @@ int runStudyServe(const StudyArgs& a) {
   options.pictureWidth = a.width;
   options.pictureHeight = a.height;
   options.maxSessions = static_cast<std::size_t>(a.maxSessions);
+  // One line per participant event on stderr, with the time (UTC), for whoever runs the study.
+  options.log = [](const std::string& line) {
+    const std::time_t now = std::time(nullptr);
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char stamp[32];
+    std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%SZ", &utc);
+    fmt::print(stderr, "{} {}\n", stamp, line);
+  };
   const domains::ProgramFacts facts = app::simulatorFacts(*lp);
   app::study::StudyService service(*lp, facts, options, a.db);
   if (!service.pictureProblem().empty() && !a.noPictures)

@@ -10,6 +10,7 @@
 #include "tools/cbtl/CommandRegistry.h"
 #include "tools/cbtl/ErrorHandling.h"
 #include "tools/cbtl/SweepRunner.h"
+#include "tools/cbtl/TrialProgress.h"
 
 #include "app/sweep/SweepConfig.h"
 #include "app/sweep/SweepPlan.h"
@@ -36,47 +37,32 @@ struct SweepArgs {
   bool collect = false, emitSlurm = false, list = false, quiet = false;
 };
 
-std::string clock(double seconds) {
-  const auto s = static_cast<long long>(seconds + 0.5);
-  return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
-                   : fmt::format("{}:{:02}", s / 60, s % 60);
-}
-
 // The live display: on a terminal one line rewritten in place, elsewhere a line per finished trial.
 class Progress {
  public:
   Progress(std::size_t total, std::size_t alreadyDone, bool quiet)
-      : total_(total),
-        done_(alreadyDone),
-        quiet_(quiet),
-        terminal_(::isatty(2) != 0),
-        start_(std::chrono::steady_clock::now()) {
+      : line_(total, alreadyDone), quiet_(quiet), terminal_(::isatty(2) != 0) {
     if (!quiet_ && alreadyDone > 0)
       fmt::print(stderr, "cbtl sweep: {} of {} trials already finished; running the other {}\n", alreadyDone, total,
                  total - alreadyDone);
   }
 
   void finished(const cbtl::sweep::SweepPlan& plan, const cbtl::cli::TrialEvent& e) {
-    ++done_;
-    ++ranHere_;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const double eta = elapsed / static_cast<double>(ranHere_) * static_cast<double>(total_ - done_);
     const auto& t = plan.trials[e.trial];
     const std::string what = fmt::format("{} {} seed {}", plan.experiments[t.experiment].name, t.approach, t.seed);
+    const std::string line = line_.finished(what, e.seconds);
     if (e.failed) fmt::print(stderr, "{}cbtl sweep: {} failed: {}\n", terminal_ ? "\r\x1b[K" : "", what, e.error);
     if (quiet_) return;
-    const std::string line = fmt::format("[{}/{} trials] {} ({:.1f} s); elapsed {}, ETA {}", done_, total_, what,
-                                         e.seconds, clock(elapsed), done_ == total_ ? "0:00" : clock(eta));
+    const bool last = line_.done() == line_.total();
     if (terminal_)
-      fmt::print(stderr, "\r\x1b[K{}{}", line, done_ == total_ ? "\n" : "");
+      fmt::print(stderr, "\r\x1b[K{}{}", line, last ? "\n" : "");
     else
       fmt::print(stderr, "{}\n", line);
   }
 
  private:
-  std::size_t total_, done_, ranHere_ = 0;
+  cbtl::cli::TrialProgress line_;
   bool quiet_, terminal_;
-  std::chrono::steady_clock::time_point start_;
 };
 
 int emitSlurm(const cbtl::sweep::SweepConfig& config, const cbtl::sweep::SweepPlan& plan) {

@@ -19,8 +19,9 @@ namespace cbtl::cli {
 
 struct TrialOutcome {
   approach::ExperimentResult result;
-  double seconds = 0;        // wall clock of the trial
-  std::exception_ptr error;  // what the trial threw, if it did (rethrown by the caller in trial order)
+  double seconds = 0;  // wall clock of the trial (a trial finished earlier: what its timing.json recorded, or 0)
+  bool finishedEarlier = false;  // read back from a complete run folder by --resume
+  std::exception_ptr error;      // what the trial threw, if it did (rethrown by the caller in trial order)
 };
 
 // Runs `trials` on `jobs` threads (1: in the calling thread, with `program`). `onDone(i, outcome)` is called once

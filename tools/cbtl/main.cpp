@@ -2,6 +2,8 @@
 #include "tools/cbtl/CommandRegistry.h"
 #include "tools/cbtl/ErrorHandling.h"
 #include "tools/cbtl/HelpLayout.h"
+#include "tools/cbtl/Interrupt.h"
+#include "tools/common/UnknownOption.h"
 
 #include "compiler/util/Suggest.h"
 
@@ -12,6 +14,7 @@
 #include <vector>
 
 int main(int argc, char** argv) {
+  cbtl::cli::setCommandLine(argc, argv);
   CLI::App app{"cbtl: run CBTL constraint graphs: solve, personalize, learn, render"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "cbtl 0.1.0");
@@ -47,7 +50,15 @@ int main(int argc, char** argv) {
       sub = sub->get_subcommands().front();
       command += " " + sub->get_name();
     }
-    fmt::print(stderr, "{}: error: {}\nRun '{} --help' for more information.\n", command, e.what(), command);
+    // An unexpected argument is most often a mistyped option: name it, with the nearest one.
+    std::string message = e.what();
+    if (dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr) {
+      const CLI::App* deepest = &app;
+      while (!deepest->get_subcommands().empty()) deepest = deepest->get_subcommands().front();
+      if (std::string unknown = cbtl::cli::unknownOptionMessage(*deepest, argc, argv); !unknown.empty())
+        message = unknown;
+    }
+    fmt::print(stderr, "{}: error: {}\nRun '{} --help' for more information.\n", command, message, command);
     return 2;
   } catch (...) {  // commands catch their own (ErrorHandling.h); this is for anything thrown outside them
     return cbtl::cli::reportCurrentException("");

@@ -8,6 +8,7 @@
 #include "ir/Counted.h"
 #include "ir/GraphPrinter.h"
 #include "tools/cbtlc/FormatCommand.h"
+#include "tools/common/UnknownOption.h"
 
 #include <fmt/core.h>
 #include <CLI/CLI.hpp>
@@ -205,6 +206,19 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    if (dynamic_cast<const CLI::ExtrasError*>(&e) != nullptr) {
+      // A mistyped option, named with the nearest one (CLI11 lists only the words it did not expect).
+      std::string command = "cbtlc";
+      const CLI::App* deepest = &app;
+      while (!deepest->get_subcommands().empty()) {
+        deepest = deepest->get_subcommands().front();
+        command += " " + deepest->get_name();
+      }
+      if (const std::string unknown = cbtl::cli::unknownOptionMessage(*deepest, argc, argv); !unknown.empty()) {
+        fmt::print(stderr, "{}: error: {}\nRun '{} --help' for more information.\n", command, unknown, command);
+        return 2;
+      }
+    }
     const int c = app.exit(e);
     return c == 0 ? 0 : 2;
   } catch (const std::exception& e) {

@@ -4,7 +4,9 @@
 usage: faulty_sim.py COFFEE_DIR MODE
 The coffee domain's own simulator (COFFEE_DIR/coffee_sim.py) answers every request, except where MODE makes this
 program misbehave: crash, print noise on stdout, hang, send an undeclared event, a manifest that does not fit, a
-newer protocol, an ill-typed observation, a refusal, or a step result with an unknown field.
+newer protocol, an ill-typed observation, a refusal, a step result with an unknown field, a KeyError when asked for
+an evaluation twin, noise on stdout when asked to idle, or a training world whose tank runs dry (every later request
+unsolvable).
 """
 
 import json
@@ -37,6 +39,8 @@ def main():
             worlds[request["world"]].reset(request["seed"])
         elif op == "observe":
             answer["observation"] = worlds[request["world"]].observe()
+            if MODE == "dry" and request["world"] == 0 and rid > 8:
+                answer["observation"]["waterLeft"] = 0.0  # the training world's tank runs dry and is never refilled
             if MODE == "bad-observation":
                 answer["observation"]["waterLeft"] = "plenty"
         elif op == "act":
@@ -58,12 +62,16 @@ def main():
             if MODE == "wrong-type":
                 answer["feedback"][0]["args"]["heat"] = "lukewarm"
         elif op == "twin":
+            if MODE == "twin-keyerror":
+                raise KeyError("twin")  # a traceback on stderr, then exit status 1
             world = max(worlds) + 1
             worlds[world] = coffee_sim.Machine(drinker, {}, trains=False)
             answer["world"] = world
         elif op == "close":
             worlds.pop(request["world"], None)
         elif op == "idle":
+            if MODE == "idle-noise":
+                print("waiting...", flush=True)
             answer.update(worlds[request["world"]].idle())
         print(json.dumps(answer), flush=True)
         if op == "bye":

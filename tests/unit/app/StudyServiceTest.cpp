@@ -6,6 +6,7 @@
 #include "app/DomainSolverOptions.h"
 #include "app/study/StudyPages.h"
 #include "app/study/StudyRecords.h"
+#include "robot/world/PngWriter.h"
 #include "tests/unit/domains/ProgramFactsSupport.h"
 
 #include <gtest/gtest.h>
@@ -346,9 +347,11 @@ TEST_F(StudyServiceTest, PicturesAreTheCurrentMealsOnly) {
   const httplib::Response& viaServer = **second;
   ASSERT_EQ(viaServer.status, 200) << viaServer.body;
   EXPECT_NE(viaServer.body, picture.body) << "the two configurations look different";
-  // The PNG's pixels are stored uncompressed (PngWriter.h): a lit scene has mostly non-zero bytes.
-  const auto lit = std::count_if(viaServer.body.begin(), viaServer.body.end(), [](char c) { return c != 0; });
-  EXPECT_GT(lit, static_cast<std::ptrdiff_t>(viaServer.body.size() / 4)) << "a black picture";
+  // A lit scene has mostly non-black pixels.
+  const auto decoded = cbtl::world::decodePng(std::vector<std::uint8_t>(viaServer.body.begin(), viaServer.body.end()));
+  ASSERT_TRUE(decoded.has_value());
+  const auto lit = std::count_if(decoded->rgb.begin(), decoded->rgb.end(), [](std::uint8_t c) { return c != 0; });
+  EXPECT_GT(lit, static_cast<std::ptrdiff_t>(decoded->rgb.size() / 4)) << "a black picture";
 }
 
 TEST_F(StudyServiceTest, TheHttpServerServesThePagesAndTheApiOnLoopback) {

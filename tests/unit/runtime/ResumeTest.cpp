@@ -94,7 +94,10 @@ void expectSameResults(const std::string& a, const std::string& b) {
   const auto files = filesOf(a);
   ASSERT_EQ(files, filesOf(b));
   EXPECT_NE(std::find(files.begin(), files.end(), "profile.json"), files.end());
-  for (const auto& f : files) EXPECT_EQ(test::readFile(a + "/" + f), test::readFile(b + "/" + f)) << f << " differs";
+  for (const auto& f : files) {
+    if (f == "timing.json") continue;  // wall-clock seconds: present in both, never a result
+    EXPECT_EQ(test::readFile(a + "/" + f), test::readFile(b + "/" + f)) << f << " differs";
+  }
 }
 
 struct Point {
@@ -135,6 +138,15 @@ TEST_P(ResumeTest, ResumedRunWritesTheBytesOfAnUninterruptedOne) {
   expectSameResults(whole, cut);
   EXPECT_TRUE(fs::exists(cut + "/complete.json"));
   EXPECT_FALSE(fs::exists(cut + "/checkpoint.json")) << "a complete run drops its resume state";
+  EXPECT_FALSE(resumed.finishedEarlier) << "it ran here";
+
+  // Resumed again, the complete run is read back with the time its parts took (timing.json), not re-run.
+  const double recorded = nlohmann::json::parse(test::readFile(cut + "/timing.json")).at("seconds");
+  EXPECT_GT(recorded, 0.0);
+  const auto readBack = runFresh(c);
+  EXPECT_TRUE(readBack.finishedEarlier);
+  ASSERT_TRUE(readBack.recordedSeconds.has_value());
+  EXPECT_DOUBLE_EQ(*readBack.recordedSeconds, recorded);
   ASSERT_FALSE(calls.empty());
   // Nothing before the checkpoint ran again: the first training step is the checkpoint's, and its evaluation
   // (the "model" point) is not repeated.

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 
 namespace cbtl::world {
@@ -35,7 +36,13 @@ TEST(WorldRender, FeedingSceneShowsTheArm) {
 
   const auto path = std::filesystem::temp_directory_path() / "cbtl_world_render_test.png";
   ASSERT_TRUE(writePng(path.string(), img.width, img.height, img.rgb));
-  EXPECT_GT(std::filesystem::file_size(path), 320U * 240U * 3U);
+  // Compressed, and losslessly: the file reads back as the rendered pixels.
+  EXPECT_LT(std::filesystem::file_size(path), 320U * 240U * 3U / 4);
+  std::ifstream file(path, std::ios::binary);
+  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const auto decoded = decodePng(bytes);
+  ASSERT_TRUE(decoded.has_value());
+  EXPECT_EQ(decoded->rgb, img.rgb);
   std::filesystem::remove(path);
 }
 

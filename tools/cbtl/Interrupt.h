@@ -1,0 +1,28 @@
+// Interrupt.h — what `cbtl run` and `cbtl experiment` say when a person stops them (Ctrl-C, SIGINT; or SIGTERM):
+// what was kept and the exact command that continues, instead of a bare exit 130.
+//
+// The run folders need no cleanup: every file is written atomically or append-only (approach/RunDirectory.h), and
+// `--resume` continues from the last checkpoint whatever instant the process stopped at, so the handler only
+// writes the prepared message (write(2) is async-signal-safe) and exits at once with 128 + the signal (130, 143).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace cbtl::cli {
+
+// The command line main() was given, kept for the messages below.
+void setCommandLine(int argc, char** argv);
+const std::vector<std::string>& commandLine();
+
+// The command line again with `--force` dropped and `--resume` added (once), each word quoted for a POSIX shell
+// where it needs it.
+std::string resumeCommand(const std::vector<std::string>& words);
+
+// From now on SIGINT and SIGTERM print `message` on stderr and end the process (128 + the signal).
+void sayOnInterrupt(std::string message);
+
+// The message for a command writing to `out`: empty `out` (nothing kept), else what stays and how to continue.
+std::string interruptMessage(const std::string& command, const std::string& out, const std::string& kept);
+
+}  // namespace cbtl::cli

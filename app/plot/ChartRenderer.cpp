@@ -90,6 +90,49 @@ void drawAxes(cairo_t* cr, const FigureSpec& spec, const Panel& panel, const Pan
   }
 }
 
+constexpr std::size_t kMarkersPerCurve = 10;
+constexpr double kMarkerSize = 3.6;
+
+std::size_t seriesIndex(const std::string& label, const std::vector<std::string>& labels) {
+  return static_cast<std::size_t>(std::find(labels.begin(), labels.end(), label) - labels.begin());
+}
+
+// Shape `series % 5` centred at (x, y), in the current colour: circle, square, triangle, diamond, cross.
+void marker(cairo_t* cr, std::size_t series, double x, double y) {
+  const double r = kMarkerSize;
+  switch (series % 5) {
+    case 0:
+      cairo_arc(cr, x, y, r, 0, 2 * M_PI);
+      break;
+    case 1:
+      cairo_rectangle(cr, x - r * 0.9, y - r * 0.9, r * 1.8, r * 1.8);
+      break;
+    case 2:
+      cairo_move_to(cr, x, y - r * 1.15);
+      cairo_line_to(cr, x + r, y + r * 0.75);
+      cairo_line_to(cr, x - r, y + r * 0.75);
+      cairo_close_path(cr);
+      break;
+    case 3:
+      cairo_move_to(cr, x, y - r * 1.2);
+      cairo_line_to(cr, x + r, y);
+      cairo_line_to(cr, x, y + r * 1.2);
+      cairo_line_to(cr, x - r, y);
+      cairo_close_path(cr);
+      break;
+    default:
+      cairo_set_line_width(cr, 1.8);
+      cairo_move_to(cr, x - r, y - r);
+      cairo_line_to(cr, x + r, y + r);
+      cairo_move_to(cr, x - r, y + r);
+      cairo_line_to(cr, x + r, y - r);
+      cairo_stroke(cr);
+      cairo_set_line_width(cr, kLineWidth);
+      return;
+  }
+  cairo_fill(cr);
+}
+
 void drawCurves(cairo_t* cr, const Panel& panel, const PanelGeometry& g, const std::vector<std::string>& labels) {
   cairo_save(cr);
   // Clipped to the plot area, with room for half a line at its edges (a curve along y = 1 at the top).
@@ -119,6 +162,15 @@ void drawCurves(cairo_t* cr, const Panel& panel, const PanelGeometry& g, const s
     for (std::size_t i = 0; i < c.x.size(); ++i) cairo_line_to(cr, g.px(c.x[i]), g.py(c.mean[i]));
     if (c.x.size() == 1) cairo_arc(cr, g.px(c.x[0]), g.py(c.mean[0]), 2.5, 0, 2 * M_PI);
     cairo_stroke(cr);
+  }
+  // Markers, each series its own shape at its own points (staggered by series), so that a curve drawn exactly over
+  // another (two approaches that learn alike) still shows: up to kMarkersPerCurve per curve.
+  for (const Curve& c : panel.curves) {
+    const std::size_t series = seriesIndex(c.label, labels);
+    const std::size_t every = std::max<std::size_t>(1, c.x.size() / kMarkersPerCurve);
+    colour(cr, seriesColor(c.label, labels));
+    for (std::size_t i = (series * every / std::max<std::size_t>(1, labels.size())) % every; i < c.x.size(); i += every)
+      marker(cr, series, g.px(c.x[i]), g.py(c.mean[i]));
   }
   cairo_restore(cr);
 }
@@ -192,6 +244,7 @@ void drawLegend(cairo_t* cr, const FigureSpec& spec, const FigureLayout& layout,
       cairo_move_to(cr, e.x, e.y);
       cairo_line_to(cr, e.x + 24, e.y);
       cairo_stroke(cr);
+      marker(cr, seriesIndex(e.label, labels), e.x + 12, e.y);
     }
     cairo_set_source_rgb(cr, 0, 0, 0);
     text(cr, e.label, e.x + 30, e.y, 0, 0.5);

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <set>
 
 namespace cbtl::plot {
 
@@ -141,6 +142,7 @@ FigureSpec figureFromResults(const FigureRequest& r) {
   if (onePanel && r.panelWidth == std::nullopt && r.kind == ChartKind::Bars)
     spec.panelWidth =
         std::max(380.0, 110.0 * static_cast<double>(r.results.size() * std::max<std::size_t>(1, r.approaches.size())));
+  std::set<std::int64_t> barSteps;  // the checkpoints the bars show, for the axis label
   for (std::size_t i = 0; i < tables.size(); ++i) {
     const auto approaches = approachesOf(tables[i], r.approaches);
     if (approaches.empty())
@@ -162,11 +164,20 @@ FigureSpec figureFromResults(const FigureRequest& r) {
                                      : labels[i];
       if (r.kind == ChartKind::Bars) {
         const Checkpoint& c = checkpointAt(tables[i], a, r.atStep);
+        barSteps.insert(c.step);
         panel.bars.push_back(Bar{series, approachDisplayName(a), value(c, r.metric), stderrOf(c, r.metric)});
       } else {
         panel.curves.push_back(curveOf(tables[i], a, series, r.metric));
       }
     }
+  }
+  // Bars say which checkpoint they show, in their panel's title (bar charts have no x axis label).
+  if (r.kind == ChartKind::Bars) {
+    const std::string at = barSteps.size() == 1
+                               ? fmt::format("at training step {}", *barSteps.begin())
+                               : fmt::format("at each result's last checkpoint (steps {})", fmt::join(barSteps, ", "));
+    std::string& title = spec.panels[0].title;
+    title = title.empty() ? at : fmt::format("{}, {}", title, at);
   }
   // Bars: room for each bar's label under it.
   if (r.kind == ChartKind::Bars && !r.panelWidth)

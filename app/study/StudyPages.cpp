@@ -65,18 +65,23 @@ std::optional<std::string> checkKeys(const json& response, const std::set<std::s
 }
 
 std::optional<std::string> checkDemographics(const json& r) {
-  if (auto problem = checkKeys(r, {"age", "gender", "gender_other", "robot_experience", "fed_experience"}))
-    return problem;
+  // gender_other may be left out unless the gender is "other" (a client need not send an empty text).
+  const bool other = r.is_object() && r.contains("gender") && r["gender"] == "other";
+  std::set<std::string> keys = {"age", "gender", "robot_experience", "fed_experience"};
+  if (other || (r.is_object() && r.contains("gender_other"))) keys.insert("gender_other");
+  if (auto problem = checkKeys(r, keys)) return problem;
   const json& age = r["age"];
   if (!age.is_null() && !(age.is_number_integer() && age.get<std::int64_t>() >= 18 && age.get<std::int64_t>() <= 120))
     return std::string("age must be a whole number from 18 to 120, or null when not said");
   static const std::set<std::string> genders = {"male", "female", "non-binary", "prefer-not-to-say", "other"};
   if (!r["gender"].is_string() || !genders.count(r["gender"].get<std::string>()))
     return std::string("gender must be one of male, female, non-binary, prefer-not-to-say, other");
-  if (!r["gender_other"].is_string() || r["gender_other"].get<std::string>().size() > 100)
-    return std::string("gender_other must be text of at most 100 characters");
-  if (r["gender"] != "other" && !r["gender_other"].get<std::string>().empty())
-    return std::string("gender_other is only for the gender 'other'");
+  if (r.contains("gender_other")) {
+    if (!r["gender_other"].is_string() || r["gender_other"].get<std::string>().size() > 100)
+      return std::string("gender_other must be text of at most 100 characters");
+    if (!other && !r["gender_other"].get<std::string>().empty())
+      return std::string("gender_other is only for the gender 'other'");
+  }
   for (const char* key : {"robot_experience", "fed_experience"})
     if (!r[key].is_boolean()) return fmt::format("{} must be true or false", key);
   return std::nullopt;

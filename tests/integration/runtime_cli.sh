@@ -47,7 +47,7 @@ expect 3 "every collision check keeps clearance person: 1500 mm from user \\(.*f
 expect 2 "unknown approach 'ours'" -- "$cbtl" run "$cooking" --approach ours
 expect 2 "" -- "$cbtl" run "$cooking" --steps notanumber
 expect 2 "unknown --nonstationary" -- "$cbtl" run "$cooking" --nonstationary sometimes
-expect 1 "cannot read file" -- "$cbtl" run "$work/missing.cbtl"
+expect 1 "^cbtl run: error: cannot read file .*missing.cbtl.$" -- "$cbtl" run "$work/missing.cbtl"
 printf '{"format": "cbtl-profile", "version": 1, "domain": "cooking", "generators": {"userEnjoysMeal": 3}}' >"$work/corrupt.json"
 expect 1 "corrupt.json: generators.userEnjoysMeal" -- "$cbtl" run "$cooking" --steps 10 --profile "$work/corrupt.json"
 printf 'not json' >"$work/garbage.json"

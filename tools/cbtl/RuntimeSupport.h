@@ -32,7 +32,13 @@ inline std::unique_ptr<app::LoadedProgram> loadForRun(const std::string& command
                                                       const std::string& stdlibDir) {
   auto lp = app::LoadedProgram::load(path, stdlibDir);
   if (!lp->ok()) {
-    fmt::print(stderr, "{}", lp->errors());
+    // A file that cannot be read is one error, said once with the command; diagnostics get the summary line.
+    const std::string& errors = lp->errors();
+    if (errors.rfind("error: cannot read file", 0) == 0 && errors.find('\n') + 1 == errors.size()) {
+      fmt::print(stderr, "cbtl {}: {}", command, errors);
+      return nullptr;
+    }
+    fmt::print(stderr, "{}", errors);
     fmt::print(stderr, "cbtl {}: '{}' cannot be run\n", command, path);
     return nullptr;
   }

@@ -195,6 +195,7 @@ TEST_F(PlotTest, FiguresFromResultsFollowTheRequest) {
   EXPECT_DOUBLE_EQ(spec.panels[0].bars[1].mean, 0.9);
   EXPECT_EQ(spec.panels[0].bars[2].series, "No Personalization");
   EXPECT_EQ(spec.panels[0].bars[0].label, "CBTL (no adaptation)") << "a bar names its approach";
+  EXPECT_EQ(spec.panels[0].title, "at training step 100") << "a bar chart says which checkpoint it shows";
   r.atStep = 50;
   EXPECT_THROW(figureFromResults(r), PlotError) << "50 is no checkpoint";
   r.atStep.reset();

@@ -410,3 +410,19 @@ TEST_F(StudyServiceTest, TheHttpServerServesThePagesAndTheApiOnLoopback) {
 
 }  // namespace
 }  // namespace cbtl::app::study
+
+// gender_other is required only with the gender "other"; elsewhere it may be left out or be empty.
+TEST(StudyPages, GenderOtherIsOnlyRequiredForTheGenderOther) {
+  const auto demographics = [](nlohmann::json extra) {
+    nlohmann::json r = {{"age", nullptr}, {"gender", "female"}, {"robot_experience", false}, {"fed_experience", true}};
+    r.update(extra);
+    return cbtl::app::study::checkResponse("demographics", r);
+  };
+  EXPECT_FALSE(demographics(nlohmann::json::object()).has_value());
+  EXPECT_FALSE(demographics({{"gender_other", ""}}).has_value());
+  EXPECT_TRUE(demographics({{"gender_other", "x"}}).has_value());
+  EXPECT_FALSE(demographics({{"gender", "other"}, {"gender_other", "agender"}}).has_value());
+  const auto missing = demographics({{"gender", "other"}});
+  ASSERT_TRUE(missing.has_value());
+  EXPECT_NE(missing->find("gender_other"), std::string::npos) << *missing;
+}

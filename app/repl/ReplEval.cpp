@@ -9,7 +9,10 @@
 #include "runtime/core/ProgramCompiler.h"
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <sstream>
 
@@ -31,8 +34,19 @@ std::size_t insertionPoint(const std::string& text, const ir::Task& task) {
   return brace != std::string::npos && brace >= lineStart ? brace : text.size();
 }
 
-// The first diagnostic of a failed compile, without the location inside the rewritten text.
-std::string firstDiagnostic(const std::string& errors) {
+// Whether every ')' of `expr` closes a '(' of its own (quotes are not looked into: a text holding parentheses only
+// costs the friendlier wording below).
+bool parenthesesBalance(const std::string& expr) {
+  int depth = 0;
+  for (char c : expr) {
+    depth += c == '(' ? 1 : c == ')' ? -1 : 0;
+    if (depth < 0) return false;
+  }
+  return depth == 0;
+}
+
+// The first diagnostic of a failed compile of `expr`, without the location inside the rewritten text.
+std::string firstDiagnostic(const std::string& errors, const std::string& expr) {
   std::istringstream in(errors);
   std::string line, message, notes;
   while (std::getline(in, line)) {
@@ -49,7 +63,21 @@ std::string firstDiagnostic(const std::string& errors) {
   }
   const std::size_t at = message.find(" in the constraint");
   if (at != std::string::npos) message.replace(at, 18, " in the expression");
+  // The expression is compiled inside parentheses of ours: a `)` the parser did not expect is its end.
+  const std::string ours = "found ')' in the expression";
+  const std::size_t paren = message.find(ours);
+  if (paren != std::string::npos && parenthesesBalance(expr))
+    message.replace(paren, ours.size(), "but the expression ends there");
   return message.empty() ? "the expression does not compile" : message + notes;
+}
+
+// A value as the REPL reads it back: a text that is not a plain name in quotes (observe, why-not).
+std::string pasteable(const rt::Program& program, const rt::ValueType& type, const double* v) {
+  std::string text = renderObserved(program, type, v);
+  if (type.kind != rt::ValueKind::Text) return text;
+  const bool plain = !text.empty() && std::all_of(text.begin(), text.end(),
+                                                  [](unsigned char c) { return std::isalnum(c) != 0 || c == '_'; });
+  return plain ? text : nlohmann::json(text).dump();
 }
 
 }  // namespace
@@ -76,7 +104,7 @@ bool ReplSession::cmdEval(const std::string& expr) {
             v.name);
         break;
       }
-    return fail(firstDiagnostic(probe->errors()) + hint);
+    return fail(firstDiagnostic(probe->errors(), expr) + hint);
   }
   const auto& constraints = probe->graph().constraints;
   const auto c =
@@ -102,7 +130,7 @@ bool ReplSession::cmdEval(const std::string& expr) {
   rt::EvalContext ctx{assignment.data(), observation.data(), frame.data(), program.callContext()};
   program.pool().eval(root, ctx, value.data());
   fmt::print(out_, "{} : {} = {}{}\n", expr, lhs.type.spelling,
-             renderObserved(program, program.typeOf(lhs.type), value.data()),
+             pasteable(program, program.typeOf(lhs.type), value.data()),
              solved ? "" : "   (no solution yet: variables at their initial values)");
   return true;
 }

@@ -329,6 +329,13 @@ async function demographicsPage(b, artifacts, expected) {
 // The rating page's content against the state: the meal in words and both options.
 async function checkRatingContent(b, state) {
   const where = `rating (meal ${state.meal})`;
+  // Two options that would feed alike get a word of why (meal 1: nothing is learned yet).
+  const same = state.options.length === 2 && state.options.every((o) => o.solved) &&
+    ['dip', 'signal', 'verbosity'].every((k) => state.options[0][k] === state.options[1][k]);
+  const main = await b.page.textContent('main');
+  check(same === main.includes('The two options are the same this time'),
+    `${where}: options ${same ? 'alike without' : 'different with'} the explanation`);
+
   const heading = await b.page.textContent('main h1');
   check(heading.startsWith(`Meal ${state.meal} of ${state.meals}:`) && heading.includes(state.context.food),
     `${where}: the heading does not describe the meal: "${heading}"`);
@@ -412,6 +419,12 @@ async function answersPage(b, artifacts, expected, meal) {
     return {src: img.getAttribute('src'), width: img.naturalWidth, height: img.naturalHeight, alt: img.alt, spread};
   }));
   check(images.length === views.length, `${where}: ${images.length} pictures shown, the state has ${views.length}`);
+  // The question says what the arm could block: the TV, the friend, or (alone) the table and the plate.
+  const questions = await b.page.locator('main section.picture legend, main section.picture .question').allTextContents();
+  const what = {withFriendAndTv: 'your friend or of the TV', withFriend: 'your friend', withTv: 'the TV',
+    alone: 'the table and your plate'}[state.context.setting];
+  check(views.length === 0 || (await b.page.textContent('main')).includes(`block your view of ${what}`),
+    `${where}: the picture question does not say what is blocked (${state.context.setting}): ${questions}`);
   for (const image of images) {
     check(image.width > 0, `${where}: the picture ${image.src} did not load`);
     check(image.alt.trim().length > 0, `${where}: the picture ${image.src} has no alt text`);

@@ -386,13 +386,26 @@
     {value: '4', text: 'Prefer B'}, {value: '5', text: 'Strongly prefer B'},
   ];
 
+  // Whether the two options would feed the participant alike (then the rating page says why).
+  function sameOptions(options) {
+    if (!options || options.length !== 2 || !options[0].solved || !options[1].solved) return false;
+    return ['dip', 'signal', 'verbosity'].every((key) => options[0][key] === options[1][key]);
+  }
+
   function ratingPage(state) {
+    const same = sameOptions(state.options);
+    const why = same ? el('p', {class: 'hint'}, state.meal === 1 ?
+      'The two options are the same this time: this is your first meal, so the robot has not learned anything ' +
+        'about you yet. It learns from your answers after each meal. If they look the same to you, choose ' +
+        '"No preference".' :
+      'The two options are the same this time. If they look the same to you, choose "No preference".') : null;
     showForm(state, {
       title: mealContext(state),
       content: [
         el('h2', {}, 'Two ways the robot could feed you'),
         el('p', {}, 'Imagine the robot feeding you this meal. The ready signal is how you let it know you are ' +
           'ready for the next bite; "talking" is how much it speaks while it feeds you.'),
+        ...(why ? [why] : []),
         el('div', {class: 'options'}, (state.options || []).map((option) => optionCard(state, option))),
         radioGroup('likert', 'Which option would you prefer?', likertItems, 'likert'),
       ],
@@ -403,7 +416,16 @@
     });
   }
 
-  function pictureQuestion(url, index, count) {
+  // What the arm could block, from the meal's company: the TV, the friend, or (alone) the table and the plate.
+  function viewOf(state) {
+    const setting = (state.context || {}).setting;
+    if (setting === 'withFriendAndTv') return 'your view of your friend or of the TV';
+    if (setting === 'withFriend') return 'your view of your friend';
+    if (setting === 'withTv') return 'your view of the TV';
+    return 'your view of the table and your plate';
+  }
+
+  function pictureQuestion(url, index, count, state) {
     const title = `Picture ${index + 1} of ${count}`;
     const image = el('img', {class: 'view', src: url,
       alt: `${title}: the robot arm above your plate, seen from where you sit`});
@@ -413,7 +435,7 @@
       failed.hidden = false;
     });
     return el('section', {class: 'picture'}, el('h3', {}, title), el('figure', {}, image), failed,
-      yesNoGroup(`blocked-${index}`, 'Would the robot arm here block your view?'));
+      yesNoGroup(`blocked-${index}`, `Would the robot arm here block ${viewOf(state)}?`));
   }
 
   function answersPage(state) {
@@ -432,7 +454,7 @@
         views.length ? el('h2', {}, 'The arm, seen from your seat') : null,
         views.length ? el('p', {}, 'Each picture shows where the robot arm could wait above your plate, seen ' +
           'from where you sit.') : null,
-        views.map((url, index) => pictureQuestion(url, index, views.length)),
+        views.map((url, index) => pictureQuestion(url, index, views.length, state)),
       ],
       response: (form) => {
         const dip = checkedValue(form, 'dip');

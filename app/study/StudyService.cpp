@@ -240,8 +240,8 @@ HttpReply StudyService::stateReply(Session& s, const Participant& p, const char*
     next = records_.nextTrial(p.id);
   }
   const StudyPage page = pageOfTrial(next);
-  json state = {{"participant", p.id}, {"next_trial", next}, {"page", page.kind},
-                {"meal", page.meal},   {"meals", kMeals},    {"pages", kStudyPages}};
+  json state = {{"participant", p.id}, {"next_trial", next},   {"page", page.kind},      {"meal", page.meal},
+                {"meals", kMeals},     {"pages", kStudyPages}, {"study", options_.about}};
   if (page.meal > 0) {
     // Only a meal's pages need the session: the pages before and after meals are answered without building one.
     if (auto error = ensureBuilt(s, p)) return *error;

@@ -25,6 +25,8 @@
 #include "app/study/StudyRecords.h"
 #include "domains/feeding/StudySession.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -49,6 +51,9 @@ struct StudyServiceOptions {
   // Sessions kept at most (each holds two simulated worlds and a model, about 27 MB); beyond, the one used longest
   // ago is let go and rebuilt from the records when needed. A completed participant's is let go at once.
   std::size_t maxSessions = 64;
+  // What the people running the study tell participants (StudyInfo.h), sent with every page's state as "study";
+  // an empty object: the built-in consent text, no contact.
+  nlohmann::json about = nlohmann::json::object();
   // One line per participant event (began, each page's answer stored or refused, finished), without the answers
   // themselves; called under no lock of the service's, from the request's thread. Null: nothing is logged.
   std::function<void(const std::string&)> log;

@@ -18,7 +18,8 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 # Starts a server on $1 (a port, 0 for any) over $work/study.sqlite; sets $pid and $port.
 start() {
-  "$cbtl" study serve "$program" --db "$work/study.sqlite" --port "$1" --no-pictures >"$work/out" 2>"$work/err" &
+  "$cbtl" study serve "$program" --db "$work/study.sqlite" --port "$1" --no-pictures "${@:2}" >"$work/out" \
+    2>"$work/err" &
   pid=$!
   pids+=("$pid")
   port=""
@@ -97,6 +98,22 @@ kill -TERM "$pid"
 wait "$pid"
 rc=$?
 [[ $rc -eq 0 ]] && grep -q "^stopped$" "$work/out" || fail "SIGTERM: exit $rc, $(cat "$work/out" "$work/err")"
+
+# The study's own title, people and consent text (--study-info) reach every participant's state.
+cat >"$work/info.json" <<'JSON'
+{"title": "Feeding study", "researcher": "Dr. A. Researcher", "contact": "study@example.org",
+ "ethics_approval": "IRB-7", "consent": ["One paragraph.", "Another."]}
+JSON
+start 0 --study-info "$work/info.json" || exit 1
+begun=$(http POST /api/participants/p2 '{}')
+[[ $begun == "200 "*'"ethics_approval":"IRB-7"'* && $begun == *'"consent":["One paragraph.","Another."]'* ]] ||
+  fail "the study info is not in the state: $begun"
+kill -TERM "$pid"
+wait "$pid"
+echo '{"ethics": "IRB-7"}' >"$work/typo.json"
+out=$("$cbtl" study serve "$program" --db "$work/study.sqlite" --port 0 --study-info "$work/typo.json" 2>&1)
+rc=$?
+[[ $rc -eq 1 ]] && grep -q 'typo.json: unknown field "ethics"' <<<"$out" || fail "a mistyped study info (exit $rc): $out"
 
 echo "not a database" >"$work/bad.sqlite"
 out=$("$cbtl" study serve "$program" --db "$work/bad.sqlite" --port 0 2>&1)

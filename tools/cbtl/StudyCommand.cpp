@@ -226,6 +226,9 @@ void addStudy(CLI::App& app, int& exitCode) {
       ->check(CLI::Range(0, 65535))
       ->capture_default_str();
   serve->add_flag("--no-pictures", args->noPictures, "do not render the view pictures (they are answered 503)");
+  serve->add_option("--study-info", args->studyInfo,
+                    "JSON file with the study's title, researcher, institution, contact, ethics_approval and consent "
+                    "paragraphs, shown to participants (docs/study.md)");
   serve
       ->add_option("--max-sessions", args->maxSessions,
                    "participants' sessions kept in memory (about 27 MB each); the least recently used beyond are "

@@ -15,7 +15,7 @@
 namespace cbtl::cli {
 
 struct StudyArgs {
-  std::string file, out, stdlibDir, db, host = "127.0.0.1";
+  std::string file, out, stdlibDir, db, host = "127.0.0.1", studyInfo;
   int participants = 60, firstParticipant = 0, participant = 0, trials = 5, width = 480, height = 360, port = 8080,
       jobs = 1, maxSessions = 64;
   std::uint64_t seed = 0;

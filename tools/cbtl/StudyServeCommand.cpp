@@ -5,6 +5,7 @@
 
 #include "app/SimulatorFacts.h"
 #include "app/study/StudyHttpServer.h"
+#include "app/study/StudyInfo.h"
 #include "app/study/StudyService.h"
 
 #include <fmt/core.h>
@@ -58,6 +59,14 @@ int runStudyServe(const StudyArgs& a) {
   options.pictureWidth = a.width;
   options.pictureHeight = a.height;
   options.maxSessions = static_cast<std::size_t>(a.maxSessions);
+  if (!a.studyInfo.empty()) {
+    try {
+      options.about = app::study::readStudyInfo(a.studyInfo);
+    } catch (const app::study::StudyInfoError& e) {
+      fmt::print(stderr, "cbtl study serve: error: {}\n", e.what());
+      return 1;
+    }
+  }
   // One line per participant event on stderr, with the time (UTC), for whoever runs the study.
   options.log = [](const std::string& line) {
     const std::time_t now = std::time(nullptr);

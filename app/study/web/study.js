@@ -278,18 +278,32 @@
   // ---------------------------------------------------------------------------------------------------------------
   // The pages.
 
+  // Who runs the study, as the study-info file says (cbtl study serve --study-info): only the fields it gives.
+  function studyContacts(study) {
+    const rows = [['Researcher', study.researcher], ['Institution', study.institution], ['Contact', study.contact],
+      ['Ethics approval', study.ethics_approval]].filter(([, value]) => typeof value === 'string' && value !== '');
+    if (!rows.length) return [];
+    return [el('dl', {class: 'study-info'},
+      rows.map(([name, value]) => el('div', {}, el('dt', {}, name), el('dd', {}, value))))];
+  }
+
   function consentPage(state) {
+    const study = state.study || {};
+    const paragraphs = Array.isArray(study.consent) && study.consent.length ? study.consent : [
+      'This study is about a robot arm that helps a person eat. We would like to learn which of ' +
+        'the robot\'s choices you would want if it were feeding you.',
+      'You will see five meals, one after the other. For each meal you compare two ways the robot ' +
+        'could serve it, then tell us what you would want yourself and whether the arm would be in your way ' +
+        'in a few pictures.',
+      'It takes about 10 to 15 minutes.',
+      'We do not ask for your name or any contact details: your answers are stored under an ' +
+        'anonymous id. Taking part is voluntary, and you may stop at any time by closing this window.',
+    ];
     showForm(state, {
-      title: 'Taking part in this study',
+      title: typeof study.title === 'string' && study.title ? study.title : 'Taking part in this study',
       content: [
-        el('p', {}, 'This study is about a robot arm that helps a person eat. We would like to learn which of ' +
-          'the robot\'s choices you would want if it were feeding you.'),
-        el('p', {}, 'You will see five meals, one after the other. For each meal you compare two ways the robot ' +
-          'could serve it, then tell us what you would want yourself and whether the arm would be in your way ' +
-          'in a few pictures.'),
-        el('p', {}, 'It takes about 10 to 15 minutes.'),
-        el('p', {}, 'We do not ask for your name or any contact details: your answers are stored under an ' +
-          'anonymous id. Taking part is voluntary, and you may stop at any time by closing this window.'),
+        ...paragraphs.map((text) => el('p', {}, text)),
+        ...studyContacts(study),
         radioGroup('consent', 'Do you agree to take part?',
           [{value: 'agree', text: 'I agree'}, {value: 'decline', text: 'I do not agree'}]),
       ],

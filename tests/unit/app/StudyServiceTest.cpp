@@ -4,6 +4,7 @@
 #include "app/study/StudyService.h"
 
 #include "app/DomainSolverOptions.h"
+#include "app/study/StudyInfo.h"
 #include "app/study/StudyPages.h"
 #include "app/study/StudyRecords.h"
 #include "robot/world/PngWriter.h"
@@ -425,4 +426,31 @@ TEST(StudyPages, GenderOtherIsOnlyRequiredForTheGenderOther) {
   const auto missing = demographics({{"gender", "other"}});
   ASSERT_TRUE(missing.has_value());
   EXPECT_NE(missing->find("gender_other"), std::string::npos) << *missing;
+}
+
+// The study-info file: every field optional, texts only, an unknown field named (a typo would vanish otherwise).
+TEST(StudyInfo, FieldsAreCheckedAndUnknownOnesNamed) {
+  using cbtl::app::study::checkStudyInfo;
+  using cbtl::app::study::StudyInfoError;
+  const nlohmann::json good = {{"title", "Feeding study"},
+                               {"researcher", "Dr. A"},
+                               {"contact", "a@example.org"},
+                               {"ethics_approval", "IRB-1"},
+                               {"consent", {"One.", "Two."}}};
+  EXPECT_EQ(checkStudyInfo(good, "info.json"), good);
+  EXPECT_EQ(checkStudyInfo(nlohmann::json::object(), "info.json"), nlohmann::json::object());
+  const auto message = [](const nlohmann::json& j) {
+    try {
+      checkStudyInfo(j, "info.json");
+    } catch (const StudyInfoError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message({{"ethics", "IRB-1"}}).find("unknown field \"ethics\""), std::string::npos);
+  EXPECT_NE(message({{"title", 3}}).find("\"title\" must be a text"), std::string::npos);
+  EXPECT_NE(message({{"consent", "one paragraph"}}).find("list of 1 to 20 paragraphs"), std::string::npos);
+  EXPECT_NE(message({{"consent", {"ok", 5}}}).find("paragraph 2 must be a text"), std::string::npos);
+  EXPECT_NE(message({{"contact", std::string(2001, 'x')}}).find("longer than 2000"), std::string::npos);
+  EXPECT_NE(message(nlohmann::json::array()).find("one JSON object"), std::string::npos);
 }

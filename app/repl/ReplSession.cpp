@@ -11,6 +11,7 @@
 #include "ir/Counted.h"
 #include "runtime/approach/Experiment.h"
 #include "runtime/approach/ValueBridge.h"
+#include "runtime/model/ModelSummary.h"
 #include "runtime/solver/Recheck.h"
 
 #include <fmt/format.h>
@@ -529,6 +530,10 @@ bool ReplSession::cmdProfile(const std::string& args) {
   const std::string sub = w.empty() ? "show" : w[0];
   const std::string file = w.size() > 1 ? trim(args.substr(args.find(w[1]))) : std::string();
   if (sub == "show" && w.size() <= 1) {
+    fmt::print(out_, "{}", model::describeModel(*user_));  // in words; `profile show json` for the file's JSON
+    return true;
+  }
+  if (sub == "show" && w.size() == 2 && w[1] == "json") {
     fmt::print(out_, "{}\n", nlohmann::json::parse(user_->toJson()).dump(2));
     return true;
   }

@@ -2,6 +2,7 @@
 #include "runtime/model/Entropy.h"
 #include "runtime/model/Factor.h"
 #include "runtime/model/IntervalModel.h"
+#include "runtime/model/ModelSummary.h"
 #include "runtime/model/TableModel.h"
 #include "runtime/model/ThresholdModel.h"
 
@@ -193,4 +194,40 @@ TEST(Factor, FromSpecBuildsEachKind) {
   EXPECT_TRUE(h.isTable());
   h.observe("a", true);
   EXPECT_EQ(h.probability("a"), 1.0);
+}
+
+// describeFactor: what a model believes, in words, and "unknown (no data)" where it has nothing to go on.
+TEST(ModelSummary, SaysWhatIsLearnedAndWhatIsOnlyThePrior) {
+  cbtl::ir::ModelFactor interval;
+  interval.label = "temp";
+  interval.kind = cbtl::ir::FactorKind::Interval;
+  interval.lo = 25;
+  interval.hi = 35;
+  Factor f = Factor::fromSpec(interval);
+  EXPECT_EQ(describeFactor(f), "unknown (no data): the declared range 25 to 35");
+  f.observe(27.0, false);
+  EXPECT_EQ(describeFactor(f), "nothing liked yet, 1 refused; 1 answer");
+  f.observe(30.0, true);
+  f.observe(32.0, true);
+  EXPECT_EQ(describeFactor(f),
+            "liked from 30 to 32 (the lower bound between 27 and 30, the upper between 32 and 35); 3 answers");
+
+  cbtl::ir::ModelFactor threshold;
+  threshold.kind = cbtl::ir::FactorKind::Threshold;
+  threshold.lo = 0;
+  threshold.hi = 1;
+  threshold.direction = cbtl::ir::ThresholdDirection::Below;
+  Factor t = Factor::fromSpec(threshold);
+  EXPECT_EQ(describeFactor(t), "unknown (no data): holds at or below a threshold somewhere in 0 to 1");
+  t.observe(0.4, true);
+  t.observe(0.8, false);
+  EXPECT_EQ(describeFactor(t), "holds at or below a threshold between 0.4 and 0.8; 2 answers");
+
+  cbtl::ir::ModelFactor table;
+  table.kind = cbtl::ir::FactorKind::Table;
+  Factor k = Factor::fromSpec(table);
+  EXPECT_EQ(describeFactor(k), "unknown (no data)");
+  k.observe(std::string("ranch"), true);
+  k.observe(std::string("ketchup"), false);
+  EXPECT_EQ(describeFactor(k), "liked: ranch; refused: ketchup; 2 answers");
 }

@@ -117,7 +117,18 @@ std::string renderCall(const sim::ActionCall& call) {
   return s;
 }
 
-std::string renderEvent(const sim::FeedbackEvent& event) { return renderArgs(event.name, event.args); }
+std::string renderEvent(const sim::FeedbackEvent& event, const ir::ConstraintGraph* graph) {
+  if (graph == nullptr) return renderArgs(event.name, event.args);
+  const auto declared = std::find_if(graph->feedback.begin(), graph->feedback.end(),
+                                     [&](const ir::Function& f) { return f.name == event.name; });
+  if (declared == graph->feedback.end()) return renderArgs(event.name, event.args);
+  std::vector<sim::Value> args = event.args;
+  for (std::size_t i = 0; i < args.size() && i < declared->params.size(); ++i) {
+    if (declared->params[i].type.kind == ir::TypeKind::Bool && args[i].kind == sim::Value::Kind::Number)
+      args[i] = sim::Value::name(args[i].number != 0 ? "true" : "false");
+  }
+  return renderArgs(event.name, args);
+}
 
 void printSolution(std::FILE* out, const approach::Plan& plan) {
   const rt::Program& program = *plan.csp.program;

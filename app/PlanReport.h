@@ -17,7 +17,9 @@ namespace cbtl::app {
 // "movePot(pot1, (2.9, 4.2))": names as they are, numbers with 6 significant digits.
 std::string renderCall(const sim::ActionCall& call);
 // "name(arg, ...)" for a feedback event, in the same notation the REPL reads.
-std::string renderEvent(const sim::FeedbackEvent& event);
+// `graph`, when given, supplies the event's declared parameter types, so that a bool reads back as true/false (a
+// simulator sends it as a number) and the line can be pasted into `feedback` as it is.
+std::string renderEvent(const sim::FeedbackEvent& event, const ir::ConstraintGraph* graph = nullptr);
 
 // "task T: Solved", then (when solved) every task variable and the plan's calls.
 void printSolution(std::FILE* out, const approach::Plan& plan);

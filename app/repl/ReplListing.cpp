@@ -145,7 +145,7 @@ void ReplSession::showPending() const {
     return;
   }
   fmt::print(out_, "queued feedback ({}):\n", pending_.size());
-  for (const auto& p : pending_) fmt::print(out_, "  {}  [{}]\n", renderEvent(p.event), p.source);
+  for (const auto& p : pending_) fmt::print(out_, "  {}  [{}]\n", renderEvent(p.event, &lp_->graph()), p.source);
 }
 
 void ReplSession::listVariables() const {

@@ -31,7 +31,7 @@ std::int64_t ReplSession::storeModel(const std::vector<PendingEvent>& events, co
   for (const auto& e : events) {
     const profile::EventSource source =
         e.source == "simulated user" ? profile::EventSource::Simulator : profile::EventSource::Repl;
-    stored.push_back({source, renderEvent(e.event), solution});
+    stored.push_back({source, renderEvent(e.event, &lp_->graph()), solution});
   }
   return config_.store->recordLearning(config_.user, lp_->graph().domain, stored, user_->toJson(),
                                        static_cast<std::int64_t>(user_->dataCount()), reason);

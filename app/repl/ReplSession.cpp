@@ -414,7 +414,7 @@ bool ReplSession::cmdAct(const std::string& args) {
                  r.message.empty() ? "" : " (" + r.message + ")");
     }
     for (const auto& f : r.feedback) {
-      fmt::print(out_, "    the user: {}\n", renderEvent(f));
+      fmt::print(out_, "    the user: {}\n", renderEvent(f, &lp_->graph()));
       pending_.push_back({f, "simulated user"});
       ++events;
     }
@@ -444,7 +444,7 @@ bool ReplSession::cmdFeedback(const std::string& args) {
   std::string error;
   std::optional<sim::FeedbackEvent> e = checkedEvent(lp_->program(), args, error);
   if (!e) return fail(error);
-  fmt::print(out_, "queued {} ({} pending; learn applies them)\n", renderEvent(*e), pending_.size() + 1);
+  fmt::print(out_, "queued {} ({} pending; learn applies them)\n", renderEvent(*e, &lp_->graph()), pending_.size() + 1);
   pending_.push_back({std::move(*e), "typed"});
   return true;
 }
@@ -480,7 +480,7 @@ bool ReplSession::cmdUndo(const std::string& args) {
   if (!args.empty()) return fail("undo takes no arguments");
   if (!requireProgram()) return false;
   if (!pending_.empty()) {
-    fmt::print(out_, "dropped the queued {} (not learned yet)\n", renderEvent(pending_.back().event));
+    fmt::print(out_, "dropped the queued {} (not learned yet)\n", renderEvent(pending_.back().event, &lp_->graph()));
     pending_.pop_back();
     return true;
   }

@@ -98,7 +98,8 @@ namespace {
 // What CBTL learns from a meal's answers, in words, for the participant's profile (the session learns the same
 // events: FeedingStudy.h answerMeal).
 std::vector<profile::NewEvent> profileEvents(const feeding::MealPresentation& m,
-                                             const feeding::ParticipantAnswers& answers) {
+                                             const feeding::ParticipantAnswers& answers,
+                                             const ir::ConstraintGraph& graph) {
   std::vector<profile::NewEvent> events;
   const feeding::MealOffer& cbtl = m.offers.at(feeding::studyApproaches()[0]);
   const feeding::Meal& meal = feeding::paperMeals().at(m.meal);
@@ -106,10 +107,10 @@ std::vector<profile::NewEvent> profileEvents(const feeding::MealPresentation& m,
     for (const auto& e : feeding::biteAnswerEvents(
              feeding::BiteOffer{meal.food, meal.dips, cbtl.read.dip, cbtl.read.signal, cbtl.read.verbosity},
              answers.ideals))
-      events.push_back({profile::EventSource::Study, renderEvent(e), ""});
+      events.push_back({profile::EventSource::Study, renderEvent(e, &graph), ""});
   for (std::size_t k = 0; k < m.views.size() && k < answers.blocked.size(); ++k)
-    events.push_back(
-        {profile::EventSource::Study, renderEvent(feeding::viewAnswerEvent(m.views[k].conf, answers.blocked[k])), ""});
+    events.push_back({profile::EventSource::Study,
+                      renderEvent(feeding::viewAnswerEvent(m.views[k].conf, answers.blocked[k]), &graph), ""});
   return events;
 }
 
@@ -143,7 +144,7 @@ std::optional<HttpReply> StudyService::ensureBuilt(Session& s, const Participant
         const feeding::ParticipantAnswers a = participantAnswersOf(json::parse(r.response));
         if (auto problem = s.study->check(a))
           throw std::runtime_error(fmt::format("trial {} (meal {}): {}", r.trialIndex, r.meal, *problem));
-        const std::vector<profile::NewEvent> events = profileEvents(s.study->current(), a);
+        const std::vector<profile::NewEvent> events = profileEvents(s.study->current(), a, lp_.graph());
         s.study->answer(a);
         // A server stopped between storing a meal's answers and the profile version (kill -9) left the profile a
         // meal behind: the version is written now, from the same answers.
@@ -351,7 +352,7 @@ HttpReply StudyService::storeAnswers(Session& s, const Participant& p, const New
   NewRecord stored = r;
   stored.response = storedAnswers(response, m).dump();
   // Computed now: the session moves on below.
-  const std::vector<profile::NewEvent> events = profileEvents(m, answers);
+  const std::vector<profile::NewEvent> events = profileEvents(m, answers, lp_.graph());
   try {
     std::lock_guard<std::mutex> db(dbMutex_);
     records_.record(stored);

@@ -30,12 +30,14 @@ struct RunArgs : cbtl::cli::TrialArgs {
 
 // The run's final model as a new version of the user's profile, with every event it learned from (source
 // "simulator", in the order of the training steps; the step numbers themselves are not stored).
-void storeRun(cbtl::app::profile::ProfileStore& store, const RunArgs& a, const std::string& domain,
+void storeRun(cbtl::app::profile::ProfileStore& store, const RunArgs& a, const cbtl::ir::ConstraintGraph& graph,
               const cbtl::approach::ExperimentResult& r) {
+  const std::string& domain = graph.domain;
   using namespace cbtl;
   std::vector<app::profile::NewEvent> events;
   for (const auto& step : r.feedback)
-    for (const auto& e : step.events) events.push_back({app::profile::EventSource::Simulator, app::renderEvent(e), ""});
+    for (const auto& e : step.events)
+      events.push_back({app::profile::EventSource::Simulator, app::renderEvent(e, &graph), ""});
   const std::int64_t version =
       store.recordLearning(a.user, domain, events, r.finalProfile, static_cast<std::int64_t>(r.finalLabels),
                            fmt::format("run: {}, seed {}, {} steps", a.approach, a.seed, a.steps));
@@ -82,7 +84,7 @@ int runTrial(const RunArgs& a) {
   const auto start = std::chrono::steady_clock::now();
   const approach::ExperimentResult r = approach::runExperiment(*lp, *factory, c);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (store) storeRun(*store, a, lp->graph().domain, r);
+  if (store) storeRun(*store, a, lp->graph(), r);
   if (!a.quiet) {
     fmt::print("{} on {} (seed {}): {} steps, {} tasks completed in training, {} solves ({} failed, {} replanned)\n",
                a.approach, lp->graph().domain, a.seed, a.steps, r.mealsServed, r.trainSolves, r.trainSolveFailures,

@@ -13,7 +13,10 @@ solver::Csp makeTaskCsp(const PreparedProgram& lp, std::size_t task, const std::
   return csp;
 }
 
-// Solves plan.csp, tier after dry-run tier (cheapest first) until one finds a solution.
+bool interrupted(const Plan& plan) { return plan.solve.outcome == solver::SolveOutcome::Interrupted; }
+
+// Solves plan.csp, tier after dry-run tier (cheapest first) until one finds a solution or a person interrupts (the
+// tiers after an interruption never run, so they are not reported as failed).
 void solveTiered(const PreparedProgram& lp, Plan& plan, solver::Solver& solver) {
   const std::vector<int>& tiers = lp.dryRunTiers();
   std::size_t tier = 0;
@@ -26,7 +29,7 @@ void solveTiered(const PreparedProgram& lp, Plan& plan, solver::Solver& solver) 
     plan.solve = solver.solve(plan.csp);
     plan.iterations += plan.solve.iterations;
     ++plan.tiersRun;
-  } while (!plan.solve.solved() && plan.execution && ++tier < tiers.size());
+  } while (!plan.solve.solved() && !interrupted(plan) && plan.execution && ++tier < tiers.size());
 }
 
 }  // namespace
@@ -37,7 +40,7 @@ Plan makePlan(const PreparedProgram& lp, std::size_t task, const std::vector<dou
   plan.execution = makePlanExecution(lp, task);
   plan.csp = makeTaskCsp(lp, task, observation, choice.personal, choice.cost, user, plan.execution.get());
   solveTiered(lp, plan, solver);
-  if (!plan.solve.solved() && fallback && choice.personal == solver::PersonalMode::Include) {
+  if (!plan.solve.solved() && !interrupted(plan) && fallback && choice.personal == solver::PersonalMode::Include) {
     plan.failedFull = std::move(plan.solve);
     plan.csp = makeTaskCsp(lp, task, observation, solver::PersonalMode::Exclude,
                            choice.cost == solver::CostKind::Entropy ? solver::CostKind::None : choice.cost, user,

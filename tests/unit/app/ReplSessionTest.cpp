@@ -113,6 +113,24 @@ TEST(ReplSession, AnInterruptStopsTheSolveWithoutAPlan) {
   EXPECT_NE(s.run("observe simulator").find("a new cooking world"), std::string::npos);
 }
 
+// A robot domain solves in dry-run tiers: an interrupted one reports no tier after it as "failed", since they never
+// ran.
+TEST(ReplSession, AnInterruptedRobotSolveReportsNoTierThatNeverRan) {
+  std::atomic<bool> interrupt{false};
+  Session s(&interrupt);
+  s.run("load " + std::string(CBTL_DOMAINS_DIR) + "/feeding/feeding.cbtl");
+  std::atomic<bool> stop{false};
+  std::thread raiser([&] {
+    while (!stop.load()) interrupt.store(true);
+  });
+  const std::string out = s.run("solve");
+  stop.store(true);
+  raiser.join();
+  EXPECT_NE(out.find("status: interrupted"), std::string::npos) << out;
+  EXPECT_EQ(out.find("dry-run tier with"), std::string::npos) << out;
+  EXPECT_EQ(out.find("replanned"), std::string::npos) << out;
+}
+
 TEST(ReplSession, CompletionOffersCommandsAndTheProgramsNames) {
   Session s;
   EXPECT_EQ((*s).completions("li"), std::vector<std::string>{"list"});

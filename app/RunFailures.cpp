@@ -14,6 +14,13 @@ PhaseFailures phaseFailures(const std::string& phase, const approach::Competence
   return f;
 }
 
+PhaseFailures evaluationFailures(const std::string& phase, const approach::Competence& c) {
+  PhaseFailures f = phaseFailures(phase, c);
+  f.requests = c.executed + c.failed;  // the solved plans that were carried out
+  f.unsolved = 0;
+  return f;
+}
+
 std::vector<PhaseFailures> phasesAbove(const std::vector<PhaseFailures>& phases, double maxRate) {
   std::vector<PhaseFailures> above;
   for (const PhaseFailures& p : phases) {

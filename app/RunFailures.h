@@ -31,6 +31,12 @@ struct PhaseFailures {
 
 PhaseFailures phaseFailures(const std::string& phase, const approach::Competence& c);
 
+// The evaluation phase's failures that say something is broken: plans that failed in execution. Its unsolved
+// requests are left out: evaluation solves with what was learned, and preferences no plan can meet (the paper's
+// Table 1, a shifted user in Figure 5) are an outcome the experiment measures, not a stuck run. Training requests
+// (CBTL and Free Explore plan them with the hard constraints only) count in full.
+PhaseFailures evaluationFailures(const std::string& phase, const approach::Competence& c);
+
 // The phases whose failure rate is above `maxRate` (in [0, 1]), in the order given.
 std::vector<PhaseFailures> phasesAbove(const std::vector<PhaseFailures>& phases, double maxRate);
 

@@ -113,5 +113,20 @@ echo '{"experiments": [' >broken.json
 err=$("$cbtl" sweep broken.json 2>&1)
 [ $? = 1 ] && grep -q "broken.json: not JSON" <<<"$err" || fail "broken JSON: $err"
 
+# An experiment whose training requests mostly fail (a simulator whose training world runs dry) ends the sweep with
+# exit 3 and the cause, unless its options accept it.
+faulty="python3 $(cd "$(dirname "$0")" && pwd)/simulators/faulty_sim.py $domains/coffee dry"
+cat >failing.json <<JSON
+{"name": "failing", "defaults": {"steps": 40, "eval-every": 20, "eval-tasks": 2},
+ "experiments": [{"name": "dry", "program": "$domains/coffee/coffee.cbtl", "approaches": ["cbtl"], "seeds": "0",
+                  "options": {"simulator": "$faulty"}}]}
+JSON
+err=$("$cbtl" sweep failing.json --out failing --jobs 1 2>&1 >/dev/null)
+[ $? = 3 ] && grep -q "cbtl sweep: dry: warning: .* cbtl training requests failed" <<<"$err" ||
+  fail "a failing experiment in a sweep: $err"
+sed 's|"simulator": "[^"]*"}|&|; s|dry"}}|dry", "max-failure-rate": 1}}|' failing.json >accepted.json
+grep -q '"max-failure-rate": 1' accepted.json || fail "the test's accepted.json: $(cat accepted.json)"
+"$cbtl" sweep accepted.json --out accepted --jobs 1 >/dev/null 2>&1 || fail "max-failure-rate 1 in a sweep: exit $?"
+
 [ "$failures" = 0 ] && echo "sweep_cli: all checks passed"
 exit $((failures > 0))

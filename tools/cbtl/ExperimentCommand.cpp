@@ -174,22 +174,7 @@ int runExperiments(const ExperimentArgs& a) {
       "experiment", kinds, seeds.size(), records,
       cli::ReportColumns{requestedColumns, !a.columns.empty(), a.steps, a.evalEvery, a.evalTasks}, a.out);
   if (code != 0) return code;
-  // Each approach's phases over every seed, against --max-failure-rate (app/RunFailures.h).
-  std::vector<app::PhaseFailures> phases;
-  for (auto kind : kinds) {
-    approach::Competence train, eval;
-    for (const cli::TrialRecord& r : records) {
-      if (r.kind != kind) continue;
-      train.add(r.result->train);
-      eval.add(r.result->eval);
-    }
-    phases.push_back(app::phaseFailures(fmt::format("{} training", approach::toString(kind)), train));
-    phases.push_back(app::phaseFailures(fmt::format("{} evaluation", approach::toString(kind)), eval));
-  }
-  const auto above = app::phasesAbove(phases, a.maxFailureRate);
-  if (above.empty()) return 0;
-  fmt::print(stderr, "{}", app::failureWarning("experiment", a.file, above, a.maxFailureRate));
-  return 3;
+  return cli::checkFailureRates("experiment", a.file, kinds, records, a.maxFailureRate);
 }
 
 void addExperiment(CLI::App& app, int& exitCode) {

@@ -1,5 +1,7 @@
 #include "tools/cbtl/ExperimentReport.h"
 
+#include "app/RunFailures.h"
+
 #include "runtime/approach/RunDirectory.h"
 #include "tools/cbtl/RuntimeSupport.h"
 
@@ -86,6 +88,26 @@ void printPreferenceTable(const PreferenceRates& rates, const std::vector<approa
 
 std::string trialFolder(const std::string& out, approach::ApproachKind kind, std::uint64_t seed) {
   return fmt::format("{}/{}/seed{}", out, approach::toString(kind), seed);
+}
+
+int checkFailureRates(const std::string& command, const std::string& file,
+                      const std::vector<approach::ApproachKind>& kinds, const std::vector<TrialRecord>& trials,
+                      double maxRate) {
+  std::vector<app::PhaseFailures> phases;
+  for (auto kind : kinds) {
+    approach::Competence train, eval;
+    for (const TrialRecord& r : trials) {
+      if (r.kind != kind) continue;
+      train.add(r.result->train);
+      eval.add(r.result->eval);
+    }
+    phases.push_back(app::phaseFailures(fmt::format("{} training", approach::toString(kind)), train));
+    phases.push_back(app::evaluationFailures(fmt::format("{} evaluation", approach::toString(kind)), eval));
+  }
+  const auto above = app::phasesAbove(phases, maxRate);
+  if (above.empty()) return 0;
+  fmt::print(stderr, "{}", app::failureWarning(command, file, above, maxRate));
+  return 3;
 }
 
 int reportExperiment(const std::string& command, const std::vector<approach::ApproachKind>& kinds,

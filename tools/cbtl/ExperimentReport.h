@@ -33,6 +33,12 @@ struct ReportColumns {
 // The run folder of one trial of an experiment written to `out`: OUT/<approach>/seed<S>.
 std::string trialFolder(const std::string& out, approach::ApproachKind kind, std::uint64_t seed);
 
+// Each approach's training and evaluation over every seed, against `maxRate` (app/RunFailures.h): prints the
+// warning naming `command` and `file` on stderr and returns 3 when a phase failed too often, else 0.
+int checkFailureRates(const std::string& command, const std::string& file,
+                      const std::vector<approach::ApproachKind>& kinds, const std::vector<TrialRecord>& trials,
+                      double maxRate);
+
 // Writes summary.csv and preferences.csv to `out` (atomically; nothing when `out` is empty) and prints the tables
 // for `kinds` in that order. Returns 0, or 70 when a trial refused an accepted solution at its re-check (a runtime
 // bug, said on stderr naming `command`).

@@ -124,7 +124,7 @@ int runTrial(const RunArgs& a) {
     return 70;
   }
   const auto above = app::phasesAbove(
-      {app::phaseFailures("training", r.train), app::phaseFailures("evaluation", r.eval)}, a.maxFailureRate);
+      {app::phaseFailures("training", r.train), app::evaluationFailures("evaluation", r.eval)}, a.maxFailureRate);
   if (!above.empty()) {
     fmt::print(stderr, "{}", app::failureWarning("run", a.file, above, a.maxFailureRate));
     return 3;

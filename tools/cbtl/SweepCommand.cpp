@@ -6,7 +6,8 @@
 //   cbtl sweep CONFIG --emit-slurm    writes OUT/<name>.sbatch, a job array over the trials
 //   cbtl sweep CONFIG --list          lists the trials: index, state, experiment, approach, seed, folder
 // An interrupted sweep continues where it stopped: run the same command again. Exit codes: 0 ok, 1 bad config,
-// failed or unfinished trials, 2 usage, 70 internal error.
+// failed or unfinished trials, 2 usage, 3 an experiment's requests failed above its --max-failure-rate (an option
+// like any other: "max-failure-rate": 1 in its options accepts any), 70 internal error.
 #include "tools/cbtl/CommandRegistry.h"
 #include "tools/cbtl/ErrorHandling.h"
 #include "tools/cbtl/SweepRunner.h"

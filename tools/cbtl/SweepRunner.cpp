@@ -183,7 +183,11 @@ int collectSweep(const sweep::SweepConfig& config, const sweep::SweepPlan& plan,
     fmt::print("== {}\n", x.name);
     const ReportColumns columns{x.columns, !x.columns.empty(), prepared[e].args.steps, prepared[e].args.evalEvery,
                                 prepared[e].args.evalTasks};
-    const int code = reportExperiment("sweep", prepared[e].kinds, x.seeds.size(), records, columns, x.dir);
+    int code = reportExperiment("sweep", prepared[e].kinds, x.seeds.size(), records, columns, x.dir);
+    // Its options' --max-failure-rate (default 0.10), per experiment: a stuck experiment is not a result.
+    if (code == 0)
+      code = checkFailureRates(fmt::format("sweep: {}", x.name), prepared[e].args.file, prepared[e].kinds, records,
+                               prepared[e].args.maxFailureRate);
     exitCode = std::max(exitCode, code);
     collected[e] = true;
   }

@@ -47,7 +47,8 @@ std::size_t runSweepTrials(const sweep::SweepPlan& plan, const std::vector<Prepa
 // on stdout; then every plot whose experiments are all collected. Experiments with unfinished trials are named on
 // stderr. `seconds`: the wall clock of the trials this process ran, by index (the tables' s/trial averages those;
 // "-" for an experiment none of whose trials ran here). Returns 0 when everything was collected, 1 when something
-// was not finished or a figure failed, 70 as reportExperiment does.
+// was not finished or a figure failed, 3 when an experiment's requests failed above its --max-failure-rate
+// (checkFailureRates), 70 as reportExperiment does.
 int collectSweep(const sweep::SweepConfig& config, const sweep::SweepPlan& plan,
                  const std::vector<PreparedExperiment>& prepared, const std::map<std::size_t, double>& seconds = {});
 

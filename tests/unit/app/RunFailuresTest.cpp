@@ -30,6 +30,16 @@ TEST(RunFailures, CountsUnsolvedAndFailedExecutionAsFailures) {
   EXPECT_EQ(phaseFailures("evaluation", competence(10, 10, 9, 0)).failures(), 0);
 }
 
+// Evaluation's unsolved requests are an outcome (preferences no plan meets), not a stuck run: only its plans that
+// failed in execution count, out of the plans carried out.
+TEST(RunFailures, EvaluationCountsOnlyPlansThatFailedInExecution) {
+  const auto f = cbtl::app::evaluationFailures("evaluation", competence(100, 60, 57, 3));
+  EXPECT_EQ(f.unsolved, 0);
+  EXPECT_EQ(f.failedExecution, 3);
+  EXPECT_EQ(f.requests, 60);
+  EXPECT_NEAR(f.rate(), 0.05, 1e-12);
+}
+
 TEST(RunFailures, OnlyPhasesStrictlyAboveTheRateAreReported) {
   const std::vector<cbtl::app::PhaseFailures> phases = {phaseFailures("training", competence(100, 90, 90, 0)),
                                                         phaseFailures("evaluation", competence(100, 89, 89, 0)),

@@ -246,6 +246,32 @@ std::vector<std::string> ReplSession::namesOf(const std::string& kind) const {
   return names;
 }
 
+// The values a variable or observation named `name` can take, as the REPL reads them: an enum's members, an item
+// set's entries, true/false; empty for numbers and vectors (nothing to offer); nullopt for a name it does not know.
+std::optional<std::vector<std::string>> ReplSession::valuesOf(const std::string& name) const {
+  if (!lp_) return std::nullopt;
+  const ir::ConstraintGraph& g = lp_->graph();
+  std::optional<ir::TypeDesc> type;
+  // A skill's variable may be named without its instance (`why-not dip = ...` for acquireBite.dip).
+  for (const auto& v : g.variables)
+    if (v.name == name ||
+        (v.name.size() > name.size() && v.name.compare(v.name.size() - name.size(), name.size(), name) == 0 &&
+         v.name[v.name.size() - name.size() - 1] == '.'))
+      type = v.type;
+  const std::string family = name.substr(0, name.find('['));
+  for (const auto& o : g.observations)
+    if (o.name == name || o.name == family) type = o.type;
+  if (!type) return std::nullopt;
+  if (type->kind == ir::TypeKind::Bool) return std::vector<std::string>{"true", "false"};
+  for (const auto& e : g.enums)
+    if (type->kind == ir::TypeKind::Enum && e.name == type->spelling) return e.members;
+  std::vector<std::string> entries;
+  for (const auto& s : g.itemSets)
+    if (type->kind == ir::TypeKind::Item && s.itemType == type->spelling)
+      for (const auto& entry : s.entries) entries.push_back(entry.name);
+  return entries;
+}
+
 std::vector<std::string> ReplSession::completions(const std::string& line) const {
   const auto start = line.find_last_of(" \t(,={") == std::string::npos ? 0 : line.find_last_of(" \t(,={") + 1;
   const std::string word = line.substr(start);
@@ -262,7 +288,11 @@ std::vector<std::string> ReplSession::completions(const std::string& line) const
     } else if (command == "eval") {
       candidates = namesOf("eval");
     } else if (inValue) {
-      candidates = namesOf("member");
+      // After `NAME =` (observe, why-not): the values of NAME's type only; elsewhere (an event's arguments) any.
+      const std::size_t equals = line.rfind('=', start);
+      std::optional<std::vector<std::string>> typed;
+      if (equals != std::string::npos && w.size() >= 2) typed = valuesOf(w[1].substr(0, w[1].find('=')));
+      candidates = typed ? *typed : namesOf("member");
     } else if (command == "profile" && w.size() == 1) {
       candidates = namesOf("profile");
     } else if (w.size() == 1 || command == "solve") {

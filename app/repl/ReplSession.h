@@ -70,6 +70,8 @@ class ReplSession {
   // Candidates for completing the word that ends `line` (the text before the cursor): command names first,
   // then the names the command takes (tasks, variables, observations, feedback events, members, files).
   std::vector<std::string> completions(const std::string& line) const;
+  // What completes after `NAME =`: the values of NAME's type (nullopt: no variable or observation of that name).
+  std::optional<std::vector<std::string>> valuesOf(const std::string& name) const;
 
   bool loaded() const { return lp_ != nullptr; }
   const LoadedProgram* program() const { return lp_.get(); }

@@ -45,6 +45,13 @@ keys "sa" Tab
 wait_for '^cbtl> observe stock\[salt\] ?$'
 keys "= 0" Enter
 wait_for '^stock\[salt\] = 0$'
+# An event completes to its name and "(", with no space after it: the arguments follow directly.
+keys "feedback mealC" Tab
+wait_for '^cbtl> feedback mealCritique\( ?$'
+keys "s"  # typed right after the completion: no space in between (tmux drops a trailing one from the screen)
+wait_for '^cbtl> feedback mealCritique\(s$'
+keys C-c
+wait_for '^cbtl> ?$'
 # Ctrl-C abandons a half-typed line and the session goes on.
 keys "help und"
 wait_for '^cbtl> help und$'

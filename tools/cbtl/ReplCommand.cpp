@@ -60,6 +60,11 @@ char* nextCandidate(const char*, int state) {
   if (state == 0) {
     candidates = gSession->completions(std::string(rl_line_buffer, static_cast<std::size_t>(rl_point)));
     next = 0;
+    // An event's name completes to "name(": the arguments follow it directly, so no space after the parenthesis.
+    const bool call =
+        !candidates.empty() && std::all_of(candidates.begin(), candidates.end(),
+                                           [](const std::string& c) { return !c.empty() && c.back() == '('; });
+    rl_completion_append_character = call ? '\0' : ' ';
   }
   if (next >= candidates.size()) return nullptr;
   return strdup(candidates[next++].c_str());  // libedit frees it

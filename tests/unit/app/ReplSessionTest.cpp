@@ -145,6 +145,11 @@ TEST(ReplSession, CompletionOffersCommandsAndTheProgramsNames) {
   EXPECT_EQ((*s).completions(":eval quantity[salt] + qu"), std::vector<std::string>{"quantity"});
   EXPECT_EQ((*s).completions(":eval st"), (std::vector<std::string>{"startTick", "stock"}));
   EXPECT_EQ((*s).completions(":ev"), std::vector<std::string>{":eval"});
+  // After `NAME =`, only the values of NAME's type: a Pot's members, a bool's, nothing for a number.
+  EXPECT_EQ((*s).completions("why-not pot[salt] = p"), (std::vector<std::string>{"pot0", "pot1", "pot2", "pot3"}));
+  EXPECT_EQ((*s).completions("why-not used[salt] = "), (std::vector<std::string>{"false", "true"}));
+  EXPECT_EQ((*s).completions("why-not pot[salt]=no"), std::vector<std::string>{"noPot"});
+  EXPECT_TRUE((*s).completions("observe stock[salt] = ").empty()) << "a real has no values to offer";
 }
 
 TEST(ReplSession, UnfinishedInputContinues) {

@@ -185,11 +185,15 @@ void printPersonal(std::FILE* out, const approach::Plan& plan, const std::vector
   fmt::print(out, "{}:\n", heading);
   fmt::print(out, "  {:<8} {:>7} {:>7} {:>8} {:>6}  {}\n", "", "P", "accept", "entropy", "data", "instance");
   for (const auto& e : instances) {
-    const char* status = !e.applies ? "n/a" : e.holds ? "holds" : "fails";
+    const char* status = !e.reached ? "unjudged" : !e.applies ? "n/a" : e.holds ? "holds" : "fails";
     // No labelled example yet: P is the declared prior's reading, not something learned about this person.
-    fmt::print(out, "  {:<8} {:>7.3f} {:>7.3f} {:>8.3f} {:>6}  {}{}{}{}\n", status, e.probability, e.accept,
-               e.entropyBits, e.evidence, e.name, e.key.empty() ? "" : " [" + e.key + "]",
-               e.inCsp ? "" : " (not in this CSP)", e.evidence == 0 ? " (no data: the prior, not learned)" : "");
+    // Unjudged: no P or entropy to show (the state they are read in is not reached).
+    const std::string p = e.reached ? fmt::format("{:.3f}", e.probability) : "-";
+    const std::string entropy = e.reached ? fmt::format("{:.3f}", e.entropyBits) : "-";
+    fmt::print(out, "  {:<8} {:>7} {:>7.3f} {:>8} {:>6}  {}{}{}{}{}\n", status, p, e.accept, entropy, e.evidence,
+               e.name, e.key.empty() ? "" : " [" + e.key + "]", e.inCsp ? "" : " (not in this CSP)",
+               e.evidence == 0 ? " (no data: the prior, not learned)" : "",
+               e.reached ? "" : " (its skill's start state is not reached with these values: no verdict)");
     for (const auto& t : e.text) {
       fmt::print(out, "           {} = {}{}\n", t.factor, t.subject, t.context.empty() ? "" : " in " + t.context);
       fmt::print(out, "           theta: {}\n", t.theta);

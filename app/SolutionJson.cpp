@@ -110,6 +110,7 @@ std::string solutionJson(const approach::Plan& plan, const std::vector<double>& 
                           {"accept", e.accept},
                           {"entropy_bits", e.entropyBits},
                           {"evidence", e.evidence},
+                          {"reached", e.reached},
                           {"in_csp", e.inCsp},
                           {"text", std::move(text)}});
     }

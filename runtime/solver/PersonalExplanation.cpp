@@ -3,6 +3,7 @@
 #include "runtime/core/TextContext.h"
 #include "runtime/model/Entropy.h"
 #include "runtime/solver/PersonalEvaluator.h"
+#include "runtime/solver/StagedPlan.h"
 
 #include <algorithm>
 
@@ -18,6 +19,7 @@ std::vector<InstanceExplanation> explainPersonal(const Csp& csp, const std::vect
   std::vector<double> frame(program.frameSize() + 1, 0.0);
   const rt::EvalContext ctx{values.data(), observation.data(), frame.data(), program.callContext()};
   PersonalEvaluator evaluator(program, *csp.instances, *csp.user);
+  if (csp.plan != nullptr) csp.plan->changed();
   for (std::uint32_t i = 0; i < csp.instances->size(); ++i) {
     const rt::PersonalInstance& inst = (*csp.instances)[i];
     const ir::Generator& g = program.graph().generators.at(inst.generator);
@@ -27,6 +29,9 @@ std::vector<InstanceExplanation> explainPersonal(const Csp& csp, const std::vect
     e.accept = g.accept;
     e.inCsp = std::any_of(csp.constraints.begin(), csp.constraints.end(),
                           [&](const ConstraintRef& c) { return c.personal() && c.index == i; });
+    // Judged in the state its skill starts in, as the solver and the re-check judge it.
+    const std::uint32_t stage = i < csp.instanceStage.size() ? csp.instanceStage[i] : 0;
+    if (csp.plan != nullptr && stage != kAnyStage) e.reached = csp.plan->enterStage(stage, ctx);
     const PersonalValue v = evaluator.evaluate(i, ctx);
     e.applies = v.applies;
     e.probability = v.probability;
@@ -54,6 +59,7 @@ std::vector<InstanceExplanation> explainPersonal(const Csp& csp, const std::vect
     }
     out.push_back(std::move(e));
   }
+  if (csp.plan != nullptr) csp.plan->enterStage(0, ctx);  // back to the start state, as the re-check leaves it
   return out;
 }
 

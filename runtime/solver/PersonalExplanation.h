@@ -21,10 +21,14 @@ struct TextFactorExplanation {
 };
 
 struct InstanceExplanation {
-  std::string name;          // "dipPreferred(acquireBite.dip)"
-  std::string key;           // the model key ("" for a generator without `per`)
-  bool inCsp = false;        // the CSP constrained it (PersonalMode::Include, or an `explore accepted` generator)
-  bool applies = true;       // false: its guard is false at the assignment
+  std::string name;     // "dipPreferred(acquireBite.dip)"
+  std::string key;      // the model key ("" for a generator without `per`)
+  bool inCsp = false;   // the CSP constrained it (PersonalMode::Include, or an `explore accepted` generator)
+  bool applies = true;  // false: its guard is false at the assignment
+  // false: in a staged plan, the state the instance is judged in (its skill's start) is not reached for this
+  // assignment (an earlier skill's effect is undefined); then nothing below is its verdict. The re-check
+  // (Recheck.h) judges every instance in the same state, so the two always agree.
+  bool reached = true;
   double probability = 1;    // P(holds), the reading the constraint thresholds
   double accept = 0.5;       // the generator's `accept`
   bool holds = true;         // probability >= accept (with the evaluator's tolerance), or it does not apply

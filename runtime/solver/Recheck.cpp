@@ -111,7 +111,13 @@ RecheckResult recheck(const Csp& csp, const std::vector<double>& assignment) {
     if (!fresh) fresh.emplace(program, *csp.instances, *csp.user);
     const std::uint32_t i = c.index;
     ++r.constraintsChecked;
-    if (!enter(i < csp.instanceStage.size() ? csp.instanceStage[i] : 0) || !fresh->holds(i, fresh->evaluate(i, ctx))) {
+    if (!enter(i < csp.instanceStage.size() ? csp.instanceStage[i] : 0)) {
+      // Not the constraint's verdict: the state it is judged in is never reached (PersonalExplanation.h says the same).
+      const sim::PlanVerdict v = csp.plan->stageFailure();
+      r.violations.push_back(fmt::format(
+          "personalized constraint '{}' cannot be judged: the state it is judged in is not reached (call {}, {}: {})",
+          (*csp.instances)[i].name, v.failedCall + 1, v.action, v.status));
+    } else if (!fresh->holds(i, fresh->evaluate(i, ctx))) {
       r.violations.push_back(fmt::format("personalized constraint '{}' does not hold", (*csp.instances)[i].name));
     }
   }

@@ -3,12 +3,14 @@
 // variables, the program's constants, observations and functions): the program's own text is compiled again with
 // one extra `require` in that task's body, `(EXPR) == (EXPR)`, which type-checks EXPR as any comparable value
 // and leaves the layout of every variable unchanged; the left side is then compiled and evaluated alone. Skill
-// variables (`acquireBite.dip`) are not names in a task's scope, so `show plan` is the way to read them.
+// variables (`acquireBite.dip`) are not names in a task's scope: after a solve, those with scalar values are read
+// from the solution and put into the expression as literals (and said so); vectors and configurations are not.
 #include "app/PlanReport.h"
 #include "app/repl/ReplSession.h"
 #include "runtime/core/ProgramCompiler.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -80,11 +82,75 @@ std::string pasteable(const rt::Program& program, const rt::ValueType& type, con
   return plain ? text : nlohmann::json(text).dump();
 }
 
+bool identifierChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; }
+
+// A skill's variable (`acquireBite.dip`) is no name in the task's scope, so `:eval` reads it from the solution: every
+// whole-word occurrence of one whose value is a scalar literal (bool, number, enum member, item, text) is replaced by
+// that literal. Returns the rewritten expression and "name = value" for each one replaced.
+std::pair<std::string, std::vector<std::string>> withSkillValues(const std::string& expr, const rt::Program& program,
+                                                                 const std::vector<double>& assignment) {
+  std::vector<const ir::Variable*> skillVars;
+  for (const auto& v : program.graph().variables)
+    if (v.name.find('.') != std::string::npos) skillVars.push_back(&v);
+  // Longest first, so that `a.bc` is not cut by `a.b`.
+  std::sort(skillVars.begin(), skillVars.end(),
+            [](const ir::Variable* a, const ir::Variable* b) { return a->name.size() > b->name.size(); });
+  std::string out = expr;
+  std::vector<std::string> used;
+  for (const ir::Variable* v : skillVars) {
+    const rt::VarSlot& slot = program.slot(v->id);
+    if (slot.offset + slot.type.width > assignment.size()) continue;
+    const double* value = assignment.data() + slot.offset;
+    std::string literal;
+    switch (slot.type.kind) {
+      case rt::ValueKind::Bool:
+      case rt::ValueKind::Int:
+      case rt::ValueKind::Real:
+        literal = program.render(slot.type, value);
+        break;
+      case rt::ValueKind::Item: {  // entries are named through their set: dips.noDip
+        const auto& sets = program.graph().itemSets;
+        const auto set = std::find_if(sets.begin(), sets.end(),
+                                      [&](const ir::ItemSet& s) { return s.itemType == slot.type.typeName; });
+        if (set == sets.end()) continue;
+        literal = set->name + "." + program.render(slot.type, value);
+        break;
+      }
+      case rt::ValueKind::Enum:
+        literal = slot.type.typeName + "." + program.render(slot.type, value);
+        break;
+      case rt::ValueKind::Text:
+        literal = nlohmann::json(program.render(slot.type, value)).dump();
+        break;
+      default:
+        continue;  // vectors, poses, configurations: `show plan` shows them
+    }
+    bool replaced = false;
+    for (std::size_t at = out.find(v->name); at != std::string::npos; at = out.find(v->name, at)) {
+      const std::size_t end = at + v->name.size();
+      if ((at > 0 && (identifierChar(out[at - 1]) || out[at - 1] == '.')) ||
+          (end < out.size() && identifierChar(out[end]))) {
+        at = end;
+        continue;
+      }
+      out.replace(at, v->name.size(), literal);
+      at += literal.size();
+      replaced = true;
+    }
+    if (replaced) used.push_back(fmt::format("{} = {}", v->name, program.render(slot.type, value)));
+  }
+  return {out, used};
+}
+
 }  // namespace
 
-bool ReplSession::cmdEval(const std::string& expr) {
+bool ReplSession::cmdEval(const std::string& original) {
   if (!requireProgram()) return false;
-  if (expr.empty()) return fail(":eval EXPR: an expression over the constants, observations and task variables");
+  if (original.empty()) return fail(":eval EXPR: an expression over the constants, observations and task variables");
+  // Skill variables are read from the solution (there is none before a solve: they keep their names and fail).
+  const bool haveSolution = plan_ && plan_->ok;
+  const auto [expr, skillValues] = haveSolution ? withSkillValues(original, lp_->program(), plan_->solve.assignment)
+                                                : std::pair<std::string, std::vector<std::string>>{original, {}};
   std::ifstream in(path_);
   std::stringstream source;
   source << in.rdbuf();
@@ -129,9 +195,10 @@ bool ReplSession::cmdEval(const std::string& expr) {
   std::vector<double> frame(program.frameSize() + 1, 0.0), value(program.pool().width(root), 0.0);
   rt::EvalContext ctx{assignment.data(), observation.data(), frame.data(), program.callContext()};
   program.pool().eval(root, ctx, value.data());
-  fmt::print(out_, "{} : {} = {}{}\n", expr, lhs.type.spelling,
+  fmt::print(out_, "{} : {} = {}{}{}\n", original, lhs.type.spelling,
              pasteable(program, program.typeOf(lhs.type), value.data()),
-             solved ? "" : "   (no solution yet: variables at their initial values)");
+             solved ? "" : "   (no solution yet: variables at their initial values)",
+             skillValues.empty() ? "" : fmt::format("   (from the solution: {})", fmt::join(skillValues, ", ")));
   return true;
 }
 

@@ -134,7 +134,7 @@ personalDecl : PERSONAL ident LPAREN paramList? RPAREN LBRACE personalClause* RB
 
 personalClause
     : WHEN patternClause (COMMA patternClause)* SEMI                            # whenClause
-    | MODEL modelFactor (STAR modelFactor)* (PER ident (COMMA ident)*)? SEMI    # modelClause
+    | MODEL modelFactor (STAR modelFactor)* (PER expr (COMMA expr)*)? SEMI      # modelClause
     | ACCEPT expr SEMI                                                          # acceptClause
     | FALLBACK expr SEMI                                                        # fallbackClause
     | EXPLORE ident SEMI                                                        # exploreClause

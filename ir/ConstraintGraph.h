@@ -217,12 +217,21 @@ struct LearnRule {
   Span span;
 };
 
+// A `per` key: the instances of a generator share one model per distinct value of their keys. A key is a
+// parameter or a capture named by `name`, or an expression over the parameters and observations (`name` is then
+// its source text, as "kindOf[p]"). Model keys in profiles are the rendered key values joined by '|'.
+struct PerKey {
+  std::string name;
+  std::optional<Expr> expr;         // set for an expression key
+  std::vector<std::string> params;  // generator parameters the expression reads (a learning rule binds them)
+};
+
 struct Generator {
   std::string name;
   std::vector<Param> params;  // arity = params.size()
   std::vector<Pattern> patterns;
   std::vector<std::string> captures;
-  std::vector<std::string> perKeys;
+  std::vector<PerKey> perKeys;
   std::vector<ModelFactor> factors;
   std::optional<Expr> guard;  // bool over the parameters; false: the constraint does not apply
   double accept = 0.5;

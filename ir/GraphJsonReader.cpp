@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <set>
@@ -346,7 +347,25 @@ class GraphReader {
       g.patterns.push_back(std::move(pattern));
     });
     g.captures = n.texts("captures");
-    g.perKeys = n.texts("per");
+    for (const auto& name : n.texts("per")) g.perKeys.push_back({name, std::nullopt, {}});
+    // Optional: graphs written before expression keys have names only.
+    if (n.has("per_exprs")) {
+      const json& a = n.array("per_exprs");
+      if (a.size() != g.perKeys.size()) {
+        fail(GraphReadOutcome::Inconsistent, n.at("per_exprs"),
+             fmt::format("{} entries for {} keys (one per key)", a.size(), g.perKeys.size()));
+      }
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        if (a[i].is_null()) continue;
+        const Node k(a[i], child(n.at("per_exprs"), i));
+        g.perKeys[i].expr = expr(k.object("expr"));
+        g.perKeys[i].params = k.texts("params");
+        for (const auto& pn : g.perKeys[i].params) {
+          if (std::none_of(g.params.begin(), g.params.end(), [&](const Param& p) { return p.name == pn; }))
+            fail(GraphReadOutcome::UnknownName, k.at("params"), fmt::format("'{}' is no parameter", pn));
+        }
+      }
+    }
     eachIn(n, "factors", [&](const Node& f) { g.factors.push_back(factor(f)); });
     g.guard = optExpr(n, "guard");
     g.accept = n.number("accept");

@@ -255,7 +255,10 @@ std::string toText(const ConstraintGraph& g) {
     }
     if (!gen.perKeys.empty()) {
       o << "  per";
-      for (const auto& k : gen.perKeys) o << " " << k;
+      for (std::size_t i = 0; i < gen.perKeys.size(); ++i) {
+        const auto& k = gen.perKeys[i];
+        o << (i ? ", " : " ") << (k.expr ? exprText(*k.expr, g) : k.name);
+      }
       o << "\n";
     }
     if (gen.guard) o << "  if " << exprText(*gen.guard, g) << "\n";
@@ -432,6 +435,13 @@ std::string toJson(const ConstraintGraph& g) {
                          {"params", f.params},
                          {"span", spanJson(f.span)}});
     }
+    // "per" names every key; "per_exprs" (one entry per key, null for a parameter or capture) holds the
+    // expression keys, so that a graph without expression keys reads as before.
+    json perNames = json::array(), perExprs = json::array();
+    for (const auto& k : gen.perKeys) {
+      perNames.push_back(k.name);
+      perExprs.push_back(k.expr ? json{{"expr", exprJson(*k.expr)}, {"params", k.params}} : json(nullptr));
+    }
     for (const auto& r : gen.learnRules) {
       json labels = json::array();
       for (const auto& l : r.labels) labels.push_back({{"factor", l.factor}, {"value", exprJson(l.value)}});
@@ -447,7 +457,8 @@ std::string toJson(const ConstraintGraph& g) {
                                {"params", params},
                                {"patterns", patterns},
                                {"captures", gen.captures},
-                               {"per", gen.perKeys},
+                               {"per", perNames},
+                               {"per_exprs", perExprs},
                                {"factors", factors},
                                {"guard", optExpr(gen.guard)},
                                {"accept", gen.accept},

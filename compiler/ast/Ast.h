@@ -368,13 +368,22 @@ struct LearnRule {
   SourceRange range;
 };
 
+// A `per` key as written: a bare name (a capture of the patterns or a parameter) or an expression over the
+// generator's parameters and the observations (`per kindOf[p]`, `per p.kind`). The instances of a generator share
+// one model per distinct value of their keys.
+struct PerKey {
+  Ident spelling;  // the source text with its whitespace collapsed (the key's name in messages and profiles)
+  ExprPtr expr;    // always set; a bare name that names a capture stays unresolved
+  bool bareName() const { return expr && expr->kind == ExprKind::Name; }
+};
+
 struct PersonalDecl : Decl {
   PersonalDecl() : Decl(DeclKind::Personal) {}
   std::vector<Param> params;
   std::vector<PatternClause> patterns;
   std::vector<SourceRange> whenRanges;  // one per `when` clause (more than one is an error)
   std::vector<ModelFactor> factors;
-  std::vector<Ident> perKeys;
+  std::vector<PerKey> perKeys;
   std::vector<SourceRange> modelRanges;  // one per `model` clause
   std::vector<ExprPtr> accepts;
   std::vector<ExprPtr> fallbacks;

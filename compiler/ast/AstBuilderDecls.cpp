@@ -176,6 +176,26 @@ std::unique_ptr<Decl> AstBuilder::scopeStmt(P::ScopeStmtContext* ctx) {
   return nullptr;
 }
 
+// A `per` key: its expression and its source text (tokens as written, whitespace collapsed to one space), which
+// names the key in messages and profiles: `per kindOf[p]` is the key "kindOf[p]".
+PerKey AstBuilder::perKey(P::ExprContext* ctx) {
+  PerKey key;
+  key.spelling.range = range(ctx);
+  if (ctx->start != nullptr && ctx->stop != nullptr && ctx->stop->getStopIndex() >= ctx->start->getStartIndex()) {
+    const std::string raw = ctx->start->getInputStream()->getText(
+        antlr4::misc::Interval(ctx->start->getStartIndex(), ctx->stop->getStopIndex()));
+    for (const char c : raw) {
+      const bool space = c == ' ' || c == '\t' || c == '\n' || c == '\r';
+      if (!space)
+        key.spelling.name += c;
+      else if (!key.spelling.name.empty() && key.spelling.name.back() != ' ')
+        key.spelling.name += ' ';
+    }
+  }
+  key.expr = expr(ctx);
+  return key;
+}
+
 std::unique_ptr<Decl> AstBuilder::personal(P::PersonalDeclContext* ctx) {
   auto d = start<PersonalDecl>(ctx);
   d->name = ident(ctx->ident());
@@ -208,7 +228,7 @@ std::unique_ptr<Decl> AstBuilder::personal(P::PersonalDeclContext* ctx) {
         if (f->argList() != nullptr) factor.args = args(f->argList());
         d->factors.push_back(std::move(factor));
       }
-      for (auto* k : m->ident()) d->perKeys.push_back(ident(k));
+      for (auto* k : m->expr()) d->perKeys.push_back(perKey(k));
     } else if (auto* a = dynamic_cast<P::AcceptClauseContext*>(clause)) {
       d->accepts.push_back(expr(a->expr()));
     } else if (auto* fb = dynamic_cast<P::FallbackClauseContext*>(clause)) {

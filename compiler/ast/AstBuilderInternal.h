@@ -69,6 +69,7 @@ class AstBuilder {
                 P::TypeRefContext* result);
   std::unique_ptr<Decl> scopeStmt(P::ScopeStmtContext* ctx);
   std::unique_ptr<Decl> personal(P::PersonalDeclContext* ctx);
+  PerKey perKey(P::ExprContext* ctx);
   std::unique_ptr<ActionStmt> actionStmt(P::ActionStmtContext* ctx);
   std::unique_ptr<Decl> skill(P::SkillDeclContext* ctx);
   SkillInstance skillInstance(P::SkillInstanceContext* ctx);

@@ -176,13 +176,17 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
        "while the model is a product (say which factor it labels: '=> temp: good').\nFix: correct the label."},
       {"E0410", "learning rule leaves a parameter unbound",
        "A learning rule labels a factor whose feature needs a generator parameter or key that the rule does\n"
-       "not bind, so the label cannot be turned into a data point.\n"
+       "not bind, or the generator has a 'per' key that reads such a parameter, so the label cannot be\n"
+       "turned into a data point.\n"
        "Fix: name the binder after the parameter, e.g. learn viewBlocked(c) => false;"},
       {"E0411", "probability out of range",
        "'accept' and 'fallback' take a constant probability in [0, 1] ('accept' in (0, 1]).\nFix: use such a number."},
       {"E0412", "invalid key",
-       "A 'per' key is neither a capture of the generator's patterns nor a parameter of discrete type.\n"
-       "Fix: name a {capture} from a glob pattern or an enum/item/int/bool/text parameter."},
+       "A 'per' key names one model per distinct value: it must be a {capture} of the generator's patterns,\n"
+       "a parameter, or an expression over the parameters, observations and constants (an item's field as\n"
+       "p.kind, a constant family as kindOf[p]), of a discrete type (enum, item, int, bool or text), reading\n"
+       "no decision variable (the key must not change while the solver moves the candidate).\n"
+       "Fix: name a capture or a discrete parameter, or compute a discrete value from the parameters."},
       {"E0413", "generator without parameters",
        "A personalized constraint generator needs at least one parameter: its arity is the number of\n"
        "parameters, and a constraint is made for each matching tuple of variables.\nFix: add parameters."},

@@ -37,8 +37,15 @@ void Lowerer::lowerGenerator(const PersonalDecl& p) {
                           span(pat.patternRange)});
   }
   for (const auto& c : p.captures) g.captures.push_back(c.name);
-  for (const auto& k : p.perKeys) g.perKeys.push_back(k.name);
   Ctx none;
+  for (const auto& k : p.perKeys) {
+    ir::PerKey key{k.spelling.name, std::nullopt, {}};
+    if (perKeyKind(p, k) == PerKeyKind::Expression) {
+      key.expr = lower(k.expr.get(), none);
+      for (int pi : paramsRead(k.expr.get())) key.params.push_back(p.params[static_cast<std::size_t>(pi)].name.name);
+    }
+    g.perKeys.push_back(std::move(key));
+  }
   for (const auto& f : p.factors) g.factors.push_back(lowerFactor(p, f, none));
   // Several `if` guards are conjoined, in source order.
   for (const auto& c : p.guards) {

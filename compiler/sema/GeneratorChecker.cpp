@@ -276,17 +276,50 @@ class GenChecker {
         }
       }
     }
-    for (const auto& key : g.perKeys) {
-      const bool isCapture =
-          std::any_of(g.captures.begin(), g.captures.end(), [&](const Ident& c) { return c.name == key.name; });
-      const int pi = paramIndex(g, key.name);
-      const bool isDiscreteParam = pi >= 0 && g.params[pi].type.resolved && g.params[pi].type.resolved->isDiscrete();
-      if (!isCapture && !isDiscreteParam) {
-        diags_.error(
-            "E0412", key.range,
-            fmt::format("'{}' is neither a capture of the 'when' patterns nor a discrete parameter", key.name));
-      }
+    for (const auto& key : g.perKeys) checkKey(g, key);
+  }
+
+  // A key is a capture, a discrete parameter, or a discrete expression over parameters, observations and
+  // constants. Decision variables are refused: a key names which model an instance uses, and an instance must
+  // keep its model while the solver changes the candidate.
+  void checkKey(const PersonalDecl& g, const PerKey& key) {
+    const PerKeyKind kind = perKeyKind(g, key);
+    if (kind == PerKeyKind::Capture) return;
+    if (kind == PerKeyKind::Invalid) {
+      diags_
+          .error("E0412", key.spelling.range,
+                 fmt::format("'{}' is neither a capture of the 'when' patterns, a parameter, nor a name in scope",
+                             key.spelling.name))
+          .help(
+              "a key is a capture, a discrete parameter, or an expression over the parameters such as "
+              "kindOf[p] or p.kind");
+      return;
     }
+    const Type* type = key.expr->type;
+    if (type != nullptr && !type->isError() && !type->isDiscrete()) {
+      diags_
+          .error("E0412", key.spelling.range,
+                 fmt::format("a 'per' key must be discrete (enum, item, int, bool or text), but '{}' is {}",
+                             key.spelling.name, type->spelling))
+          .help("one model is learned per distinct value of the key; a real number would give one per reading");
+    }
+    if (const Expr* v = findVariableRead(key.expr.get())) {
+      diags_.error("E0412", v->range, fmt::format("a 'per' key cannot read the decision variable '{}'", v->text))
+          .help("a key may read the generator's parameters, observations and constants; make it a parameter");
+    }
+  }
+
+  static const Expr* findVariableRead(const Expr* e) {
+    if (e == nullptr) return nullptr;
+    if (e->kind == ExprKind::Name && e->ref.kind == RefKind::Variable) return e;
+    for (const auto& op : e->operands) {
+      if (const Expr* v = findVariableRead(op.get())) return v;
+    }
+    for (const auto& a : e->args) {
+      if (const Expr* v = findVariableRead(a.value.get())) return v;
+    }
+    if (e->binder) return findVariableRead(e->binder->set.get());
+    return nullptr;
   }
 
   // `context: name` or `context: [name, ...]`: observations or generator parameters of a discrete scalar type, each
@@ -431,12 +464,24 @@ class GenChecker {
       }
     }
     for (const auto& key : g.perKeys) {
-      const bool validKey =
-          std::any_of(g.captures.begin(), g.captures.end(), [&](const Ident& c) { return c.name == key.name; }) ||
-          paramIndex(g, key.name) >= 0;
-      if (validKey && !bound.count(key.name)) {  // an invalid key is reported once, as E0412
-        diags_.error("E0410", rule.range, fmt::format("this rule does not bind the key '{}'", key.name))
-            .help(fmt::format("name the event binder '{}' in the position that carries it", key.name));
+      const PerKeyKind kind = perKeyKind(g, key);
+      if (kind == PerKeyKind::Param || kind == PerKeyKind::Capture) {
+        if (!bound.count(key.spelling.name)) {
+          diags_.error("E0410", rule.range, fmt::format("this rule does not bind the key '{}'", key.spelling.name))
+              .help(fmt::format("name the event binder '{}' in the position that carries it", key.spelling.name));
+        }
+      } else if (kind == PerKeyKind::Expression) {  // an invalid key is reported once, as E0412
+        std::set<int> reads;
+        collectParams(key.expr.get(), reads);
+        for (int pi : reads) {
+          const std::string& name = g.params[pi].name.name;
+          if (bound.count(name)) continue;
+          diags_
+              .error("E0410", rule.range,
+                     fmt::format("this rule does not bind parameter '{}', which the key '{}' reads", name,
+                                 key.spelling.name))
+              .help(fmt::format("name the event binder '{}' in the position that carries it", name));
+        }
       }
     }
   }
@@ -459,6 +504,16 @@ class GenChecker {
 };
 
 }  // namespace
+
+PerKeyKind perKeyKind(const PersonalDecl& g, const PerKey& key) {
+  if (!key.bareName()) return PerKeyKind::Expression;
+  const NameRef& ref = key.expr->ref;
+  if (ref.kind == RefKind::Param && ref.decl == &g) return PerKeyKind::Param;
+  const std::string& name = key.expr->text;
+  if (std::any_of(g.captures.begin(), g.captures.end(), [&](const Ident& c) { return c.name == name; }))
+    return PerKeyKind::Capture;
+  return ref.kind == RefKind::Unresolved ? PerKeyKind::Invalid : PerKeyKind::Expression;
+}
 
 std::vector<int> paramsRead(const Expr* e) {
   std::set<int> s;

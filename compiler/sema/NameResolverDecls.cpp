@@ -177,6 +177,14 @@ void NameResolver::resolvePersonal(PersonalDecl& g) {
     bindLocal(g.params[i].name, Symbol{RefKind::Param, &g, static_cast<int>(i), g.params[i].name.range});
   }
   for (auto& f : g.factors) resolveModelArgs(f);
+  for (auto& k : g.perKeys) {
+    // A bare name may be a capture of the 'when' patterns, which is no symbol: it is looked up quietly, and the
+    // generator checker reports a name that is neither (E0412).
+    if (k.bareName())
+      k.expr->ref = lookupWithBinders(k.expr->text, k.expr->range, /*report=*/false);
+    else
+      resolveExpr(k.expr.get());
+  }
   for (auto& a : g.accepts) resolveExpr(a.get());
   for (auto& f : g.fallbacks) resolveExpr(f.get());
   for (auto& c : g.guards) resolveExpr(c.get());

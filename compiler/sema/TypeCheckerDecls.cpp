@@ -359,6 +359,9 @@ void TypeChecker::checkPersonal(PersonalDecl& g) {
       check(a.value.get());
     }
   }
+  for (auto& k : g.perKeys) {
+    if (!(k.bareName() && k.expr->ref.kind == RefKind::Unresolved)) check(k.expr.get());  // else a capture
+  }
   for (auto& a : g.accepts) check(a.get());
   for (auto& f : g.fallbacks) check(f.get());
   for (auto& c : g.guards) expect(c.get(), types_.boolean(), "a generator's 'if' guard");

@@ -16,14 +16,18 @@ Learner::Learner(const rt::Program& program) : program_(program) {
     for (const auto& r : g.rules) {
       std::vector<std::size_t> binders;
       for (const auto& key : g.source->perKeys) {
+        if (key.expr) {  // evaluated from the rule's compiled key (CompiledLearnRule::keys)
+          binders.push_back(SIZE_MAX);
+          continue;
+        }
         std::size_t found = SIZE_MAX;
         for (std::size_t i = 0; i < r.source->binds.size(); ++i) {
-          if (r.source->binds[i] == key) found = i;
+          if (r.source->binds[i] == key.name) found = i;
         }
         if (found == SIZE_MAX) {
           throw rt::RuntimeError(rt::Program::where(r.source->span),
                                  fmt::format("learning rule '{}' does not bind '{}', a 'per' key of '{}'",
-                                             r.source->event, key, g.source->name));
+                                             r.source->event, key.name, g.source->name));
         }
         binders.push_back(found);
       }
@@ -73,9 +77,15 @@ LearnReport Learner::learn(const std::vector<sim::FeedbackEvent>& events, model:
         if (r.condition && !pool.evalBool(*r.condition, ctx)) continue;
         std::string key;
         const auto& binders = keyBinders_[gi][ri];
+        double keyValue[rt::kMaxValueWidth];
         for (std::size_t k = 0; k < binders.size(); ++k) {
-          const std::size_t b = binders[k];
-          key += (k ? "|" : "") + program_.render(r.binderTypes[b], frame.data() + r.binderFrame[b]);
+          key += k ? "|" : "";
+          if (const std::size_t b = binders[k]; b != SIZE_MAX) {
+            key += program_.render(r.binderTypes[b], frame.data() + r.binderFrame[b]);
+          } else {
+            pool.eval(r.keys[k], ctx, keyValue);
+            key += program_.render(r.keyTypes[k], keyValue);
+          }
         }
         auto& factors = user.generator(gi).mutableFactors(key);
         for (std::size_t l = 0; l < r.labels.size(); ++l) {

@@ -107,10 +107,17 @@ std::vector<PersonalInstance> personalize(Program& program, const ir::Task& task
       inst.featureTypes.push_back(f.feature ? program.typeOf(f.feature->type) : ValueType{});
       inst.contexts.push_back(compileContext(compiler, program, f, scope));
     }
-    for (const auto& keyName : g.perKeys) {
+    for (const auto& perKey : g.perKeys) {
+      const std::string& keyName = perKey.name;
       ModelKeyPart part;
       bool found = false;
-      for (std::size_t k = 0; k < g.params.size(); ++k) {
+      if (perKey.expr) {  // an expression over the parameters (and observations), evaluated like a feature
+        part.fromValue = true;
+        part.node = compiler.compile(*perKey.expr, scope);
+        part.type = program.typeOf(perKey.expr->type);
+        found = true;
+      }
+      for (std::size_t k = 0; !found && k < g.params.size(); ++k) {
         if (g.params[k].name == keyName) {
           part.fromValue = true;
           part.node = scope.params[k];

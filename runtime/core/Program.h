@@ -83,6 +83,8 @@ struct CompiledLearnRule {
   std::vector<std::pair<int, std::uint32_t>> labels;  // (factor index, label node)
   std::vector<std::uint32_t> features;                // per label: the factor's feature node, or UINT32_MAX
   std::vector<CompiledContext> contexts;              // per label: a text factor's context, over the rule's frame
+  std::vector<std::uint32_t> keys;                    // per `per` key: its expression's node, or UINT32_MAX (a name)
+  std::vector<ValueType> keyTypes;                    // per `per` key: the expression's type
   std::optional<std::uint32_t> condition;
   std::uint32_t frameWidth = 0;
 };

@@ -219,6 +219,24 @@ CompiledLearnRule ProgramCompiler::compileLearnRule(const ir::Generator& g, cons
     cr.labels.push_back({factor, compile(l.value, scope)});
     cr.features.push_back(featureNode);
   }
+  for (const auto& key : g.perKeys) {
+    if (!key.expr) {  // a parameter or capture: the learner reads the binder that binds it
+      cr.keys.push_back(UINT32_MAX);
+      cr.keyTypes.emplace_back();
+      continue;
+    }
+    for (const auto& pn : key.params) {
+      for (std::size_t p = 0; p < g.params.size(); ++p) {
+        if (g.params[p].name == pn && scope.params[p] == UINT32_MAX) {
+          throw RuntimeError(Program::where(r.span),
+                             fmt::format("learning rule '{}' does not bind parameter '{}', which the key '{}' reads",
+                                         r.event, pn, key.name));
+        }
+      }
+    }
+    cr.keys.push_back(compile(*key.expr, scope));
+    cr.keyTypes.push_back(program_.typeOf(key.expr->type));
+  }
   if (r.condition) cr.condition = compile(*r.condition, scope);
   cr.frameWidth = top;
   program_.frameSize_ = std::max<std::size_t>(program_.frameSize_, top);

@@ -176,10 +176,12 @@ void checkKey(const ir::ConstraintGraph& graph, const ir::Generator& g, const st
   }
   bool freeText = false;
   std::vector<const ir::TypeDesc*> types;
-  for (const auto& name : g.perKeys) {
-    const ir::TypeDesc* type = nullptr;
+  std::vector<std::string> names;
+  for (const auto& key : g.perKeys) {
+    names.push_back(key.name);
+    const ir::TypeDesc* type = key.expr ? &key.expr->type : nullptr;
     for (const auto& p : g.params) {
-      if (p.name == name) type = &p.type;
+      if (!key.expr && p.name == key.name) type = &p.type;
     }
     freeText = freeText || type == nullptr || type->kind == ir::TypeKind::Text;
     types.push_back(type);
@@ -187,7 +189,7 @@ void checkKey(const ir::ConstraintGraph& graph, const ir::Generator& g, const st
   if (parts.size() < g.perKeys.size() || (parts.size() > g.perKeys.size() && !freeText)) {
     failAt(source, kpath,
            fmt::format("expected {} '|'-separated part{} (per {}), found {}", g.perKeys.size(),
-                       g.perKeys.size() == 1 ? "" : "s", fmt::join(g.perKeys, ", "), parts.size()));
+                       g.perKeys.size() == 1 ? "" : "s", fmt::join(names, ", "), parts.size()));
   }
   if (parts.size() != g.perKeys.size()) return;  // a free-text part holds a '|': the parts cannot be told apart
   for (std::size_t i = 0; i < parts.size(); ++i) {
@@ -204,7 +206,7 @@ void checkKey(const ir::ConstraintGraph& graph, const ir::Generator& g, const st
         problem = fmt::format("a member of {} ({})", e->name, fmt::join(e->members, ", "));
     }
     if (!problem.empty())
-      failAt(source, kpath, fmt::format("part {} ('{}', per {}) should be {}", i + 1, part, g.perKeys[i], problem));
+      failAt(source, kpath, fmt::format("part {} ('{}', per {}) should be {}", i + 1, part, names[i], problem));
   }
 }
 

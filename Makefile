@@ -43,7 +43,7 @@ test: build
 # third-party libraries' process-lifetime caches LeakSanitizer must not count (fontconfig's).
 asan:
 	LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
-	  $(MAKE) test BUILD_DIR=build-asan BUILD_TYPE=Debug CMAKE_ARGS="-DCBTL_SANITIZE=ON -DCBTL_BUILD_BENCH=OFF"
+	  $(MAKE) test BUILD_DIR=build-asan BUILD_TYPE=Debug CMAKE_ARGS="-DCBTL_SANITIZE=ON -DCBTL_BUILD_BENCH=OFF -DCBTL_PRECOMPILED_HEADERS=OFF"
 
 # The compiler fuzzer for FUZZ_SECONDS (default 60), built with clang in build-fuzz/.
 FUZZ_SECONDS ?= 60

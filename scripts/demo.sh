@@ -12,8 +12,8 @@ set -euo pipefail
 if [ "${1:-}" = "--announce" ]; then
   cat <<'TXT'
 make demo: installs the Debian packages cbtlc and cbtl need (none of the test tools), builds only those two
-programs (about 13 minutes the first time on 2 cores; seconds when built already), then runs the demo (about
-15 seconds): the domains checked, Feeding's robot serving meal 5 with and without what it learned, and the
+programs (about 8 minutes the first time on 2 cores; seconds when built already), then runs the demo (about
+10 seconds): the domains checked, Feeding's robot serving meal 5 with and without what it learned, and the
 paper's Cooking experiment on three seeds.
 TXT
   exit 0

@@ -78,8 +78,11 @@ std::string tokenDisplay(antlr4::Parser* parser, std::size_t type) {
 std::string foundDisplay(antlr4::Token* t) {
   if (t->getType() == antlr4::Token::EOF) return "end of file";
   std::string text = t->getText();
-  if (text.size() > 24) text = text.substr(0, 21) + "...";
-  return "'" + text + "'";
+  if (text.size() > 24) {  // in place: GCC 12 misreads `substr(...) + "..."` as out of bounds (-Warray-bounds)
+    text.resize(21);
+    text += "...";
+  }
+  return fmt::format("'{}'", text);
 }
 
 bool isExpressionStart(const antlr4::misc::IntervalSet& set) {

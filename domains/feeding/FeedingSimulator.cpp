@@ -30,6 +30,10 @@ constexpr double kDrinkParkedX = 0.55, kDrinkParkedY = 1.60;
 // in use stands, that of "table_round" where the other one is parked.
 constexpr const char* kRectangularTable = "table";
 constexpr const char* kRoundTable = "table_round";
+// The fixtures of a meal's setting (MealSetting), and how far below its place an absent one is parked.
+constexpr const char* kFriend = "friend";
+constexpr const char* kTv = "tv";
+constexpr double kParkedDepth = 3.0;
 // Draws of a spot on the table before a caregiver gives up looking for one where the body stands and is clear.
 constexpr int kSpotAttempts = 100;
 
@@ -143,6 +147,20 @@ void FeedingSimulator::serveMeal() {
   std::sort(dips_.begin(), dips_.end());
   setting_ = kSettings[rng_.index(kSettings.size())];
   setTable(rng_.index(2) == 0 ? "rectangular" : "circular");
+  showSetting();
+}
+
+void FeedingSimulator::showSetting() {
+  world::Workspace& ws = world().workspace();
+  const bool friendThere = setting_ == "withFriend" || setting_ == "withFriendAndTv";
+  const bool tvOn = setting_ == "withTv" || setting_ == "withFriendAndTv";
+  for (const auto& [name, present] : {std::pair{kFriend, friendThere}, std::pair{kTv, tvOn}}) {
+    const auto placed = tablePoses_.find(name);
+    if (placed == tablePoses_.end()) continue;  // a scene without it
+    world::Pose3 pose = placed->second;
+    if (!present) pose.position.z() -= kParkedDepth;
+    ws.setFixturePose(name, pose);
+  }
 }
 
 void FeedingSimulator::setTable(const std::string& shape) {
@@ -171,6 +189,7 @@ void FeedingSimulator::serveMealNow(const Meal& meal) {
   std::sort(dips_.begin(), dips_.end());
   setting_ = meal.setting;
   setTable(meal.table);
+  showSetting();
   cycle_ = 0;
   startRequest(Request::Food);
 }

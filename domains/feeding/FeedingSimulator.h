@@ -173,13 +173,17 @@ class FeedingSimulator final
   void serveMeal();  // draws the next meal: food, the two sauces on the table, the setting, the table
   // Puts the table of `shape` (Meal::table) in place and the other away, then the plate back on it if need be.
   void setTable(const std::string& shape);
+  // Puts the friend and the TV the setting names in the scene and parks the others under the floor (fixtures of
+  // class visual: they change pictures only, never what the robot may do).
+  void showSetting();
   void startRequest(Request r);
   void nextRequest();
   void restoreHome();
   sim::StepResult complete(sim::StepResult r, bool satisfied);
   world::Pose2 randomXY(const TableAreas::Box& box);
 
-  std::map<std::string, world::Pose3> tablePoses_;  // the scene's fixtures as loaded (table in use, other parked)
+  // The scene's fixtures as loaded: the table in use, the other parked; the friend and the TV where they appear.
+  std::map<std::string, world::Pose3> tablePoses_;
   std::size_t cycle_ = 0;
   Request request_ = Request::Food;
   std::string food_;

@@ -177,11 +177,11 @@ void checkKey(const ir::ConstraintGraph& graph, const ir::Generator& g, const st
   bool freeText = false;
   std::vector<const ir::TypeDesc*> types;
   std::vector<std::string> names;
-  for (const auto& key : g.perKeys) {
-    names.push_back(key.name);
-    const ir::TypeDesc* type = key.expr ? &key.expr->type : nullptr;
+  for (const auto& perKey : g.perKeys) {
+    names.push_back(perKey.name);
+    const ir::TypeDesc* type = perKey.expr ? &perKey.expr->type : nullptr;
     for (const auto& p : g.params) {
-      if (!key.expr && p.name == key.name) type = &p.type;
+      if (!perKey.expr && p.name == perKey.name) type = &p.type;
     }
     freeText = freeText || type == nullptr || type->kind == ir::TypeKind::Text;
     types.push_back(type);

@@ -111,7 +111,9 @@ int runTrial(const RunArgs& a) {
     }
     cli::printLlmFaults(stdout, r.llmFaults);
     if (!a.out.empty())
-      fmt::print("wrote {}/train.csv, eval.csv, config.json, llm.json, profile.json, models/, complete.json\n", a.out);
+      fmt::print(
+          "wrote {}/train.csv, eval.csv, config.json, llm.json, profile.json, models/, timing.json, complete.json\n",
+          a.out);
   } else {
     cli::printLlmFaults(stderr, r.llmFaults);
   }

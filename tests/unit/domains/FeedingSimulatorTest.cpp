@@ -102,6 +102,30 @@ TEST(FeedingSimulator, AScriptedMealPutsItsTableInPlaceAndThePlateBackOnIt) {
   EXPECT_TRUE(sim.placeOnTable("plate", 0.35, 0.45));
 }
 
+// The friend and the TV the setting names are in the room (at the height the scene gives them, z = 0); the others
+// are parked under the floor. Pictures show them; nothing the robot may do depends on them (class visual).
+TEST(FeedingSimulator, TheSettingsFriendAndTvAreInTheRoomAndTheOthersAway) {
+  FeedingSimulator sim(feeding(), {}, 3);
+  auto present = [&](const char* fixture) { return sim.worldState()->fixtures.at(fixture).position.z() > -1.0; };
+  for (const auto& meal : cbtl::domains::feeding::paperMeals()) {
+    sim.serveMealNow(meal);
+    const bool withFriend = meal.setting == "withFriend" || meal.setting == "withFriendAndTv";
+    const bool withTv = meal.setting == "withTv" || meal.setting == "withFriendAndTv";
+    EXPECT_EQ(present("friend"), withFriend) << meal.setting;
+    EXPECT_EQ(present("tv"), withTv) << meal.setting;
+  }
+  // Drawn meals too: every setting shows its company.
+  std::set<std::string> seen;
+  for (std::uint64_t seed = 0; seed < 40; ++seed) {
+    sim.reset(seed);
+    const std::string& setting = sim.setting();
+    seen.insert(setting);
+    EXPECT_EQ(present("friend"), setting == "withFriend" || setting == "withFriendAndTv") << setting;
+    EXPECT_EQ(present("tv"), setting == "withTv" || setting == "withFriendAndTv") << setting;
+  }
+  EXPECT_EQ(seen.size(), 4U);
+}
+
 TEST(FeedingSimulator, TheTableAreasAreTheProgramsConstants) {
   const cbtl::domains::ProgramFacts& facts = feeding();
   const auto areas = cbtl::domains::feeding::TableAreas::of(facts);

@@ -74,7 +74,9 @@ struct Garden {
     std::vector<double> x = program().initialAssignment();
     for (const auto& v : lp->graph().variables) {
       const auto& slot = program().slot(v.id);
-      if (v.name == "plant") EXPECT_TRUE(program().parseName(slot.type, plant, x[slot.offset]));
+      if (v.name == "plant") {
+        EXPECT_TRUE(program().parseName(slot.type, plant, x[slot.offset]));
+      }
       if (v.name == "water") x[slot.offset] = amount;
     }
     std::vector<double> frame(64), obs(program().observationWidth() + 1);

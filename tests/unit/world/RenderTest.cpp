@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -44,6 +45,41 @@ TEST(WorldRender, FeedingSceneShowsTheArm) {
   ASSERT_TRUE(decoded.has_value());
   EXPECT_EQ(decoded->rgb, img.rgb);
   std::filesystem::remove(path);
+}
+
+// The study's pictures are taken by the user_view camera: a participant sees a room (no black void), the plate on
+// the table near the bottom, and across the table the friend and the TV of the meal's setting, which the
+// simulator parks under the floor when the setting does not name them.
+TEST(WorldRender, TheUsersViewShowsTheRoomThePlateAndTheSettingsCompany) {
+  Workspace ws(test::feedingScene());
+  CameraSpec cam;
+  cam.name = "user_view";
+  const int w = 320, h = 240;
+  Image company, alone;
+  ASSERT_EQ(gRenderer->render(ws, cam, w, h, company), RenderStatus::Ok);
+  for (const char* fixture : {"friend", "tv"}) {
+    Pose3 parked = ws.state().fixtures.at(fixture);
+    parked.position.z() -= 3.0;
+    ASSERT_EQ(ws.setFixturePose(fixture, parked), StateStatus::Ok) << fixture;
+  }
+  ASSERT_EQ(gRenderer->render(ws, cam, w, h, alone), RenderStatus::Ok);
+  auto pixel = [&](const Image& img, int x, int y) {
+    const std::size_t i = 3 * (static_cast<std::size_t>(y) * w + x);
+    return std::array<int, 3>{img.rgb[i], img.rgb[i + 1], img.rgb[i + 2]};
+  };
+  int black = 0, plateWhite = 0, changedTop = 0, changedBottom = 0;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const auto a = pixel(company, x, y), b = pixel(alone, x, y);
+      if (a[0] < 8 && a[1] < 8 && a[2] < 8 && b[0] < 8 && b[1] < 8 && b[2] < 8) ++black;
+      if (y > h / 2 && a[0] > 200 && a[1] > 200 && a[2] > 200) ++plateWhite;
+      if (a != b) ++(y < h / 2 ? changedTop : changedBottom);
+    }
+  }
+  EXPECT_LT(black, w * h / 100) << "background showing: the room should fill the view";
+  EXPECT_GT(plateWhite, w * h / 50) << "the white plate should fill part of the lower half";
+  EXPECT_GT(changedTop, w * h / 20) << "the friend and the TV should be seen across the table";
+  EXPECT_LT(changedBottom, changedTop) << "the company sits across the table, not on it";
 }
 
 TEST(WorldRender, UnknownCameraAndOversizeAreReported) {

@@ -28,9 +28,11 @@ void useRoundTable(Workspace& ws) {
 
 TEST(WorldFixtures, TheFeedingTablesAreFixturesWithTheirPosesInTheState) {
   const auto scene = test::feedingScene();
-  ASSERT_EQ(scene->fixtures().size(), 2u);
+  ASSERT_EQ(scene->fixtures().size(), 4u);  // the two tables, and the friend and the TV of a meal's setting
   EXPECT_GE(scene->fixtureIndex("table"), 0);
   EXPECT_GE(scene->fixtureIndex("table_round"), 0);
+  EXPECT_GE(scene->fixtureIndex("friend"), 0);
+  EXPECT_GE(scene->fixtureIndex("tv"), 0);
   EXPECT_EQ(scene->fixtureIndex("plate"), -1);
   EXPECT_EQ(scene->objectIndex("table"), -1);  // not a movable object
   EXPECT_EQ(scene->bodyKind(scene->bodyId("table_round")), BodyKind::Scenery);

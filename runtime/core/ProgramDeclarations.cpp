@@ -183,6 +183,18 @@ CompiledLearnRule ProgramCompiler::compileLearnRule(const ir::Generator& g, cons
     }
     top += std::max<std::uint16_t>(bt.width, 1);
   }
+  // What the rule evaluates on an event may read only the parameters the rule binds; `what` reads `names`.
+  auto requireBound = [&](const std::vector<std::string>& names, const std::string& what) {
+    for (const auto& pn : names) {
+      for (std::size_t p = 0; p < g.params.size(); ++p) {
+        if (g.params[p].name == pn && scope.params[p] == UINT32_MAX) {
+          throw RuntimeError(
+              Program::where(r.span),
+              fmt::format("learning rule '{}' does not bind parameter '{}', which {} reads", r.event, pn, what));
+        }
+      }
+    }
+  };
   for (const auto& l : r.labels) {
     int factor = -1;
     for (std::size_t k = 0; k < g.factors.size(); ++k) {
@@ -192,28 +204,11 @@ CompiledLearnRule ProgramCompiler::compileLearnRule(const ir::Generator& g, cons
     const auto& f = g.factors[static_cast<std::size_t>(factor)];
     std::uint32_t featureNode = UINT32_MAX;
     for (const auto& entry : f.context) {
-      for (const auto& pn : entry.params) {
-        for (std::size_t p = 0; p < g.params.size(); ++p) {
-          if (g.params[p].name == pn && scope.params[p] == UINT32_MAX) {
-            throw RuntimeError(Program::where(r.span),
-                               fmt::format("learning rule '{}' does not bind parameter '{}', which the context of "
-                                           "factor '{}' reads",
-                                           r.event, pn, f.label));
-          }
-        }
-      }
+      requireBound(entry.params, fmt::format("the context of factor '{}'", f.label));
     }
     cr.contexts.push_back(compileContext(*this, program_, f, scope));
     if (f.feature) {
-      for (const auto& pn : f.params) {
-        for (std::size_t p = 0; p < g.params.size(); ++p) {
-          if (g.params[p].name == pn && scope.params[p] == UINT32_MAX) {
-            throw RuntimeError(Program::where(r.span),
-                               fmt::format("learning rule '{}' does not bind parameter '{}', which factor '{}' reads",
-                                           r.event, pn, f.label));
-          }
-        }
-      }
+      requireBound(f.params, fmt::format("factor '{}'", f.label));
       featureNode = compile(*f.feature, scope);
     }
     cr.labels.push_back({factor, compile(l.value, scope)});
@@ -225,15 +220,7 @@ CompiledLearnRule ProgramCompiler::compileLearnRule(const ir::Generator& g, cons
       cr.keyTypes.emplace_back();
       continue;
     }
-    for (const auto& pn : key.params) {
-      for (std::size_t p = 0; p < g.params.size(); ++p) {
-        if (g.params[p].name == pn && scope.params[p] == UINT32_MAX) {
-          throw RuntimeError(Program::where(r.span),
-                             fmt::format("learning rule '{}' does not bind parameter '{}', which the key '{}' reads",
-                                         r.event, pn, key.name));
-        }
-      }
-    }
+    requireBound(key.params, fmt::format("the key '{}'", key.name));
     cr.keys.push_back(compile(*key.expr, scope));
     cr.keyTypes.push_back(program_.typeOf(key.expr->type));
   }

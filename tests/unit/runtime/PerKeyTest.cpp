@@ -63,6 +63,13 @@ struct Garden {
         user);
     EXPECT_TRUE(report.problems.empty()) << report.problems.front();
   }
+  // The person's answers: an aloe wants a little water, a maidenhair fern a lot.
+  void teach(model::UserModel& user) const {
+    water(user, "aloe", 0.2, true);
+    water(user, "aloe", 0.8, false);
+    water(user, "maidenhair", 0.7, true);
+    water(user, "maidenhair", 0.1, false);
+  }
   std::vector<std::string> keys(const model::UserModel& user, std::size_t generator) const {
     std::vector<std::string> out;
     for (const auto& [key, factors] : user.generator(generator).keys()) out.push_back(key);
@@ -99,9 +106,7 @@ TEST(PerKey, FeedbackIsFiledUnderTheValueOfTheKeyExpression) {
   Garden g;
   ASSERT_TRUE(g.lp->ok());
   model::UserModel user(g.lp->graph());
-  g.water(user, "aloe", 0.2, true);
-  g.water(user, "aloe", 0.8, false);
-  g.water(user, "maidenhair", 0.7, true);
+  g.teach(user);
   EXPECT_EQ(g.keys(user, kByKind), (std::vector<std::string>{"fern", "succulent"}));
   EXPECT_EQ(g.keys(user, kByTable), (std::vector<std::string>{"fern|small", "succulent|small"}));
   EXPECT_EQ(g.keys(user, kByPlant), (std::vector<std::string>{"aloe", "maidenhair"}));
@@ -111,10 +116,7 @@ TEST(PerKey, InstancesReadTheModelOfTheirKeysValue) {
   Garden g;
   ASSERT_TRUE(g.lp->ok());
   model::UserModel user(g.lp->graph());
-  g.water(user, "aloe", 0.2, true);
-  g.water(user, "aloe", 0.8, false);
-  g.water(user, "maidenhair", 0.7, true);
-  g.water(user, "maidenhair", 0.1, false);
+  g.teach(user);
   std::string key;
   // A cactus was never watered, but it is a succulent: what was learned about the aloe applies to it per kind
   // (a little water good, a lot bad), and not per plant, where the cactus has only the prior.

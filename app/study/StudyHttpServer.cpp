@@ -49,7 +49,10 @@ const char* kIndexPage =
 }  // namespace
 
 HttpReply errorReply(int status, const std::string& message) {
-  return HttpReply{status, "application/json", nlohmann::json{{"error", message}}.dump()};
+  // A message may quote what a client sent (a path, an id): bytes that are not UTF-8 become U+FFFD instead of
+  // throwing out of the server's thread (`GET /%ff` once aborted the process).
+  return HttpReply{status, "application/json",
+                   nlohmann::json{{"error", message}}.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)};
 }
 
 StudyHttpServer::StudyHttpServer(StudyApi& api) : api_(api), server_(std::make_unique<httplib::Server>()) {
@@ -109,7 +112,7 @@ void StudyHttpServer::routes() {
   });
   s.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
     if (!res.body.empty()) return;  // a route's own error reply
-    std::string message = "no such page: " + req.method + " " + req.path;
+    std::string message = "no such page: " + quotedText(req.method) + " " + quotedText(req.path);
     if (res.status == 413) message = "the request is too large (at most 64 KiB)";
     send(res, errorReply(res.status, message));
   });

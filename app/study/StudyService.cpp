@@ -34,7 +34,9 @@ std::string logText(const json& value) {
   return text;
 }
 
-HttpReply jsonReply(const json& j, int status = 200) { return HttpReply{status, "application/json", j.dump()}; }
+HttpReply jsonReply(const json& j, int status = 200) {
+  return HttpReply{status, "application/json", j.dump(-1, ' ', false, json::error_handler_t::replace)};
+}
 
 // A StudyRecords failure after every check passed: the database's (busy, broken), not the request's.
 HttpReply storageError(const std::exception& e) {

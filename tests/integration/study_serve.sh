@@ -72,6 +72,30 @@ record 3 answers 1 '{"dip": "dip", "signal": "button", "verbosity": "silent", "b
 grep -q 'participant "p1" trial 3 ("answers", meal 1): refused 409 ' "$work/err" || fail "no refusal line: $(cat "$work/err")"
 ! grep -q 'noDip' "$work/err" || fail "the log holds an answer: $(cat "$work/err")"
 
+# Hostile requests are answered, never abort the server: bytes that are not UTF-8 in the path (`GET /%ff` once
+# killed it with exit 134: its error reply quoted the raw path), control bytes, methods it does not serve.
+raw() {  # REQUEST-LINE -> the status line and body of the reply, sent as raw bytes (urllib would re-encode them)
+  python3 - "$port" "$1" <<'PY'
+import socket, sys
+port, line = int(sys.argv[1]), sys.argv[2]
+with socket.create_connection(("127.0.0.1", port), timeout=30) as c:
+    c.sendall(line.encode("latin-1") + b"\r\nHost: x\r\nConnection: close\r\n\r\n")
+    data = b""
+    while chunk := c.recv(65536):
+        data += chunk
+head, _, body = data.partition(b"\r\n\r\n")
+print(head.split(b"\r\n")[0].decode("latin-1"), body.decode("utf-8"))
+PY
+}
+for line in 'GET /%ff HTTP/1.1' 'GET /%ff%fe/%c3%28 HTTP/1.1' 'GET /p/%ff HTTP/1.1' 'GET /api/participants/%ff HTTP/1.1' \
+  'GET /api/participants/p1/views/1/%ff.png HTTP/1.1' 'DELETE /%01%02 HTTP/1.1' 'BREW /%ff HTTP/1.1'; do
+  reply=$(raw "$line" 2>&1)
+  [[ $reply == "HTTP/1.1 4"* ]] || fail "'$line' got: $reply"
+  kill -0 "$pid" 2>/dev/null || { fail "'$line' stopped the server: $(cat "$work/err")"; break; }
+done
+[[ $(raw 'GET /%ff HTTP/1.1') == *'"error":"no such page: '* ]] || fail "GET /%ff: no JSON error: $(raw 'GET /%ff HTTP/1.1')"
+[[ $(http GET /api/participants/p1) == "$before" ]] || fail "the server after hostile requests"
+
 # A second server on the same port is refused, and the first keeps answering.
 "$cbtl" study serve "$program" --db "$work/other.sqlite" --port "$port" --no-pictures >"$work/out2" 2>&1 &
 second=$!

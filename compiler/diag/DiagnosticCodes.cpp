@@ -85,7 +85,8 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
       {"E0304", "invalid domain",
        "The 'in ...' part of a variable declaration does not fit the variable's type. Reals and ints take a\n"
        "range lo .. hi; vec<N> a list of N ranges; SE2 box(x:, y:, yaw:); SE3 box(x:, y:, z:); enums a list of\n"
-       "members; items an item set, an observed set or a list of items; text a list of strings.\n"
+       "members; items an item set, an observed set or a list of items; text a list of strings. Constant\n"
+       "bounds are finite numbers (a bound like 0.0 / 0.0 or 1.0 / 0.0 leaves nothing to sample).\n"
        "Example:  var p : vec<2> in 0 .. 1;\nFix: write the domain in the form for the type."},
       {"E0305", "not a constant",
        "A value that must be known when the file is compiled (a constant, a domain bound that is not an\n"
@@ -110,8 +111,9 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
        "Example:  var speed : real;  sample speed ~ uniform;\n"
        "Fix:      var speed : real in 0 .. 2;  sample speed ~ uniform;"},
       {"E0311", "empty or inverted range",
-       "A constant range has its lower bound above its upper bound, so the domain is empty; or a model's\n"
-       "prior is inverted or a single point, so there is nothing to learn.\n"
+       "A constant range has its lower bound above its upper bound, so the domain is empty; a variable\n"
+       "family's index set is empty, so it declares no variable; or a model's prior is inverted or a single\n"
+       "point, so there is nothing to learn.\n"
        "Example:  var x : real in 1 .. 0;      model interval(t, 85 .. 40);\n"
        "Fix:      var x : real in 0 .. 1;      model interval(t, 40 .. 85);"},
       {"E0312", "wrong number of values",

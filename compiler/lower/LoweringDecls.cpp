@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace cbtl::detail {
 
@@ -165,6 +166,11 @@ bool Lowerer::familyMembers(const VarDecl& v, const Ctx& ctx,
     diags_.error("E0305", v.index->set->range, "the index set of a variable family must be known at compile time");
     return false;
   }
+  if (values->empty()) {  // nothing to declare: a sampler of the family would write no variable
+    diags_.error("E0311", v.index->set->range,
+                 fmt::format("the index set of the family '{}' is empty, so it declares no variable", v.name.name));
+    return false;
+  }
   std::set<std::string> seen;
   for (const auto& val : *values) {
     if (!seen.insert(val.text).second) {
@@ -209,7 +215,47 @@ ir::Domain Lowerer::lowerDomain(const VarDecl& v, Ctx& ctx) {
   return d;
 }
 
+// The value of a bound made of numbers, constants and arithmetic (nothing observed), or none.
+std::optional<double> Lowerer::foldedNumber(const ir::Expr& e, int depth) const {
+  if (depth > 64) return std::nullopt;
+  if (e.op == ir::Op::Num) return e.number;
+  if (e.op == ir::Op::Const && e.children.empty()) {
+    for (const auto& c : g_.constants) {
+      if (c.name == e.text && c.indexSet.empty()) return foldedNumber(c.value, depth + 1);
+    }
+    return std::nullopt;
+  }
+  std::vector<double> x;
+  for (const auto& child : e.children) {
+    const auto v = foldedNumber(child, depth + 1);
+    if (!v) return std::nullopt;
+    x.push_back(*v);
+  }
+  if (e.op == ir::Op::Neg && x.size() == 1) return -x[0];
+  if (x.size() != 2) return std::nullopt;
+  if (e.op == ir::Op::Add) return x[0] + x[1];
+  if (e.op == ir::Op::Sub) return x[0] - x[1];
+  if (e.op == ir::Op::Mul) return x[0] * x[1];
+  if (e.op == ir::Op::Div) return x[0] / x[1];
+  return std::nullopt;
+}
+
 void Lowerer::reportEmptyRange(const VarDecl& v, const ir::Domain& d) {
+  // A constant bound that is not a finite number (0.0 / 0.0, 1.0 / 0.0) leaves nothing to sample from and no
+  // value the re-check would accept: `cbtl` refused every solution as a bug.
+  for (const auto& b : d.bounds) {
+    for (const auto* bound : {&b.lo, &b.hi}) {
+      if (!*bound) continue;
+      if (const auto value = foldedNumber(**bound); value && !std::isfinite(*value)) {
+        diags_.error("E0304", v.domain->range,
+                     fmt::format("the domain of '{}' has a bound that is not a finite number ({})", v.name.name,
+                                 std::isnan(*value) ? "NaN"
+                                 : *value > 0       ? "infinity"
+                                                    : "-infinity"));
+        return;
+      }
+    }
+  }
   for (const auto& b : d.bounds) {
     if (b.lo && b.hi && b.lo->op == ir::Op::Num && b.hi->op == ir::Op::Num && b.lo->number > b.hi->number) {
       diags_.error("E0311", v.domain->range,

@@ -145,6 +145,7 @@ class Lowerer {
                      std::vector<std::pair<std::string, std::optional<CVal>>>& members);
   ir::Domain lowerDomain(const VarDecl& v, Ctx& ctx);
   void reportEmptyRange(const VarDecl& v, const ir::Domain& d);
+  std::optional<double> foldedNumber(const ir::Expr& e, int depth = 0) const;
 
   // --- LoweringBodies.cpp: the body of a scope ---
   // Lowers a scope's declarations (variables first, then statements) and appends the ids made to the lists.

@@ -1,5 +1,7 @@
 #include "runtime/textpref/LlmPreferenceModel.h"
 
+#include "runtime/textpref/Redaction.h"
+
 #include <fmt/core.h>
 
 #include <cctype>
@@ -117,7 +119,9 @@ Status LlmPreferenceModel::rewriteTheta() {
   std::string text = trimmed(response.value().content);
   if (text.empty())
     return Error{ErrorKind::MalformedResponse, "the learning reply is empty; theta is unchanged", client_->server()};
-  theta_ = std::move(text);
+  // The reply becomes the stored summary (profile.json, models/*.json): a server that echoes the credential it was
+  // sent must not put it there, so the summary is redacted as every quoted server message is (Redaction.h).
+  theta_ = redactSecrets(text, secretFromEnvironment(client_->config().apiKeyEnv));
   return {};
 }
 
@@ -146,7 +150,9 @@ Status LlmPreferenceModel::loadState(const nlohmann::json& state) {
     if (!record) return record.error();
     history.push_back(std::move(record).value());
   }
-  theta_ = state["theta"].get<std::string>();
+  // A summary stored before summaries were redacted may hold a credential: it is scrubbed as it is read.
+  theta_ = redactSecrets(state["theta"].get<std::string>(),
+                         client_ ? secretFromEnvironment(client_->config().apiKeyEnv) : std::string());
   history_ = std::move(history);
   return {};
 }

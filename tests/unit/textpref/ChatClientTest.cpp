@@ -400,6 +400,26 @@ TEST(LlmPreferenceModel, LearningPromptRewritesThetaFromTheWholeHistory) {
   EXPECT_NE(prompt.find("Disliked books so far: none."), std::string::npos);  // with the current theta
 }
 
+// A server that echoes the key in its learning reply: the summary that is stored (and saved in profiles) holds
+// "[redacted]" instead, for the key itself and for anything that looks like a credential.
+TEST(LlmPreferenceModel, TheLearnedSummaryNeverHoldsTheKey) {
+  Harness h;
+  ::setenv(kKeyVariable, "key-echo-secret-789", 1);
+  h.server.push(reply(200, textBody("Likes astronomy. You sent key-echo-secret-789 as Bearer abcdefgh12345678.")));
+  LlmPreferenceModel model(h.client(), bookOptions());
+  FeedbackRecord record{testBook(), {}, "great", true};
+  ASSERT_TRUE(model.learn(std::span(&record, 1)).ok());
+  EXPECT_EQ(model.thetaText(), "Likes astronomy. You sent [redacted] as Bearer [redacted].");
+  EXPECT_EQ(model.saveState().dump().find("key-echo"), std::string::npos);
+  // A summary saved before redaction existed is scrubbed when it is loaded.
+  nlohmann::json old = model.saveState();
+  old["theta"] = "Likes astronomy; key-echo-secret-789";
+  LlmPreferenceModel reloaded(h.client(), bookOptions());
+  ASSERT_TRUE(reloaded.loadState(old).ok());
+  ::unsetenv(kKeyVariable);
+  EXPECT_EQ(reloaded.thetaText(), "Likes astronomy; [redacted]");
+}
+
 TEST(LlmPreferenceModel, FailedLearningKeepsThetaAndReportsTheError) {
   Harness h;
   h.server.setDefault(reply(500, "internal"));

@@ -127,5 +127,14 @@ expect 2 '' -- "$cbtl" profile
 [[ $(sqlite3 "$db" 'PRAGMA integrity_check') == ok ]] || fail "profile store: integrity check"
 [[ $(sqlite3 "$db" 'PRAGMA journal_mode') == wal ]] || fail "profile store: not in WAL mode"
 
+# A stored model damaged by hand is bad input with a way out (exit 1), not "a bug" (exit 70).
+cp "$db" "$work/damaged.sqlite"
+sqlite3 "$work/damaged.sqlite" "UPDATE versions SET model = '{not json' WHERE version = 1"
+expect 1 "version 1 of the cooking profile of 'ann' is damaged.*rollback" -- \
+  "$cbtl" profile show --db "$work/damaged.sqlite" ann cooking --version 1
+expect 1 "version 1 of the cooking profile of 'ann' is damaged" -- \
+  "$cbtl" profile export --db "$work/damaged.sqlite" ann cooking --version 1
+expect 0 "version 4 of 4" -- "$cbtl" profile show --db "$work/damaged.sqlite" ann cooking
+
 echo "$failures failure(s)"
 [[ $failures -eq 0 ]]

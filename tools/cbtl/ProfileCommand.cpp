@@ -41,6 +41,18 @@ ModelVersion versionOf(const ProfileStore& store, const ProfileArgs& a) {
   return *v;
 }
 
+// A stored model as JSON. A damaged one (the database edited or corrupted by hand) is bad input, said with what to
+// do, never "a bug": the store keeps every version, so an earlier one can become the head again.
+nlohmann::json storedModel(const ProfileStore& store, const ProfileArgs& a, const ModelVersion& v) {
+  nlohmann::json model = nlohmann::json::parse(v.model, nullptr, false);
+  if (model.is_discarded() || !model.is_object())
+    throw std::runtime_error(fmt::format(
+        "{}: version {} of the {} profile of '{}' is damaged: its stored model is not a JSON object; `cbtl profile "
+        "rollback` can make an earlier version the head, `cbtl profile import` can store a good one",
+        store.path(), v.version, a.domain, a.user));
+  return model;
+}
+
 int list(const ProfileArgs& a) {
   const ProfileStore store(a.db, false);
   const auto profiles = store.list();
@@ -54,9 +66,10 @@ int list(const ProfileArgs& a) {
 int show(const ProfileArgs& a) {
   const ProfileStore store(a.db, false);
   const ModelVersion v = versionOf(store, a);
+  const nlohmann::json model = storedModel(store, a, v);
   fmt::print("{}'s {} profile, version {} of {} ({}, {}): {} labels\n", a.user, a.domain, v.version,
              store.versions(a.user, a.domain).size(), v.reason, v.time, v.labels);
-  fmt::print("{}\n", nlohmann::json::parse(v.model).dump(2));
+  fmt::print("{}\n", model.dump(2));
   return 0;
 }
 
@@ -79,7 +92,7 @@ int history(const ProfileArgs& a) {
 
 int exportProfile(const ProfileArgs& a) {
   const ProfileStore store(a.db, false);
-  const std::string model = nlohmann::json::parse(versionOf(store, a).model).dump(2) + "\n";
+  const std::string model = storedModel(store, a, versionOf(store, a)).dump(2) + "\n";
   if (a.out.empty()) {
     fmt::print("{}", model);
     return 0;

@@ -174,6 +174,16 @@ std::int64_t ProfileStore::recordLearning(const std::string& user, const std::st
     throw StoreError(fmt::format("{}: the model to store is not a JSON object", path_));
   const std::string now = utcNow();
   WriteTransaction t(db_, path_);
+  // Learning is never added to a damaged store: writing into broken pages can lose what is still readable. The
+  // check reads the whole file (a few milliseconds for hundreds of versions) inside the write lock, so no other
+  // writer changes it between the check and the write.
+  Statement integrity(db_, path_, "PRAGMA integrity_check(1)");
+  if (integrity.step() && integrity.text(0) != "ok")
+    throw StoreError(
+        fmt::format("{}: the store fails SQLite's integrity check ({}); nothing was written. `cbtl "
+                    "profile export` still reads the versions it can: export them and import them into "
+                    "a new store, or restore a backup",
+                    path_, integrity.text(0)));
   const std::int64_t profile = profileId(db_, path_, user, domain, now);
   Statement next(db_, path_, "SELECT COALESCE(MAX(version), 0) + 1 FROM versions WHERE profile_id = ?");
   next.bind(1, profile).step();

@@ -135,6 +135,23 @@ expect 1 "version 1 of the cooking profile of 'ann' is damaged.*rollback" -- \
 expect 1 "version 1 of the cooking profile of 'ann' is damaged" -- \
   "$cbtl" profile export --db "$work/damaged.sqlite" ann cooking --version 1
 expect 0 "version 4 of 4" -- "$cbtl" profile show --db "$work/damaged.sqlite" ann cooking
+# A store that fails SQLite's integrity check (one byte of a user-name index changed) is never written to.
+cp "$db" "$work/corrupt.sqlite"
+sqlite3 "$work/corrupt.sqlite" 'PRAGMA wal_checkpoint(TRUNCATE)' >/dev/null
+python3 - "$work/corrupt.sqlite" <<'PY'
+import sqlite3, sys
+path = sys.argv[1]
+with sqlite3.connect(path) as c:
+    root = c.execute("SELECT rootpage FROM sqlite_master WHERE name = 'sqlite_autoindex_users_1'").fetchone()[0]
+    size = c.execute("PRAGMA page_size").fetchone()[0]
+data = bytearray(open(path, "rb").read())
+at = data.find(b"ann", (root - 1) * size, root * size)
+data[at + 2] = ord("X")
+open(path, "wb").write(data)
+PY
+[[ $(sqlite3 "$work/corrupt.sqlite" 'PRAGMA integrity_check') != ok ]] || fail "the corrupted copy passes the check"
+expect 1 "fails SQLite's integrity check.*nothing was written" -- \
+  "$cbtl" profile import --db "$work/corrupt.sqlite" ann "$work/v2.json"
 
 echo "$failures failure(s)"
 [[ $failures -eq 0 ]]

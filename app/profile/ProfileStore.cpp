@@ -6,7 +6,9 @@
 #include <sqlite3.h>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <filesystem>
+#include <thread>
 #include <utility>
 
 namespace cbtl::app::profile {
@@ -83,8 +85,34 @@ std::optional<EventSource> sourceNamed(const std::string& name) {
   return std::nullopt;
 }
 
+namespace {
+
+// An existing file of 0 bytes is a store that lost its contents (a truncating copy, `> file`, a full disk), which
+// SQLite would silently open as a new, empty database. A store this process creates is 0 bytes too, but only
+// until its schema is written in the creator's first transaction; another process that opens it in that window
+// (milliseconds) waits a little and looks again before calling it damaged.
+void refuseAnEmptyFile(const std::string& path) {
+  std::error_code ec;
+  for (int look = 0; look < 20; ++look) {
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec || size != 0) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  }
+  throw StoreError(
+      fmt::format("{}: an empty file (0 bytes), not a profile store; a store whose contents were lost would "
+                  "otherwise start afresh without a word. Restore it from a backup, or, to start a new store, "
+                  "delete the file or name one that does not exist",
+                  path));
+}
+
+}  // namespace
+
 ProfileStore::ProfileStore(const std::string& path, bool create, int busyTimeoutMs) : path_(path) {
-  if (!create && !std::filesystem::exists(path)) throw StoreError(fmt::format("{}: no such profile store", path));
+  const bool existed = std::filesystem::exists(path);
+  if (!create && !existed) throw StoreError(fmt::format("{}: no such profile store", path));
+  if (existed && !std::filesystem::is_regular_file(path))
+    throw StoreError(fmt::format("{}: not a regular file, so not a profile store", path));
+  if (existed) refuseAnEmptyFile(path);
   const int flags = SQLITE_OPEN_READWRITE | SQLITE_OPEN_FULLMUTEX | (create ? SQLITE_OPEN_CREATE : 0);
   const int rc = sqlite3_open_v2(path.c_str(), &db_, flags, nullptr);
   if (rc != SQLITE_OK) {
@@ -166,14 +194,33 @@ constexpr const char* kProfileOf =
 
 std::int64_t ProfileStore::recordLearning(const std::string& user, const std::string& domain,
                                           const std::vector<NewEvent>& events, const std::string& model,
-                                          std::int64_t labels, const std::string& reason) {
+                                          std::int64_t labels, const std::string& reason,
+                                          std::optional<std::int64_t> learnedFrom) {
+  WriteTransaction t(db_, path_);
+  const std::int64_t version = writeVersion(user, domain, {events, model, labels, reason}, learnedFrom);
+  t.commit();
+  return version;
+}
+
+std::int64_t ProfileStore::learnOnHead(
+    const std::string& user, const std::string& domain,
+    const std::function<LearningStep(const std::optional<ModelVersion>& head)>& learn) {
+  WriteTransaction t(db_, path_);
+  const std::optional<ModelVersion> now = head(user, domain);
+  const LearningStep step = learn(now);
+  const std::int64_t version = writeVersion(user, domain, step, now ? now->version : 0);
+  t.commit();
+  return version;
+}
+
+std::int64_t ProfileStore::writeVersion(const std::string& user, const std::string& domain, const LearningStep& step,
+                                        std::optional<std::int64_t> learnedFrom) {
   checkName(path_, "user", user);
   checkName(path_, "domain", domain);
-  const nlohmann::json parsed = nlohmann::json::parse(model, nullptr, false);
+  const nlohmann::json parsed = nlohmann::json::parse(step.model, nullptr, false);
   if (parsed.is_discarded() || !parsed.is_object())
     throw StoreError(fmt::format("{}: the model to store is not a JSON object", path_));
   const std::string now = utcNow();
-  WriteTransaction t(db_, path_);
   // Learning is never added to a damaged store: writing into broken pages can lose what is still readable. The
   // check reads the whole file (a few milliseconds for hundreds of versions) inside the write lock, so no other
   // writer changes it between the check and the write.
@@ -185,26 +232,33 @@ std::int64_t ProfileStore::recordLearning(const std::string& user, const std::st
                     "a new store, or restore a backup",
                     path_, integrity.text(0)));
   const std::int64_t profile = profileId(db_, path_, user, domain, now);
-  Statement next(db_, path_, "SELECT COALESCE(MAX(version), 0) + 1 FROM versions WHERE profile_id = ?");
+  Statement next(db_, path_, "SELECT COALESCE(MAX(version), 0) FROM versions WHERE profile_id = ?");
   next.bind(1, profile).step();
-  const std::int64_t version = next.integer(0);
+  const std::int64_t headVersion = next.integer(0);
+  if (learnedFrom && *learnedFrom != headVersion)
+    throw StoreError(fmt::format(
+        "{}: the {} profile of '{}' changed while this model was learned (it was learned from {}, the store now "
+        "holds version {}, stored by another process); nothing was written, since storing it would drop that "
+        "learning. Start again from the stored profile",
+        path_, domain, user, *learnedFrom == 0 ? std::string("the prior") : fmt::format("version {}", *learnedFrom),
+        headVersion));
+  const std::int64_t version = headVersion + 1;
   Statement(db_, path_,
             "INSERT INTO versions(profile_id, version, time, reason, labels, model) VALUES (?, ?, ?, ?, ?, ?)")
       .bind(1, profile)
       .bind(2, version)
       .bind(3, now)
-      .bind(4, reason)
-      .bind(5, labels)
-      .bind(6, model)
+      .bind(4, step.reason)
+      .bind(5, step.labels)
+      .bind(6, step.model)
       .step();
   Statement insert(db_, path_,
                    "INSERT INTO events(profile_id, version, time, source, event, solution) VALUES (?, ?, ?, ?, ?, ?)");
-  for (const NewEvent& e : events) {
+  for (const NewEvent& e : step.events) {
     insert.bind(1, profile).bind(2, version).bind(3, now).bind(4, std::string(sourceName(e.source)));
     insert.bind(5, e.event).bind(6, e.solution).step();
     insert.reset();
   }
-  t.commit();
   return version;
 }
 

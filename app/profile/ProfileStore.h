@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -58,6 +59,14 @@ struct ModelVersion {
   std::string model;
 };
 
+// What one learning step writes: the events it learned (possibly none) and the model it made of them.
+struct LearningStep {
+  std::vector<NewEvent> events;
+  std::string model;
+  std::int64_t labels = 0;
+  std::string reason;
+};
+
 struct ProfileSummary {
   std::string user, domain;
   std::int64_t events = 0, versions = 0, head = 0;
@@ -80,8 +89,20 @@ class ProfileStore {
   // One learning step, atomically: the events (possibly none) and the new model version that learned them. Creates
   // the user and the domain on first use. Returns the new version's number. Names are 1..200 bytes without control
   // characters; `model` must be a JSON object; otherwise StoreError and nothing is written.
+  //
+  // `learnedFrom` is the version the model was learned from (0: from the prior, no stored profile). When given and
+  // the head is another version by the time of writing (another process stored learning in between), StoreError
+  // and nothing is written: storing would silently drop the other process's learning (a lost update).
   std::int64_t recordLearning(const std::string& user, const std::string& domain, const std::vector<NewEvent>& events,
-                              const std::string& model, std::int64_t labels, const std::string& reason);
+                              const std::string& model, std::int64_t labels, const std::string& reason,
+                              std::optional<std::int64_t> learnedFrom = std::nullopt);
+  // Read-modify-write in one write transaction: `learn` gets the head (nullopt for a profile not stored yet) and
+  // returns the step made from it, which is stored as the next version. No other writer can store between the
+  // read and the write (they wait, up to the busy timeout, for this one), so concurrent learners never lose each
+  // other's learning. `learn` runs while the store is locked for writing: it should take milliseconds, not a
+  // language model's seconds; an exception from it writes nothing and propagates.
+  std::int64_t learnOnHead(const std::string& user, const std::string& domain,
+                           const std::function<LearningStep(const std::optional<ModelVersion>& head)>& learn);
   // A new head version holding version `version`'s model (reason "rollback to N"). StoreError if there is none.
   std::int64_t rollback(const std::string& user, const std::string& domain, std::int64_t version);
 
@@ -92,6 +113,10 @@ class ProfileStore {
   std::vector<StoredEvent> events(const std::string& user, const std::string& domain) const;     // oldest first
 
  private:
+  // Inside a write transaction: checks the store's integrity, then writes the step as the next version.
+  std::int64_t writeVersion(const std::string& user, const std::string& domain, const LearningStep& step,
+                            std::optional<std::int64_t> learnedFrom);
+
   std::string path_;
   sqlite3* db_ = nullptr;
 };

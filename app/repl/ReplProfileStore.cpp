@@ -12,6 +12,7 @@ void ReplSession::loadStoredProfile() {
   if (!config_.store) return;
   const std::string& domain = lp_->graph().domain;
   const std::optional<profile::ModelVersion> head = config_.store->head(config_.user, domain);
+  storedVersion_ = head ? head->version : 0;
   if (!head) {
     fmt::print(out_, "profile store {}: no {} profile of '{}' yet (the first learn stores version 1)\n",
                config_.store->path(), domain, config_.user);
@@ -33,8 +34,9 @@ std::int64_t ReplSession::storeModel(const std::vector<PendingEvent>& events, co
         e.source == "simulated user" ? profile::EventSource::Simulator : profile::EventSource::Repl;
     stored.push_back({source, renderEvent(e.event, &lp_->graph()), solution});
   }
-  return config_.store->recordLearning(config_.user, lp_->graph().domain, stored, user_->toJson(),
-                                       static_cast<std::int64_t>(user_->dataCount()), reason);
+  storedVersion_ = config_.store->recordLearning(config_.user, lp_->graph().domain, stored, user_->toJson(),
+                                                 static_cast<std::int64_t>(user_->dataCount()), reason, storedVersion_);
+  return storedVersion_;
 }
 
 std::string ReplSession::storedNote(std::int64_t version) {

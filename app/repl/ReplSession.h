@@ -99,7 +99,8 @@ class ReplSession {
   // into the fresh model (none yet: the prior); throws model::ProfileError when it does not fit the program.
   void loadStoredProfile();
   // Stores the current model as a new version and returns its number (0 without a store). Throws
-  // profile::StoreError, after which the caller puts the model back.
+  // profile::StoreError, after which the caller puts the model back; so it does when another process stored a
+  // version of this profile since the session read or wrote its own (storing would drop that learning).
   std::int64_t storeModel(const std::vector<PendingEvent>& events, const std::string& reason);
   // " (stored as version N)", or "" for 0.
   static std::string storedNote(std::int64_t version);
@@ -147,6 +148,7 @@ class ReplSession {
   std::unique_ptr<sim::DomainSimulator> world_;
   std::uint64_t worldSeed_ = 0;
   std::unique_ptr<model::UserModel> user_;
+  std::int64_t storedVersion_ = 0;  // the store's version the model was read from or last stored as (0: none)
   std::unique_ptr<solver::Solver> solver_;
   std::vector<double> observation_;
   std::map<std::string, std::string> typedObservations_;  // set by hand since the world last said, as typed

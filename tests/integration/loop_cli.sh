@@ -152,6 +152,23 @@ PY
 [[ $(sqlite3 "$work/corrupt.sqlite" 'PRAGMA integrity_check') != ok ]] || fail "the corrupted copy passes the check"
 expect 1 "fails SQLite's integrity check.*nothing was written" -- \
   "$cbtl" profile import --db "$work/corrupt.sqlite" ann "$work/v2.json"
+# A store emptied to 0 bytes (a truncating copy, a full disk) is refused, not silently a new empty store.
+: >"$work/emptied.sqlite"
+expect 1 'emptied.sqlite: an empty file \(0 bytes\), not a profile store.*delete the file' -- \
+  "$cbtl" feedback "$cooking" --profile-db "$work/emptied.sqlite" --user ann --event "$critique"
+expect 1 'an empty file \(0 bytes\)' -- "$cbtl" profile list --db "$work/emptied.sqlite"
+[[ ! -s $work/emptied.sqlite ]] || fail "the emptied store was written to"
+expect 1 'not a regular file' -- "$cbtl" profile list --db "$work"
+
+# Two `cbtl feedback` processes learning into one profile at once lose nothing: each learns from the version the
+# other stored (read, learn and store are one write transaction), so the model holds every label.
+learn_many() { for _ in $(seq 25); do "$cbtl" feedback "$cooking" --profile-db "$work/duo.sqlite" --user duo \
+  --event "$critique" >/dev/null || echo "a feedback failed"; done; }
+learn_many >"$work/duo-a.log" 2>&1 &
+learn_many >"$work/duo-b.log" 2>&1
+wait
+[[ ! -s $work/duo-a.log && ! -s $work/duo-b.log ]] || fail "concurrent feedback: $(cat "$work"/duo-*.log)"
+expect 0 'version 50 of 50 .*: 100 labels' -- "$cbtl" profile show --db "$work/duo.sqlite" duo cooking
 
 echo "$failures failure(s)"
 [[ $failures -eq 0 ]]

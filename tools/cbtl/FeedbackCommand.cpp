@@ -85,43 +85,50 @@ int runFeedback(const FeedbackArgs& a) {
     }
     events.push_back(std::move(*e));
   }
-  model::UserModel user(lp->graph(), *textBackend);
-  const std::string& domain = lp->graph().domain;
-  std::optional<app::profile::ProfileStore> store;
-  bool exists = false;
-  if (!a.profileDb.empty()) {
-    store.emplace(a.profileDb);
-    if (const auto head = store->head(a.user, domain)) {
-      user.fromJson(head->model,
-                    fmt::format("{} ({}'s {} profile, version {})", a.profileDb, a.user, domain, head->version));
-      exists = true;
-    }
-  } else {
-    exists = std::filesystem::exists(a.profile);
-    if (exists) user.load(a.profile);
-  }
-  const std::size_t before = user.dataCount();
   std::string solutionText;
   if (!a.solution.empty()) solutionText = app::readSolutionFile(a.solution, lp->program()).text;
   const approach::StepWorld moment = momentOf(a, *lp);
-  const approach::LearnReport report = lp->learner().learn(events, user, moment);
-  for (const auto& p : report.problems) fmt::print("warning: not learned: {}\n", p);
-  for (const auto& m : report.modelErrors) fmt::print("warning: {}\n", m);
-  for (const auto& e : events) fmt::print("event: {}\n", app::renderEvent(e));
+  const std::string& domain = lp->graph().domain;
+  std::optional<model::UserModel> user;
+  approach::LearnReport report;
+  bool exists = false;
+  std::size_t before = 0;
+  // Learns the events into `user` as loaded (or the prior).
+  const auto learn = [&] {
+    before = user->dataCount();
+    report = lp->learner().learn(events, *user, moment);
+  };
   std::string where = a.profile;
-  if (store) {
+  if (!a.profileDb.empty()) {
+    app::profile::ProfileStore store(a.profileDb);
     std::vector<app::profile::NewEvent> stored;
     for (const auto& e : events)
       stored.push_back({app::profile::EventSource::Command, app::renderEvent(e), solutionText});
-    const std::int64_t version = store->recordLearning(a.user, domain, stored, user.toJson(),
-                                                       static_cast<std::int64_t>(user.dataCount()), "learn");
+    // The head is read, learned from and the result stored in one write transaction: a concurrent `cbtl feedback`
+    // on the same profile waits and then learns from this one's version, so no learning is lost.
+    const std::int64_t version = store.learnOnHead(a.user, domain, [&](const auto& head) {
+      user.emplace(lp->graph(), *textBackend);
+      exists = head.has_value();
+      if (head)
+        user->fromJson(head->model,
+                       fmt::format("{} ({}'s {} profile, version {})", a.profileDb, a.user, domain, head->version));
+      learn();
+      return app::profile::LearningStep{stored, user->toJson(), static_cast<std::int64_t>(user->dataCount()), "learn"};
+    });
     where = fmt::format("{}'s {} profile (version {} in {})", a.user, domain, version, a.profileDb);
   } else {
-    user.save(a.profile);
+    user.emplace(lp->graph(), *textBackend);
+    exists = std::filesystem::exists(a.profile);
+    if (exists) user->load(a.profile);
+    learn();
+    user->save(a.profile);
   }
+  for (const auto& p : report.problems) fmt::print("warning: not learned: {}\n", p);
+  for (const auto& m : report.modelErrors) fmt::print("warning: {}\n", m);
+  for (const auto& e : events) fmt::print("event: {}\n", app::renderEvent(e));
   fmt::print("learned {} label{} from {} event{}; {} {} holds {} labels (was {})\n", report.labels,
              report.labels == 1 ? "" : "s", events.size(), events.size() == 1 ? "" : "s",
-             exists ? "the profile" : "the new profile", where, user.dataCount(), before);
+             exists ? "the profile" : "the new profile", where, user->dataCount(), before);
   if (*textBackend) cli::printLlmFaults(stdout, (*textBackend)->faultReport());
   return 0;
 }

@@ -30,8 +30,10 @@ struct RunArgs : cbtl::cli::TrialArgs {
 
 // The run's final model as a new version of the user's profile, with every event it learned from (source
 // "simulator", in the order of the training steps; the step numbers themselves are not stored).
+// `learnedFrom` is the version the run started from (0: the prior); another process's version since then makes
+// this a StoreError that writes nothing.
 void storeRun(cbtl::app::profile::ProfileStore& store, const RunArgs& a, const cbtl::ir::ConstraintGraph& graph,
-              const cbtl::approach::ExperimentResult& r) {
+              const cbtl::approach::ExperimentResult& r, std::int64_t learnedFrom) {
   const std::string& domain = graph.domain;
   using namespace cbtl;
   std::vector<app::profile::NewEvent> events;
@@ -40,7 +42,7 @@ void storeRun(cbtl::app::profile::ProfileStore& store, const RunArgs& a, const c
       events.push_back({app::profile::EventSource::Simulator, app::renderEvent(e, &graph), ""});
   const std::int64_t version =
       store.recordLearning(a.user, domain, events, r.finalProfile, static_cast<std::int64_t>(r.finalLabels),
-                           fmt::format("run: {}, seed {}, {} steps", a.approach, a.seed, a.steps));
+                           fmt::format("run: {}, seed {}, {} steps", a.approach, a.seed, a.steps), learnedFrom);
   if (!a.quiet)
     fmt::print("stored the learned model as version {} of {}'s {} profile in {} ({} feedback events)\n", version,
                a.user, domain, a.profileDb, events.size());
@@ -67,9 +69,11 @@ int runTrial(const RunArgs& a) {
   c.progress = !a.quiet;
   c.initialProfile = a.profile;
   std::optional<app::profile::ProfileStore> store;
+  std::int64_t learnedFrom = 0;
   if (!a.profileDb.empty()) {
     store.emplace(a.profileDb);
     if (const auto head = store->head(a.user, lp->graph().domain)) {
+      learnedFrom = head->version;
       c.initialProfile =
           fmt::format("{} ({}'s {} profile, version {})", a.profileDb, a.user, lp->graph().domain, head->version);
       c.initialProfileJson = head->model;
@@ -84,7 +88,7 @@ int runTrial(const RunArgs& a) {
   const auto start = std::chrono::steady_clock::now();
   const approach::ExperimentResult r = approach::runExperiment(*lp, *factory, c);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (store) storeRun(*store, a, lp->graph(), r);
+  if (store) storeRun(*store, a, lp->graph(), r, learnedFrom);
   if (!a.quiet) {
     fmt::print("{} on {} (seed {}): {} steps, {} tasks completed in training, {} solves ({} failed, {} replanned)\n",
                a.approach, lp->graph().domain, a.seed, a.steps, r.mealsServed, r.trainSolves, r.trainSolveFailures,

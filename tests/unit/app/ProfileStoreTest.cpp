@@ -2,10 +2,13 @@
 
 #include <gtest/gtest.h>
 #include <sqlite3.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <stdexcept>
 
 namespace cbtl::app::profile {
 namespace {
@@ -153,6 +156,85 @@ TEST_F(ProfileStoreTest, AWriterThatCannotGetTheLockFailsAsBusy) {
   sqlite3_exec(holder, "ROLLBACK", nullptr, nullptr, nullptr);
   sqlite3_close(holder);
   EXPECT_EQ(waiting.recordLearning("ann", "cooking", {}, model(2), 0, "learn"), 2);
+}
+
+TEST_F(ProfileStoreTest, AModelLearnedFromAnOlderVersionIsRefusedAndWritesNothing) {
+  ProfileStore a(path_);
+  ProfileStore b(path_);
+  EXPECT_EQ(a.recordLearning("ann", "cooking", {}, model(1), 0, "learn", 0), 1);
+  // b learned from version 1; a stores version 2 in the meantime; b's model would drop a's learning.
+  EXPECT_EQ(a.recordLearning("ann", "cooking", {}, model(2), 0, "learn", 1), 2);
+  try {
+    b.recordLearning("ann", "cooking", {{EventSource::Repl, "e()", ""}}, model(3), 0, "learn", 1);
+    FAIL() << "stored a model learned from version 1 over version 2";
+  } catch (const StoreError& e) {
+    EXPECT_NE(std::string(e.what()).find("learned from version 1, the store now holds version 2"), std::string::npos)
+        << e.what();
+  }
+  try {
+    b.recordLearning("bo", "cooking", {}, model(1), 0, "learn", 4);
+    FAIL() << "stored a model learned from a version that does not exist";
+  } catch (const StoreError& e) {
+    EXPECT_NE(std::string(e.what()).find("the store now holds version 0"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(a.head("ann", "cooking")->model, model(2));
+  EXPECT_TRUE(a.events("ann", "cooking").empty());
+  EXPECT_FALSE(a.head("bo", "cooking"));
+}
+
+TEST_F(ProfileStoreTest, LearningOnTheHeadReadsAndWritesInOneTransaction) {
+  ProfileStore store(path_);
+  std::optional<ModelVersion> seen;
+  const auto increment = [&](const std::optional<ModelVersion>& head) {
+    seen = head;
+    const int n = head ? static_cast<int>(nlohmann::json::parse(head->model)["n"]) : 0;
+    return LearningStep{{{EventSource::Command, "tick()", ""}}, model(n + 1), n + 1, "learn"};
+  };
+  EXPECT_EQ(store.learnOnHead("ann", "cooking", increment), 1);
+  EXPECT_FALSE(seen);
+  EXPECT_EQ(store.learnOnHead("ann", "cooking", increment), 2);
+  ASSERT_TRUE(seen);
+  EXPECT_EQ(seen->version, 1);
+  EXPECT_EQ(store.head("ann", "cooking")->model, model(2));
+  EXPECT_EQ(store.events("ann", "cooking").size(), 2u);
+  // While the step is being made the store is locked for writing: another connection cannot slip a version in.
+  ProfileStore other(path_, false, 50);
+  EXPECT_THROW(store.learnOnHead("ann", "cooking",
+                                 [&](const std::optional<ModelVersion>& head) {
+                                   other.recordLearning("ann", "cooking", {}, model(99), 0, "learn");
+                                   return increment(head);
+                                 }),
+               StoreError);
+  EXPECT_EQ(store.head("ann", "cooking")->version, 2);
+  // A step that throws writes nothing.
+  EXPECT_THROW(store.learnOnHead("ann", "cooking",
+                                 [](const std::optional<ModelVersion>&) -> LearningStep {
+                                   throw std::runtime_error("the learner failed");
+                                 }),
+               std::runtime_error);
+  EXPECT_EQ(store.head("ann", "cooking")->version, 2);
+  EXPECT_EQ(store.learnOnHead("ann", "cooking", increment), 3);
+}
+
+TEST_F(ProfileStoreTest, AnEmptiedFileIsRefusedAndLeftAlone) {
+  std::ofstream(path_).close();
+  try {
+    ProfileStore store(path_);
+    FAIL() << "opened a 0-byte file as a new store";
+  } catch (const StoreError& e) {
+    EXPECT_NE(std::string(e.what()).find("an empty file (0 bytes)"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(std::filesystem::file_size(path_), 0u);
+  try {
+    ProfileStore store(dir_.string());
+    FAIL() << "opened a directory";
+  } catch (const StoreError& e) {
+    EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+  }
+  // A store this process creates is fine, and so is opening it again.
+  const std::string fresh = (dir_ / "fresh.sqlite").string();
+  { ProfileStore created(fresh); }
+  EXPECT_NO_THROW(ProfileStore(fresh, false));
 }
 
 TEST(EventSourceTest, NamesRoundTrip) {

@@ -1,6 +1,7 @@
 #include "app/repl/ReplSession.h"
 
 #include "app/DomainSolverOptions.h"
+#include "app/profile/ProfileStore.h"
 
 #include <gtest/gtest.h>
 
@@ -20,11 +21,14 @@ namespace {
 // A session over Cooking whose output is captured in memory.
 class Session {
  public:
-  explicit Session(std::atomic<bool>* interrupt = nullptr) {
+  explicit Session(std::atomic<bool>* interrupt = nullptr, std::shared_ptr<app::profile::ProfileStore> store = {},
+                   const std::string& user = {}) {
     out_ = open_memstream(&buffer_, &size_);
     app::repl::ReplConfig config;
     config.solverOptions = [](const std::string& domain) { return app::domainSolverOptions(domain); };
     config.interrupt = interrupt;
+    config.store = std::move(store);
+    config.user = user;
     session_ = std::make_unique<ReplSession>(config, out_);
   }
   ~Session() {
@@ -158,4 +162,32 @@ TEST(ReplSession, UnfinishedInputContinues) {
   EXPECT_TRUE(ReplSession::needsMoreInput("solve \\"));
   EXPECT_FALSE(ReplSession::needsMoreInput("observe x = \"(\""));
   EXPECT_FALSE(ReplSession::needsMoreInput("feedback f(a, (1, 2))"));
+}
+
+// Another process storing learning while a REPL session has the profile loaded: the session's next learn would
+// drop that learning, so it is refused with the feedback kept; loading the program again starts from the new head.
+TEST(ReplSession, ALearnOverAnotherProcesssVersionIsRefusedAndTheFeedbackKept) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("cbtl-repl-store-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string db = (dir / "profiles.sqlite").string();
+  auto store = std::make_shared<app::profile::ProfileStore>(db);
+  Session s(nullptr, store, "ann");
+  s.run("load " + kCooking);
+  s.run("feedback mealCritique(seasoning, salt, 3, 31, 0.9, wantHotter, wantMore)");
+  EXPECT_NE(s.run("learn").find("stored as version 1"), std::string::npos);
+  {
+    app::profile::ProfileStore other(db, false);
+    const auto head = other.head("ann", "cooking");
+    other.recordLearning("ann", "cooking", {}, head->model, head->labels, "learn", 1);
+  }
+  s.run("feedback mealCritique(seasoning, pepper, 3, 31, 0.9, wantHotter, wantMore)");
+  const std::string refused = s.run("learn", ReplSession::Outcome::Failed);
+  EXPECT_NE(refused.find("changed while this model was learned"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("the feedback stays queued"), std::string::npos) << refused;
+  EXPECT_EQ(store->head("ann", "cooking")->version, 2);
+  EXPECT_NE(s.run("load " + kCooking).find("version 2"), std::string::npos);
+  s.run("feedback mealCritique(seasoning, pepper, 3, 31, 0.9, wantHotter, wantMore)");
+  EXPECT_NE(s.run("learn").find("stored as version 3"), std::string::npos);
+  std::filesystem::remove_all(dir);
 }

@@ -1,6 +1,7 @@
 #include "app/JsonValues.h"
 
 #include "app/repl/ValueSyntax.h"
+#include "support/InputFile.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -53,12 +54,14 @@ std::string jsonPointer(const std::string& key) {
 }
 
 nlohmann::json readJsonFile(const std::string& path, const std::string& what) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(fmt::format("{}: cannot read the {}", path, what));
-  std::stringstream text;
-  text << in.rdbuf();
+  std::string text;
   try {
-    return nlohmann::json::parse(text.str());
+    text = support::readInputFile(path, support::kMaxDataBytes, what);
+  } catch (const support::InputFileError& e) {
+    throw std::runtime_error(e.what());
+  }
+  try {
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw std::runtime_error(fmt::format("{}: not JSON (at byte {})", path, e.byte));
   }

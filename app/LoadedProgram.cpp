@@ -10,6 +10,7 @@
 #include "robot/bind/WorldBuiltins.h"
 #include "robot/world/Scene.h"
 #include "runtime/sim/DomainSimulator.h"
+#include "support/InputFile.h"
 
 #include <fmt/format.h>
 
@@ -37,22 +38,27 @@ bool syncRobotWorld(const rt::Program& program, const sim::DomainSimulator& simu
 
 std::unique_ptr<LoadedProgram> LoadedProgram::load(const std::string& path, const std::string& stdlibDir,
                                                    rt::Builtins builtins) {
-  auto lp = std::unique_ptr<LoadedProgram>(new LoadedProgram(path));
-  std::ifstream in(path, std::ios::binary);
-  if (!in.good()) {
-    lp->setErrors(fmt::format("error: cannot read file '{}'\n", path));
+  // Read once, up to an emitted graph's limit; a source is held to the compiler's (smaller) one.
+  std::string text;
+  bool unread = false;
+  std::string why;  // for a file that exists but is not one to read
+  try {
+    text = support::readInputFile(path, support::kMaxGraphBytes, "program");
+    if (!ir::looksLikeGraphJson(text) && text.size() > support::kMaxSourceBytes) {
+      unread = true;
+      why = fmt::format("the program is larger than {}, the most cbtl reads as one source file",
+                        support::describeBytes(support::kMaxSourceBytes));
+    }
+  } catch (const support::InputFileError& e) {
+    unread = true;
+    if (e.kind != support::InputFileError::Kind::CannotOpen) why = e.reason;
+  }
+  if (unread) {
+    auto lp = std::unique_ptr<LoadedProgram>(new LoadedProgram(path));
+    lp->setErrors(fmt::format("error: cannot read file '{}'{}\n", path, why.empty() ? "" : ": " + why));
     return lp;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (ir::looksLikeGraphJson(text.str())) {
-    lp->prepareEmitted(text.str(), std::move(builtins));
-    return lp;
-  }
-  lp->tu_ = std::make_shared<TranslationUnit>(compileOptions(stdlibDir));
-  const PipelineResult r = compileFile(*lp->tu_, path);
-  lp->prepareCompiled(r.outcome == PipelineOutcome::Ok, r.lastPass, std::move(builtins));
-  return lp;
+  return fromSource(path, std::move(text), stdlibDir, std::move(builtins));
 }
 
 std::unique_ptr<LoadedProgram> LoadedProgram::fromSource(const std::string& path, std::string text,

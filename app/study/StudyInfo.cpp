@@ -1,5 +1,7 @@
 #include "app/study/StudyInfo.h"
 
+#include "support/InputFile.h"
+
 #include <fmt/format.h>
 
 #include <array>
@@ -43,11 +45,15 @@ nlohmann::json checkStudyInfo(const nlohmann::json& info, const std::string& sou
 }
 
 nlohmann::json readStudyInfo(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw StudyInfoError(fmt::format("cannot read the study-info file '{}'", path));
-  std::stringstream text;
-  text << in.rdbuf();
-  const nlohmann::json info = nlohmann::json::parse(text.str(), nullptr, false);
+  std::string text;
+  try {
+    text = support::readInputFile(path, support::kMaxDataBytes, "study-info file");
+  } catch (const support::InputFileError& e) {
+    throw StudyInfoError(e.kind == support::InputFileError::Kind::CannotOpen
+                             ? fmt::format("cannot read the study-info file '{}'", path)
+                             : std::string(e.what()));
+  }
+  const nlohmann::json info = nlohmann::json::parse(text, nullptr, false);
   if (info.is_discarded()) throw StudyInfoError(fmt::format("{}: not JSON", path));
   return checkStudyInfo(info, path);
 }

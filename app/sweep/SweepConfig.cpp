@@ -1,5 +1,7 @@
 #include "app/sweep/SweepConfig.h"
 
+#include "support/InputFile.h"
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -220,12 +222,16 @@ bool parseSeedList(const std::string& text, std::vector<std::uint64_t>& seeds) {
 }
 
 SweepConfig readSweepConfig(const std::string& path) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw SweepError(fmt::format("{}: no such file", path));
-  std::ifstream in(path);
+  std::string text;
+  try {
+    text = support::readInputFile(path, support::kMaxDataBytes, "sweep configuration");
+  } catch (const support::InputFileError& e) {
+    throw SweepError(e.kind == support::InputFileError::Kind::CannotOpen ? fmt::format("{}: no such file", path)
+                                                                         : std::string(e.what()));
+  }
   json root;
   try {
-    root = json::parse(in);
+    root = json::parse(text);
   } catch (const json::parse_error& e) {
     throw SweepError(fmt::format("{}: not JSON: {}", path, e.what()));
   }

@@ -10,14 +10,13 @@
 #include "compiler/util/Suggest.h"
 #include "ir/GraphPrinter.h"
 #include "ir/Validator.h"
+#include "support/InputFile.h"
 
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <set>
-#include <sstream>
 
 namespace cbtl {
 namespace {
@@ -30,17 +29,17 @@ struct Pass {
   std::function<std::string(const TranslationUnit&)> dump;
 };
 
-// Reads a regular file. Anything else (a directory, a FIFO, /dev/zero, /dev/stdin) is refused: an import
-// must never block or read without end.
-bool readFile(const std::string& path, std::string& out) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return false;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  out = ss.str();
-  return true;
+// Reads a source file, at most support::kMaxSourceBytes. Anything else (a directory, a FIFO, /dev/zero,
+// /dev/stdin) is refused: an import must never block or read without end. False, with the reason in `why` when
+// the file exists but is not one to read (not regular, too large); a missing file needs no more words.
+bool readFile(const std::string& path, std::string& out, std::string* why = nullptr) {
+  try {
+    out = support::readInputFile(path, support::kMaxSourceBytes, "source file");
+    return true;
+  } catch (const support::InputFileError& e) {
+    if (why != nullptr && e.kind != support::InputFileError::Kind::CannotOpen) *why = e.reason;
+    return false;
+  }
 }
 
 // Loads the imports of every parsed module, depth first, detecting cycles. The prelude is implicit.
@@ -140,10 +139,10 @@ class Loader {
         continue;
       }
       if (tu_.sources.file(file).embedded) continue;
-      std::string text;
-      if (!readFile(key, text)) {
+      std::string text, why;
+      if (!readFile(key, text, &why)) {
         tu_.diags.error("E0204", imp->targetRange, fmt::format("cannot read imported file '{}'", key))
-            .note("paths are relative to the importing file");
+            .note(why.empty() ? std::string("paths are relative to the importing file") : why);
         continue;
       }
       const std::size_t child = addModule(key, std::move(text), false, key);
@@ -259,12 +258,11 @@ PipelineResult compileSource(TranslationUnit& tu, const std::string& path, std::
 PipelineResult compileFile(TranslationUnit& tu, const std::string& path, const std::string& dumpAfter,
                            const std::string& stopAfter) {
   std::string text;
-  if (!readFile(path, text)) {
-    PipelineResult r;
-    r.outcome = PipelineOutcome::InputErrors;
-    r.lastPass = "";
-    r.dump = "";
-    return r;
+  PipelineResult unread;
+  if (!readFile(path, text, &unread.inputError)) {
+    unread.outcome = PipelineOutcome::InputErrors;
+    unread.rootUnread = true;
+    return unread;
   }
   return compileSource(tu, path, std::move(text), dumpAfter, stopAfter);
 }

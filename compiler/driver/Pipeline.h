@@ -20,6 +20,10 @@ struct PipelineResult {
   PipelineOutcome outcome = PipelineOutcome::Ok;
   std::string lastPass;  // the last pass that ran
   std::string dump;      // the dump after `dumpAfter`, if requested and reached
+  // compileFile only: the root file was not read; inputError says why when it exists but is not a regular file or
+  // is over support::kMaxSourceBytes (empty for a file that cannot be opened, say missing).
+  bool rootUnread = false;
+  std::string inputError;
 };
 
 const std::vector<std::string>& passNames();

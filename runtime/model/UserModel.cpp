@@ -1,6 +1,7 @@
 #include "runtime/model/UserModel.h"
 
 #include "ir/OpNames.h"
+#include "support/InputFile.h"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -282,11 +283,13 @@ void UserModel::save(const std::string& path) const {
 }
 
 void UserModel::load(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ProfileError(fmt::format("{}: cannot read the profile", path));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  fromJson(ss.str(), path);
+  std::string text;
+  try {
+    text = support::readInputFile(path, support::kMaxDataBytes, "profile");
+  } catch (const support::InputFileError& e) {
+    throw ProfileError(e.what());
+  }
+  fromJson(text, path);
 }
 
 }  // namespace cbtl::model

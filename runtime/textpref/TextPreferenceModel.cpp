@@ -1,5 +1,7 @@
 #include "runtime/textpref/TextPreferenceModel.h"
 
+#include "support/InputFile.h"
+
 #include <fmt/core.h>
 
 #include <unistd.h>
@@ -76,11 +78,13 @@ Status saveStateFile(const TextPreferenceModel& model, const std::filesystem::pa
 }
 
 Status loadStateFile(TextPreferenceModel& model, const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{ErrorKind::Io, fmt::format("cannot open model state {}", path.string())};
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  nlohmann::json state = nlohmann::json::parse(buffer.str(), nullptr, /*allow_exceptions=*/false);
+  std::string text;
+  try {
+    text = support::readInputFile(path.string(), support::kMaxDataBytes, "model state");
+  } catch (const support::InputFileError& e) {
+    return Error{ErrorKind::Io, e.what()};
+  }
+  nlohmann::json state = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (state.is_discarded())
     return Error{ErrorKind::InvalidState, fmt::format("model state {} is not valid JSON", path.string())};
   Status status = model.loadState(state);

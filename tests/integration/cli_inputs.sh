@@ -107,5 +107,31 @@ for command in run experiment solve repl; do
   grep -q "^Solver:" <<<"$out" || fail "cbtl $command --help groups no Solver options"
 done
 
+# File inputs: what is not a regular file (a pipe that would block for ever, /dev/zero that never ends, a folder)
+# and what is over its size limit is refused with exit 1 naming the file, in bounded time and memory (the limits
+# below guard this script against a binary that reads without end).
+bounded() { (ulimit -v 4000000; timeout 20 "$@"); }
+mkfifo "$work/pipe"
+head -c $((5 * 1024 * 1024)) /dev/zero | tr '\0' ' ' >"$work/huge.cbtl"
+truncate -s 300M "$work/huge.json"
+feedback_event='mealCritique(seasoning, salt, 3, 31, 0.9, wantHotter, wantMore)'
+expect 1 "cannot read file '.*pipe': not a regular file \(a pipe\)" -- bounded "$cbtl" solve "$work/pipe"
+expect 1 "cannot read file '/dev/zero': not a regular file \(a device\)" -- bounded "$cbtl" solve /dev/zero
+expect 1 "huge.cbtl': the program is larger than 4 MiB" -- bounded "$cbtl" solve "$work/huge.cbtl"
+expect 1 "/dev/zero: not a regular file \(a device\), so not read as the profile" -- \
+  bounded "$cbtl" solve "$cooking" --profile /dev/zero
+expect 1 "pipe: not a regular file \(a pipe\), so not read as the observation file" -- \
+  bounded "$cbtl" solve "$cooking" --observe "$work/pipe"
+expect 1 "huge.json: the observation file is larger than 256 MiB" -- \
+  bounded "$cbtl" solve "$cooking" --observe "$work/huge.json"
+expect 1 "not a regular file \(a directory\), so not read as the observation file" -- \
+  bounded "$cbtl" solve "$cooking" --observe "$work"
+expect 1 "pipe: not a regular file \(a pipe\), so not read as the solution" -- \
+  bounded "$cbtl" feedback "$cooking" --profile "$work/p.json" --solution "$work/pipe" --event "$feedback_event"
+expect 1 "/dev/zero: not a regular file \(a device\), so not read as the profile" -- \
+  bounded "$cbtl" profile import --db "$work/store.sqlite" ann /dev/zero
+expect 1 "huge.json: the profile is larger than 256 MiB" -- \
+  bounded "$cbtl" profile import --db "$work/store.sqlite" ann "$work/huge.json"
+
 echo "$failures failed"
 [[ $failures -eq 0 ]]

@@ -11,6 +11,7 @@
 #include "tools/cbtl/ErrorHandling.h"
 
 #include "app/profile/ProfileStore.h"
+#include "support/InputFile.h"
 
 #include <fmt/core.h>
 #include <CLI/CLI.hpp>
@@ -105,11 +106,13 @@ int exportProfile(const ProfileArgs& a) {
 }
 
 int importProfile(const ProfileArgs& a) {
-  std::ifstream in(a.file);
-  if (!in) throw std::runtime_error(fmt::format("{}: cannot read the profile", a.file));
-  std::stringstream text;
-  text << in.rdbuf();
-  const nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
+  std::string text;
+  try {
+    text = cbtl::support::readInputFile(a.file, cbtl::support::kMaxDataBytes, "profile");
+  } catch (const cbtl::support::InputFileError& e) {
+    throw std::runtime_error(e.what());
+  }
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
   // The store cannot check the model against a program; it checks what every profile has.
   if (j.is_discarded() || !j.is_object() || j.value("format", "") != "cbtl-profile" || j.value("version", 0) != 1 ||
       !j.contains("domain") || !j["domain"].is_string() || !j.contains("generators") || !j["generators"].is_object())
@@ -122,7 +125,7 @@ int importProfile(const ProfileArgs& a) {
           labels += static_cast<std::int64_t>(factor["data"].size());
   ProfileStore store(a.db, true);
   const std::string domain = j["domain"];
-  const std::int64_t v = store.recordLearning(a.user, domain, {}, text.str(), labels, "import of " + a.file);
+  const std::int64_t v = store.recordLearning(a.user, domain, {}, text, labels, "import of " + a.file);
   fmt::print("imported {} as version {} of {}'s {} profile\n", a.file, v, a.user, domain);
   return 0;
 }

@@ -3,6 +3,7 @@
 #include "compiler/diag/DiagnosticRenderer.h"
 #include "compiler/format/SourceFormatter.h"
 #include "compiler/parse/Parser.h"
+#include "support/InputFile.h"
 
 #include <fmt/core.h>
 
@@ -28,12 +29,14 @@ struct FormatOptions {
   std::string color = "auto";
 };
 
-std::optional<std::string> readFile(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+// The file's text, or nullopt with `why` set when it exists but is not one to read (not regular, too large).
+std::optional<std::string> readFile(const std::string& path, std::string& why) {
+  try {
+    return support::readInputFile(path, support::kMaxSourceBytes, "source file");
+  } catch (const support::InputFileError& e) {
+    if (e.kind != support::InputFileError::Kind::CannotOpen) why = e.reason;
+    return std::nullopt;
+  }
 }
 
 // Writes `text` to a temporary file beside `path` and renames it over `path`, keeping its permissions, so that an
@@ -101,15 +104,16 @@ int run(const FormatOptions& o) {
       return 2;
     }
     std::optional<std::string> text;
+    std::string why;
     if (fromStdin) {
       std::ostringstream in;
       in << std::cin.rdbuf();
       text = in.str();
     } else {
-      text = readFile(path);
+      text = readFile(path, why);
     }
     if (!text) {
-      fmt::print(stderr, "cbtlc: error: cannot read file '{}'\n", path);
+      fmt::print(stderr, "cbtlc: error: cannot read file '{}'{}\n", path, why.empty() ? "" : ": " + why);
       exitCode = 1;
       continue;
     }

@@ -45,14 +45,16 @@ void addCommon(CLI::App* cmd, CommonOptions& o) {
 
 // Prints the diagnostics of one translation unit; returns the exit code for its outcome.
 int report(const cbtl::TranslationUnit& tu, const cbtl::PipelineResult& result, const CommonOptions& o,
-           const std::string& path, bool missing) {
-  if (missing) {
+           const std::string& path) {
+  if (result.rootUnread) {
+    const std::string message =
+        "cannot read file '" + path + "'" + (result.inputError.empty() ? "" : ": " + result.inputError);
     if (o.format == "json") {
       // Built with the JSON library so that any path (quotes, backslashes, invalid UTF-8) stays valid JSON.
-      const nlohmann::json j{{"severity", "error"}, {"code", "E0204"}, {"message", "cannot read file '" + path + "'"}};
+      const nlohmann::json j{{"severity", "error"}, {"code", "E0204"}, {"message", message}};
       fmt::print(stderr, "{}\n", j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
     } else {
-      fmt::print(stderr, "cbtlc: error: cannot read file '{}'\n", path);
+      fmt::print(stderr, "cbtlc: error: {}\n", message);
     }
     return 1;
   }
@@ -103,11 +105,6 @@ void printExample(const cbtl::DiagnosticExample& e) {
   }
 }
 
-bool readable(const std::string& path) {
-  std::error_code ec;
-  return std::filesystem::is_regular_file(path, ec);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -126,10 +123,8 @@ int main(int argc, char** argv) {
   check->callback([&] {
     for (const auto& path : checkFiles) {
       cbtl::TranslationUnit tu(compileOptions(checkOpts));
-      const bool missing = !readable(path);
-      cbtl::PipelineResult r;
-      if (!missing) r = cbtl::compileFile(tu, path);
-      const int code = report(tu, r, checkOpts, path, missing);
+      const cbtl::PipelineResult r = cbtl::compileFile(tu, path);
+      const int code = report(tu, r, checkOpts, path);
       if (code == 0 && summary) {
         const auto& g = tu.graph;
         auto counted = [](std::size_t n, const char* noun) {
@@ -155,10 +150,8 @@ int main(int argc, char** argv) {
   addCommon(emit, emitOpts);
   emit->callback([&] {
     cbtl::TranslationUnit tu(compileOptions(emitOpts));
-    const bool missing = !readable(emitFile);
-    cbtl::PipelineResult r;
-    if (!missing) r = cbtl::compileFile(tu, emitFile, dumpAfter, dumpAfter);
-    exitCode = report(tu, r, emitOpts, emitFile, missing);
+    const cbtl::PipelineResult r = cbtl::compileFile(tu, emitFile, dumpAfter, dumpAfter);
+    exitCode = report(tu, r, emitOpts, emitFile);
     if (exitCode != 0) return;
     if (!dumpAfter.empty()) {
       fmt::print("{}", r.dump);

@@ -154,13 +154,16 @@ ProfileStore::~ProfileStore() {
 }
 
 ProfileStore::ProfileStore(ProfileStore&& other) noexcept
-    : path_(std::move(other.path_)), db_(std::exchange(other.db_, nullptr)) {}
+    : path_(std::move(other.path_)),
+      db_(std::exchange(other.db_, nullptr)),
+      integrityChecked_(other.integrityChecked_) {}
 
 ProfileStore& ProfileStore::operator=(ProfileStore&& other) noexcept {
   if (this != &other) {
     if (db_ != nullptr) sqlite3_close(db_);
     path_ = std::move(other.path_);
     db_ = std::exchange(other.db_, nullptr);
+    integrityChecked_ = other.integrityChecked_;
   }
   return *this;
 }
@@ -222,15 +225,19 @@ std::int64_t ProfileStore::writeVersion(const std::string& user, const std::stri
     throw StoreError(fmt::format("{}: the model to store is not a JSON object", path_));
   const std::string now = utcNow();
   // Learning is never added to a damaged store: writing into broken pages can lose what is still readable. The
-  // check reads the whole file (a few milliseconds for hundreds of versions) inside the write lock, so no other
-  // writer changes it between the check and the write.
-  Statement integrity(db_, path_, "PRAGMA integrity_check(1)");
-  if (integrity.step() && integrity.text(0) != "ok")
-    throw StoreError(
-        fmt::format("{}: the store fails SQLite's integrity check ({}); nothing was written. `cbtl "
-                    "profile export` still reads the versions it can: export them and import them into "
-                    "a new store, or restore a backup",
-                    path_, integrity.text(0)));
+  // check reads the whole file (2 ms a MB), inside the write lock, so no other writer changes it between the check
+  // and the write; once per connection: a command opens the store for each run, while a long-lived server (the
+  // study's, with hundreds of writes into one growing file) would otherwise pay it on every answer.
+  if (!integrityChecked_) {
+    Statement integrity(db_, path_, "PRAGMA integrity_check(1)");
+    if (integrity.step() && integrity.text(0) != "ok")
+      throw StoreError(
+          fmt::format("{}: the store fails SQLite's integrity check ({}); nothing was written. `cbtl "
+                      "profile export` still reads the versions it can: export them and import them into "
+                      "a new store, or restore a backup",
+                      path_, integrity.text(0)));
+    integrityChecked_ = true;
+  }
   const std::int64_t profile = profileId(db_, path_, user, domain, now);
   Statement next(db_, path_, "SELECT COALESCE(MAX(version), 0) FROM versions WHERE profile_id = ?");
   next.bind(1, profile).step();

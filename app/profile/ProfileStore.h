@@ -119,6 +119,7 @@ class ProfileStore {
 
   std::string path_;
   sqlite3* db_ = nullptr;
+  bool integrityChecked_ = false;  // by the first write of this connection
 };
 
 }  // namespace cbtl::app::profile

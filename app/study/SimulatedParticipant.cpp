@@ -35,13 +35,23 @@ int metBy(const json& option, const Ideals& ideals) {
 
 class Participant {
  public:
-  Participant(const std::string& host, int port, std::string id, std::uint64_t person)
-      : client_(host, port), id_(std::move(id)), n_(person), person_(FeedingUser::participant(person)) {
+  Participant(const std::string& host, int port, std::string id, std::uint64_t person, std::string key)
+      : client_(host, port),
+        id_(std::move(id)),
+        key_(std::move(key)),
+        n_(person),
+        person_(FeedingUser::participant(person)) {
     client_.set_read_timeout(std::chrono::seconds(300));
     client_.set_connection_timeout(std::chrono::seconds(10));
   }
 
-  json begin() { return request("POST", "/api/participants/" + id_, ""); }
+  // Begins (or, with a key, continues); keeps the key a first begin issues.
+  json begin() {
+    json state = request("POST", "/api/participants/" + id_, "");
+    if (state.contains("key") && state["key"].is_string()) key_ = state["key"].get<std::string>();
+    return state;
+  }
+  const std::string& key() const { return key_; }
 
   int take() {
     json state = begin();
@@ -65,7 +75,10 @@ class Participant {
 
  private:
   json request(const char* method, const std::string& path, const std::string& body) {
-    auto res = std::string(method) == "POST" ? client_.Post(path, body, "application/json") : client_.Get(path);
+    httplib::Headers headers;
+    if (!key_.empty()) headers.emplace("Authorization", "Bearer " + key_);
+    auto res = std::string(method) == "POST" ? client_.Post(path, headers, body, "application/json")
+                                             : client_.Get(path, headers);
     if (!res)
       throw std::runtime_error(
           fmt::format("participant {}: {} {}: {}", id_, method, path, httplib::to_string(res.error())));
@@ -107,16 +120,21 @@ class Participant {
 
   httplib::Client client_;
   std::string id_;
+  std::string key_;
   std::uint64_t n_;
   FeedingUser person_;
 };
 
 }  // namespace
 
-int takeStudy(const std::string& host, int port, const std::string& id, std::uint64_t person) {
-  return Participant(host, port, id, person).take();
+int takeStudy(const std::string& host, int port, const std::string& id, std::uint64_t person, const std::string& key) {
+  return Participant(host, port, id, person, key).take();
 }
 
-void beginStudy(const std::string& host, int port, const std::string& id) { Participant(host, port, id, 0).begin(); }
+std::string beginStudy(const std::string& host, int port, const std::string& id) {
+  Participant p(host, port, id, 0, "");
+  p.begin();
+  return p.key();
+}
 
 }  // namespace cbtl::app::study

@@ -20,13 +20,15 @@
 
 namespace cbtl::app::study {
 
-// Takes the study as participant id `id`, person `person`, against the server at http://host:port. Returns the
-// number of pages answered (13 for a complete study). Throws std::runtime_error naming the page and the server's
-// error when a request fails.
-int takeStudy(const std::string& host, int port, const std::string& id, std::uint64_t person);
+// Takes the study as participant id `id`, person `person`, against the server at http://host:port, with the
+// participant's key (ParticipantAccess.h) when they have begun already ("" to begin). Returns the number of pages
+// answered (13 for a complete study). Throws std::runtime_error naming the page and the server's error when a
+// request fails.
+int takeStudy(const std::string& host, int port, const std::string& id, std::uint64_t person,
+              const std::string& key = "");
 
 // Only begins participant `id` (the server numbers participants in the order they begin, so a simulation that runs
-// participants in parallel begins them all first, in order). Throws as takeStudy.
-void beginStudy(const std::string& host, int port, const std::string& id);
+// participants in parallel begins them all first, in order) and returns the key it was issued. Throws as takeStudy.
+std::string beginStudy(const std::string& host, int port, const std::string& id);
 
 }  // namespace cbtl::app::study

@@ -1,11 +1,15 @@
 #include "app/study/StudyHttpServer.h"
 
+#include "app/study/ParticipantAccess.h"
 #include "app/study/StudyRecords.h"
 
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <exception>
+#include <string>
+#include <utility>
 
 namespace cbtl::app::study {
 
@@ -18,7 +22,36 @@ void send(httplib::Response& res, const HttpReply& reply) {
   res.status = reply.status;
   res.set_header("Cache-Control", "no-store");
   res.set_header("X-Content-Type-Options", "nosniff");
+  if (reply.retryAfterSeconds > 0) res.set_header("Retry-After", std::to_string(reply.retryAfterSeconds));
   res.set_content(reply.body, reply.contentType.c_str());
+}
+
+// The participant's key from "Authorization: Bearer <key>" ("" without one).
+std::string keyOf(const httplib::Request& req) {
+  const std::string auth = req.get_header_value("Authorization");
+  const std::string scheme = "Bearer ";
+  return auth.compare(0, scheme.size(), scheme) == 0 ? auth.substr(scheme.size()) : std::string();
+}
+
+// The host:port part of an Origin ("https://study.example.org:8443" -> "study.example.org:8443").
+std::string originHost(const std::string& origin) {
+  const auto scheme = origin.find("://");
+  return scheme == std::string::npos ? origin : origin.substr(scheme + 3);
+}
+
+// Why a POST cannot be taken, or {0, ""} when it can: from another site (by its Origin or Sec-Fetch-Site), or a
+// body that is not declared JSON. Called before the body is read, so the body is known by its Content-Length.
+std::pair<int, std::string> postRefusal(const httplib::Request& req) {
+  if (req.get_header_value("Sec-Fetch-Site") == "cross-site")
+    return {403, "requests from other sites are refused: open the study's own page"};
+  if (req.has_header("Origin") && originHost(req.get_header_value("Origin")) != req.get_header_value("Host"))
+    return {403, "requests from other sites are refused: open the study's own page"};
+  if (req.get_header_value("Content-Length") != "0") {
+    const std::string type = req.get_header_value("Content-Type");
+    if (type.compare(0, 16, "application/json") != 0)
+      return {415, "send the body as JSON (Content-Type: application/json)"};
+  }
+  return {0, ""};
 }
 
 std::string contentTypeOf(const std::string& file) {
@@ -55,14 +88,23 @@ HttpReply errorReply(int status, const std::string& message) {
                    nlohmann::json{{"error", message}}.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)};
 }
 
-StudyHttpServer::StudyHttpServer(StudyApi& api) : api_(api), server_(std::make_unique<httplib::Server>()) {
+StudyHttpServer::StudyHttpServer(ParticipantAccess& access, HttpServerLimits limits)
+    : access_(access), server_(std::make_unique<httplib::Server>()) {
   server_->set_payload_max_length(kMaxBody);
+  const auto threads = static_cast<std::size_t>(std::max(1, limits.connections));
+  server_->new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
+  server_->set_read_timeout(limits.readTimeoutSeconds, 0);
+  server_->set_write_timeout(limits.readTimeoutSeconds, 0);
+  server_->set_keep_alive_timeout(limits.keepAliveSeconds);
   // cpp-httplib's default also sets SO_REUSEPORT, with which a second server binds a port in use and the kernel
   // shares the connections between the two (two studies, two databases, one URL). SO_REUSEADDR alone lets a
   // restarted server take its port back at once and refuses a port another server is listening on.
+  // TCP_NODELAY, which Linux gives every accepted connection from the listening socket: the reply's head and body
+  // are two writes, and without it the second waited for the client's delayed acknowledgement (40 ms a request).
   server_->set_socket_options([](socket_t sock) {
     int yes = 1;
     setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, reinterpret_cast<const void*>(&yes), sizeof(yes));
+    setsockopt(sock, IPPROTO_TCP, TCP_NODELAY, reinterpret_cast<const void*>(&yes), sizeof(yes));
   });
   routes();
 }
@@ -95,31 +137,43 @@ void StudyHttpServer::routes() {
       return;
     }
     send(res, fileReply("study.html"));
-    res.set_header("Content-Security-Policy", "default-src 'self'; img-src 'self' data:; frame-ancestors 'none'");
+    res.set_header("Content-Security-Policy", "default-src 'self'; img-src 'self' data: blob:; frame-ancestors 'none'");
   });
   s.Get(R"(/static/(study\.(?:js|css)))",
         [](const httplib::Request& req, httplib::Response& res) { send(res, fileReply(req.matches[1])); });
-  s.Post(id, [this](const httplib::Request& req, httplib::Response& res) { send(res, api_.begin(req.matches[1])); });
-  s.Get(id, [this](const httplib::Request& req, httplib::Response& res) { send(res, api_.state(req.matches[1])); });
+  s.Post(id, [this](const httplib::Request& req, httplib::Response& res) {
+    send(res, access_.begin(req.matches[1], keyOf(req)));
+  });
+  s.Get(id, [this](const httplib::Request& req, httplib::Response& res) {
+    send(res, access_.state(req.matches[1], keyOf(req)));
+  });
   s.Post(id + "/records", [this](const httplib::Request& req, httplib::Response& res) {
-    send(res, api_.record(req.matches[1], req.body));
+    send(res, access_.record(req.matches[1], keyOf(req), req.body));
   });
   s.Get(id + R"(/views/(\d{1,3})/(\d{1,3})\.png)", [this](const httplib::Request& req, httplib::Response& res) {
-    send(res, api_.view(req.matches[1], std::stoi(req.matches[2]), std::stoi(req.matches[3])));
+    send(res, access_.view(req.matches[1], keyOf(req), std::stoi(req.matches[2]), std::stoi(req.matches[3])));
   });
   s.Get(id + R"(/views/(\d{1,3})/(\d{1,3})\.json)", [this](const httplib::Request& req, httplib::Response& res) {
-    send(res, api_.viewMeasure(req.matches[1], std::stoi(req.matches[2]), std::stoi(req.matches[3])));
+    send(res, access_.viewMeasure(req.matches[1], keyOf(req), std::stoi(req.matches[2]), std::stoi(req.matches[3])));
   });
   // cpp-httplib's payload limit holds only for bodies with a Content-Length: a chunked upload was read whole (a
   // 400 MB one took the server from 377 MB to 1.76 GB). The study's page always sends a Content-Length, so a request
   // with a Transfer-Encoding, or a POST without a Content-Length, is refused before any of its body is read, and
   // its connection closed (the unread body must not be taken for the next request).
   s.set_pre_routing_handler([](const httplib::Request& req, httplib::Response& res) {
-    if (!req.has_header("Transfer-Encoding") && (req.method != "POST" || req.has_header("Content-Length")))
-      return httplib::Server::HandlerResponse::Unhandled;
-    send(res, errorReply(411, "send the body with a Content-Length (at most 64 KiB); chunked uploads are refused"));
-    res.set_header("Connection", "close");
-    return httplib::Server::HandlerResponse::Handled;
+    if (req.has_header("Transfer-Encoding") || (req.method == "POST" && !req.has_header("Content-Length"))) {
+      send(res, errorReply(411, "send the body with a Content-Length (at most 64 KiB); chunked uploads are refused"));
+      res.set_header("Connection", "close");
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    if (req.method == "POST") {
+      const auto [status, why] = postRefusal(req);
+      if (status != 0) {
+        send(res, errorReply(status, why));
+        return httplib::Server::HandlerResponse::Handled;
+      }
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
   });
   s.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
     if (!res.body.empty()) return;  // a route's own error reply

@@ -1,16 +1,29 @@
 // StudyHttpServer.h — the web study's HTTP side (`cbtl study serve`): the pages embedded at build time
-// (app/study/web, studyWebFiles()) and the JSON API of docs/study-api.md, routed to a StudyApi that knows the
-// study's content. The routes, their methods and the id syntax are checked here; everything a route means is the
-// StudyApi's.
+// (app/study/web, studyWebFiles()) and the JSON API of docs/study-api.md, routed through ParticipantAccess (the
+// participant's key) to the study. The routes, their methods, the id syntax and what a request must look like are
+// checked here; everything a route means is the study's.
 //
 // Routes: GET /p/<id> (the study page), GET /static/<file> (its script and style), POST and GET
 // /api/participants/<id>, POST /api/participants/<id>/records, GET /api/participants/<id>/views/<meal>/<k>.png,
 // GET /api/participants/<id>/views/<meal>/<k>.json, GET / (how to reach one's page). Anything else is 404 with a
-// JSON error.
-// Bodies above 64 KiB are refused (413). An exception escaping the StudyApi is answered 500 with its message.
+// JSON error. The key travels as "Authorization: Bearer <key>".
 //
-// Threads: cpp-httplib answers requests on a pool of threads, so a StudyApi must be safe to call concurrently.
+// What a request must be (each refusal a JSON error, nothing changed):
+// - bodies at most 64 KiB (413), sent with a Content-Length (411: chunked uploads are not read);
+// - a POST with a body is `Content-Type: application/json` (415), and a POST a browser sends from another site
+//   (an Origin other than the Host it was sent to, or Sec-Fetch-Site cross-site) is 403: a page elsewhere cannot
+//   answer in a participant's name, and with JSON only, no cross-site form can either.
+// An exception escaping the study is answered 500 with its message.
+//
+// Connections: `connections` threads answer requests; each waits at most `readTimeoutSeconds` for the next bytes
+// of a request and keeps an idle connection `keepAliveSeconds`. A client that sends slowly holds one thread, so
+// slow clients take the study down only when they hold all of them: put the server behind a reverse proxy that
+// buffers requests before exposing it (docs/study.md, "Deploying").
+//
+// Threads: requests run concurrently, so the study (StudyApi) must be safe to call concurrently.
 #pragma once
+
+#include "app/study/StudyApi.h"
 
 #include <map>
 #include <memory>
@@ -26,29 +39,17 @@ namespace cbtl::app::study {
 // The pages, by file name ("study.html", "study.js", "study.css"), as they were when the binary was built.
 const std::map<std::string, std::string_view>& studyWebFiles();
 
-struct HttpReply {
-  int status = 200;
-  std::string contentType = "application/json";
-  std::string body;
-};
+class ParticipantAccess;
 
-// {"error": message} with `status`.
-HttpReply errorReply(int status, const std::string& message);
-
-class StudyApi {
- public:
-  virtual ~StudyApi() = default;
-  virtual HttpReply begin(const std::string& participant) = 0;
-  virtual HttpReply state(const std::string& participant) = 0;
-  virtual HttpReply record(const std::string& participant, const std::string& body) = 0;
-  virtual HttpReply view(const std::string& participant, int meal, int picture) = 0;
-  // What a simulated participant judges a picture by (its occlusion score); the pages never ask for it.
-  virtual HttpReply viewMeasure(const std::string& participant, int meal, int picture) = 0;
+struct HttpServerLimits {
+  int connections = 128;       // requests answered at once (threads); more wait for one to be free
+  int readTimeoutSeconds = 5;  // the longest wait for a request's next bytes
+  int keepAliveSeconds = 5;    // an idle kept-alive connection is closed after this
 };
 
 class StudyHttpServer {
  public:
-  explicit StudyHttpServer(StudyApi& api);
+  explicit StudyHttpServer(ParticipantAccess& access, HttpServerLimits limits = {});
   ~StudyHttpServer();
   StudyHttpServer(const StudyHttpServer&) = delete;
   StudyHttpServer& operator=(const StudyHttpServer&) = delete;
@@ -62,7 +63,7 @@ class StudyHttpServer {
 
  private:
   void routes();
-  StudyApi& api_;
+  ParticipantAccess& access_;
   std::unique_ptr<httplib::Server> server_;
 };
 

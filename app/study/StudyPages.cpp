@@ -20,6 +20,18 @@ std::string invalidIdMessage(const std::string& id) {
 
 namespace {
 
+// The length of UTF-8 text as a browser counts it for a field's maxlength: in UTF-16 code units (a character beyond
+// U+FFFF, an emoji, counts two). Counting bytes refused answers the page had let through (100 letters of a
+// non-Latin script are 200 or 300 bytes). The text is valid UTF-8: it came out of the JSON parser.
+std::size_t utf16Length(const std::string& text) {
+  std::size_t units = 0;
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if ((byte & 0xC0) != 0x80) units += byte >= 0xF0 ? 2 : 1;  // a lead byte: one code point
+  }
+  return units;
+}
+
 const feeding::MealOffer& offerOf(const feeding::MealPresentation& m, const std::string& approach) {
   return m.offers.at(approach);
 }
@@ -77,7 +89,7 @@ std::optional<std::string> checkDemographics(const json& r) {
   if (!r["gender"].is_string() || !genders.count(r["gender"].get<std::string>()))
     return std::string("gender must be one of male, female, non-binary, prefer-not-to-say, other");
   if (r.contains("gender_other")) {
-    if (!r["gender_other"].is_string() || r["gender_other"].get<std::string>().size() > 100)
+    if (!r["gender_other"].is_string() || utf16Length(r["gender_other"].get<std::string>()) > 100)
       return std::string("gender_other must be text of at most 100 characters");
     if (!other && !r["gender_other"].get<std::string>().empty())
       return std::string("gender_other is only for the gender 'other'");
@@ -142,7 +154,7 @@ std::optional<std::string> checkResponse(const std::string& kind, const json& r)
   if (kind == "answers") return checkAnswersShape(r);
   if (kind == "complete") {
     if (auto problem = checkKeys(r, {"comments"})) return problem;
-    if (!r["comments"].is_string() || r["comments"].get<std::string>().size() > 2000)
+    if (!r["comments"].is_string() || utf16Length(r["comments"].get<std::string>()) > 2000)
       return std::string("comments must be text of at most 2,000 characters");
     return std::nullopt;
   }

@@ -14,7 +14,12 @@ namespace cbtl::app::study {
 
 namespace {
 
-constexpr std::int64_t kSchemaVersion = 1;
+// 2: study_keys (participants' keys, as hashes). A file of schema 1 gets the table when opened.
+constexpr std::int64_t kSchemaVersion = 2;
+
+constexpr const char* kKeysTable = R"sql(
+CREATE TABLE IF NOT EXISTS study_keys(participant TEXT PRIMARY KEY, key_hash TEXT NOT NULL, issued TEXT NOT NULL);
+)sql";
 
 constexpr const char* kSchema = R"sql(
 CREATE TABLE study_meta(key TEXT PRIMARY KEY, value INTEGER NOT NULL);
@@ -24,6 +29,7 @@ CREATE TABLE study_records(participant TEXT NOT NULL REFERENCES study_participan
                            kind TEXT NOT NULL, meal INTEGER NOT NULL, elapsed_ms INTEGER NOT NULL,
                            rt_ms INTEGER NOT NULL, response TEXT NOT NULL, recorded TEXT NOT NULL,
                            PRIMARY KEY(participant, trial_index));
+CREATE TABLE study_keys(participant TEXT PRIMARY KEY, key_hash TEXT NOT NULL, issued TEXT NOT NULL);
 )sql";
 
 struct StudyDatabaseFile {
@@ -37,6 +43,11 @@ std::string failure(const std::string& path, sqlite3* db, int code) {
   return sqlite::failure(path, db, code, StudyDatabaseFile::kind);
 }
 void exec(sqlite3* db, const std::string& path, const char* sql) { sqlite::exec<StudyDatabaseFile>(db, path, sql); }
+
+std::int64_t schemaVersion(sqlite3* db, const std::string& path) {
+  Statement version(db, path, "SELECT value FROM study_meta WHERE key = 'schema_version'");
+  return version.step() ? version.integer(0) : 0;
+}
 
 bool hasStudyTables(sqlite3* db, const std::string& path) {
   Statement s(db, path, "SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = 'study_meta'");
@@ -170,8 +181,18 @@ StudyRecords::StudyRecords(const std::string& path, bool create, int busyTimeout
       }
       t.commit();
     }
-    Statement version(db_, path_, "SELECT value FROM study_meta WHERE key = 'schema_version'");
-    const std::int64_t schema = version.step() ? version.integer(0) : 0;
+    std::int64_t schema = schemaVersion(db_, path_);
+    if (schema < kSchemaVersion) {
+      WriteTransaction t(db_, path_);
+      if (schemaVersion(db_, path_) < kSchemaVersion) {
+        exec(db_, path_, kKeysTable);
+        Statement(db_, path_, "UPDATE study_meta SET value = ? WHERE key = 'schema_version'")
+            .bind(1, kSchemaVersion)
+            .step();
+      }
+      t.commit();
+      schema = schemaVersion(db_, path_);
+    }
     if (schema > kSchemaVersion)
       throw StudyError(
           fmt::format("{}: study tables of schema {}, newer than this cbtl's {}", path_, schema, kSchemaVersion));
@@ -215,6 +236,32 @@ Participant StudyRecords::begin(const std::string& id, std::uint64_t seed, const
       .step();
   t.commit();
   return *participant(id);
+}
+
+bool StudyRecords::claimKey(const std::string& id, const std::string& keyHash) {
+  checkId(path_, id);
+  WriteTransaction t(db_, path_);
+  Statement(db_, path_, "INSERT OR IGNORE INTO study_keys(participant, key_hash, issued) VALUES (?, ?, ?)")
+      .bind(1, id)
+      .bind(2, keyHash)
+      .bind(3, utcNow())
+      .step();
+  const bool claimed = sqlite3_changes(db_) == 1;
+  t.commit();
+  return claimed;
+}
+
+std::optional<std::string> StudyRecords::keyHash(const std::string& id) const {
+  checkId(path_, id);
+  Statement s(db_, path_, "SELECT key_hash FROM study_keys WHERE participant = ?");
+  s.bind(1, id);
+  if (!s.step()) return std::nullopt;
+  return s.text(0);
+}
+
+std::int64_t StudyRecords::participantCount() const {
+  Statement s(db_, path_, "SELECT count(*) FROM study_participants");
+  return s.step() ? s.integer(0) : 0;
 }
 
 std::optional<Participant> StudyRecords::participant(const std::string& id) const {

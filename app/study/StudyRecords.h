@@ -105,6 +105,13 @@ class StudyRecords {
   Participant begin(const std::string& id, std::uint64_t seed, const std::string& optionsJson);
   std::optional<Participant> participant(const std::string& id) const;
   std::vector<Participant> participants() const;  // in the order begin() created them
+  std::int64_t participantCount() const;
+
+  // Participants' keys (ParticipantAccess.h): only a hash of each is stored, so the file alone does not let anyone
+  // act as a participant. claimKey stores `keyHash` for a participant who has none and returns true; false, writing
+  // nothing, when they have one (the first claim wins). Ids need not be participants (yet).
+  bool claimKey(const std::string& id, const std::string& keyHash);
+  std::optional<std::string> keyHash(const std::string& id) const;
   // Marks the participant completed; completing again keeps the first time. StudyError for an unknown one.
   void complete(const std::string& id);
 

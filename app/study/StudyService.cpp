@@ -22,7 +22,41 @@ struct StudyService::Session {
   std::string broken;                            // why it could not be built or continued; empty when fine
   std::size_t picturesMeal = static_cast<std::size_t>(-1);
   std::vector<std::vector<std::uint8_t>> pictures;  // the current meal's, PNG bytes, rendered on first request
-  std::uint64_t lastUse = 0;                        // StudyService::uses_ when a request last touched it
+  // Under StudyService::sessionsMutex_:
+  Planner* planner = nullptr;  // for life: the session's worlds are bound to its program
+  std::uint64_t lastUse = 0;   // StudyService::uses_ when a request last touched it
+  int users = 0;               // requests holding a Lease on it: never let go while > 0
+  bool finished = false;       // the participant completed: let go when the last user is done
+};
+
+// A participant's session for the length of one request: counted as in use, so that it is not let go meanwhile,
+// and held with its planner's lock, so that nothing else plans with that program.
+class StudyService::Lease {
+ public:
+  Lease(StudyService& service, Session& session)
+      : service_(service), session_(session), lock_(session.planner->mutex) {}
+  ~Lease() {
+    lock_.unlock();
+    std::lock_guard<std::mutex> lock(service_.sessionsMutex_);
+    if (--session_.users == 0 && session_.finished) {
+      // A finished participant's two worlds and learner are not needed any more (tens of MB); a later request
+      // rebuilds them from the records.
+      for (auto it = service_.sessions_.begin(); it != service_.sessions_.end(); ++it)
+        if (it->second.get() == &session_) {
+          service_.sessions_.erase(it);
+          break;
+        }
+    }
+  }
+  Lease(const Lease&) = delete;
+  Lease& operator=(const Lease&) = delete;
+
+  Session& session() { return session_; }
+
+ private:
+  StudyService& service_;
+  Session& session_;
+  std::unique_lock<std::mutex> lock_;
 };
 
 namespace {
@@ -47,8 +81,21 @@ HttpReply storageError(const std::exception& e) {
 }  // namespace
 
 StudyService::StudyService(const approach::PreparedProgram& lp, const domains::ProgramFacts& facts,
-                           StudyServiceOptions options, const std::string& databasePath)
-    : lp_(lp), facts_(facts), options_(std::move(options)), records_(databasePath), profiles_(databasePath) {
+                           StudyServiceOptions options, const std::string& databasePath,
+                           std::vector<const approach::PreparedProgram*> morePlanners)
+    : lp_(lp),
+      facts_(facts),
+      options_(std::move(options)),
+      records_(databasePath),
+      profiles_(databasePath),
+      serverLock_(databasePath) {
+  planners_.push_back(std::make_unique<Planner>());
+  planners_.back()->program = &lp;
+  if (!options_.study.textBackend)
+    for (const approach::PreparedProgram* more : morePlanners) {
+      planners_.push_back(std::make_unique<Planner>());
+      planners_.back()->program = more;
+    }
   if (!options_.pictures) {
     noRendererReason_ = "this server was started without pictures";
     return;
@@ -75,24 +122,35 @@ StudyService::StudyService(const approach::PreparedProgram& lp, const domains::P
 StudyService::~StudyService() = default;
 
 std::size_t StudyService::sessionsInMemory() {
-  std::lock_guard<std::mutex> lock(programMutex_);
+  std::lock_guard<std::mutex> lock(sessionsMutex_);
   return sessions_.size();
 }
 
-StudyService::Session& StudyService::sessionOf(const Participant& p) {
-  auto& slot = sessions_[p.id];
-  if (!slot) slot = std::make_unique<Session>();
-  slot->lastUse = ++uses_;
-  // Over the cap, the session touched longest ago is let go (it is rebuilt from the records when its participant
-  // comes back). Requests run one at a time, so no other request holds it.
-  if (sessions_.size() > options_.maxSessions) {
-    auto oldest = sessions_.end();
-    for (auto it = sessions_.begin(); it != sessions_.end(); ++it)
-      if (it->first != p.id && (oldest == sessions_.end() || it->second->lastUse < oldest->second->lastUse))
-        oldest = it;
-    if (oldest != sessions_.end()) sessions_.erase(oldest);
+StudyService::Lease StudyService::lease(const Participant& p) {
+  Session* session = nullptr;
+  {
+    std::lock_guard<std::mutex> lock(sessionsMutex_);
+    auto& slot = sessions_[p.id];
+    if (!slot) {
+      slot = std::make_unique<Session>();
+      // By the participant's number, so that participants who begin one after another alternate.
+      slot->planner = planners_[p.seed % planners_.size()].get();
+    }
+    slot->lastUse = ++uses_;
+    slot->finished = false;
+    ++slot->users;
+    session = slot.get();
+    // Over the cap, the idle session touched longest ago is let go (it is rebuilt from the records when its
+    // participant comes back). One in use is never let go: the cap may be passed while every session is in use.
+    if (sessions_.size() > options_.maxSessions) {
+      auto oldest = sessions_.end();
+      for (auto it = sessions_.begin(); it != sessions_.end(); ++it)
+        if (it->second->users == 0 && (oldest == sessions_.end() || it->second->lastUse < oldest->second->lastUse))
+          oldest = it;
+      if (oldest != sessions_.end()) sessions_.erase(oldest);
+    }
   }
-  return *slot;
+  return Lease(*this, *session);
 }
 
 namespace {
@@ -139,8 +197,8 @@ std::optional<HttpReply> StudyService::ensureBuilt(Session& s, const Participant
     }
     try {
       // StudySession is deterministic: fed the stored answers, it shows the meal the participant is at.
-      s.study =
-          std::make_unique<feeding::StudySession>(lp_, facts_, optionsOf(p, options_.study), static_cast<int>(p.seed));
+      s.study = std::make_unique<feeding::StudySession>(*s.planner->program, facts_, optionsOf(p, options_.study),
+                                                        static_cast<int>(p.seed));
       for (const StoredRecord& r : stored) {
         if (r.kind != "answers") continue;
         const feeding::ParticipantAnswers a = participantAnswersOf(json::parse(r.response));
@@ -212,9 +270,8 @@ HttpReply StudyService::beginUnlogged(const std::string& participant) {
   } catch (const StudyError& e) {
     return storageError(e);
   }
-  std::lock_guard<std::mutex> lock(programMutex_);
-  Session& s = sessionOf(p);
-  return stateReply(s, p);
+  Lease held = lease(p);
+  return stateReply(held.session(), p);
 }
 
 std::optional<HttpReply> StudyService::lookUp(const std::string& participant, Participant& out) {
@@ -232,8 +289,8 @@ std::optional<HttpReply> StudyService::lookUp(const std::string& participant, Pa
 HttpReply StudyService::state(const std::string& participant) {
   Participant p;
   if (auto error = lookUp(participant, p)) return *error;
-  std::lock_guard<std::mutex> lock(programMutex_);
-  return stateReply(sessionOf(p), p);
+  Lease held = lease(p);
+  return stateReply(held.session(), p);
 }
 
 HttpReply StudyService::stateReply(Session& s, const Participant& p, const char* status) {
@@ -296,8 +353,8 @@ HttpReply StudyService::recordUnlogged(const std::string& participant, const std
   Participant found;
   if (auto error = lookUp(participant, found)) return *error;
   const Participant* p = &found;
-  std::lock_guard<std::mutex> lock(programMutex_);
-  Session& s = sessionOf(*p);
+  Lease held = lease(*p);
+  Session& s = held.session();
   const NewRecord& r = req.record;
   std::int64_t next = 0;
   std::optional<StoredRecord> earlier;
@@ -310,10 +367,10 @@ HttpReply StudyService::recordUnlogged(const std::string& participant, const std
     const bool same = earlier->kind == r.kind && earlier->meal == r.meal &&
                       sentPart(r.kind, json::parse(earlier->response)) == req.response;
     if (!same)
-      // Only what the participant sent is echoed: the stored response also names the approaches behind the options.
-      return errorReply(409, fmt::format("trial {} was already answered, differently: it is {}, answered {}",
-                                         r.trialIndex, pageName(pageOfTrial(r.trialIndex)),
-                                         sentPart(earlier->kind, json::parse(earlier->response)).dump()));
+      // Nothing stored is quoted: a reply is no way to read a participant's answers (their age, their comments).
+      return errorReply(409, fmt::format("trial {} was already answered, differently: it is {}; an answer once "
+                                         "stored is not changed",
+                                         r.trialIndex, pageName(pageOfTrial(r.trialIndex))));
     return stateReply(s, *p, "replayed");
   }
   const StudyPage page = pageOfTrial(next);
@@ -340,9 +397,10 @@ HttpReply StudyService::recordUnlogged(const std::string& participant, const std
     return storageError(e);
   }
   HttpReply reply = stateReply(s, *p, "stored");
-  // A finished participant's two worlds and learner are not needed any more (tens of MB each); a later request
-  // rebuilds them from the records.
-  if (r.kind == "complete") sessions_.erase(participant);
+  if (r.kind == "complete") {
+    std::lock_guard<std::mutex> lock(sessionsMutex_);
+    s.finished = true;  // let go as the lease ends
+  }
   return reply;
 }
 
@@ -404,11 +462,12 @@ HttpReply StudyService::viewMeasure(const std::string& participant, int meal, in
 
 HttpReply StudyService::withPicture(const std::string& participant, int meal, int picture,
                                     const std::function<HttpReply(Session&, std::size_t)>& answer) {
-  // Taken first: where the participant is must not change between the check and the picture.
-  std::lock_guard<std::mutex> lock(programMutex_);
   Participant found;
   if (auto error = lookUp(participant, found)) return *error;
   const Participant* p = &found;
+  // Taken before the check: a participant's records are written only under their session's lease, so where they
+  // are cannot change between the check and the picture.
+  Lease held = lease(*p);
   std::int64_t next = 0;
   {
     std::lock_guard<std::mutex> db(dbMutex_);
@@ -418,7 +477,7 @@ HttpReply StudyService::withPicture(const std::string& participant, int meal, in
   if (page.meal != meal)
     return errorReply(404, fmt::format("no pictures of meal {} now: participant '{}' is at {}", meal, participant,
                                        page.kind == "done" ? "the end" : "trial " + std::to_string(next)));
-  Session& s = sessionOf(*p);
+  Session& s = held.session();
   if (auto error = ensureBuilt(s, *p)) return *error;
   const feeding::MealPresentation& m = s.study->current();
   if (picture < 0 || static_cast<std::size_t>(picture) >= m.views.size())
@@ -435,6 +494,7 @@ HttpReply StudyService::renderPicture(Session& s, std::size_t picture) {
   }
   std::vector<std::uint8_t>& png = s.pictures[picture];
   if (png.empty()) {
+    std::lock_guard<std::mutex> lock(renderMutex_);
     if (pictureWorkspace_->setState(m.views[picture].state) != world::StateStatus::Ok)
       return errorReply(500, "the picture's scene could not be set up");
     world::CameraSpec camera;

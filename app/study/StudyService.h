@@ -12,16 +12,19 @@
 // the same meal they were at. The solver options and the text backend are the server's: restart a study with the
 // same ones, or rebuilt sessions refuse (500, naming the participant) where the stored answers no longer fit.
 //
-// Every request is checked completely before anything changes; a refused one changes nothing. Concurrency: the
-// requests that touch a session run one at a time, whoever's they are, because every session plans with the one
-// loaded program, which is not thread-safe (its built-ins are bound to the world being planned in); a page takes
-// well under a second, and a participant minutes to answer it. The database has a lock of its own (taken inside
-// that one, and alone by begin() and look-ups); the renderer and its workspace need none, as pictures are made
-// under that one.
+// Every request is checked completely before anything changes; a refused one changes nothing. Concurrency: a
+// session plans with a loaded copy of the program (a "planner"), which is not thread-safe (its built-ins are bound
+// to the world being planned in), so the requests that touch sessions of one planner run one at a time; the service
+// is given one planner per core (`cbtl study serve` loads the program that many times) and spreads participants
+// over them, so that planning, and rebuilding a session let go, hold up only the participants of one planner,
+// never all of them. Finding a participant's session takes a lock of its own for microseconds; a session in use is
+// never let go. The database has a lock of its own (taken inside a planner's, and alone by begin() and look-ups);
+// pictures are rendered under the renderer's own lock.
 #pragma once
 
 #include "app/profile/ProfileStore.h"
-#include "app/study/StudyHttpServer.h"
+#include "app/study/StudyApi.h"
+#include "app/study/StudyDatabaseLock.h"
 #include "app/study/StudyRecords.h"
 #include "domains/feeding/StudySession.h"
 
@@ -48,9 +51,10 @@ struct StudyServiceOptions {
   domains::feeding::StudyOptions study;         // seed, exploring view, solver, text backend
   bool pictures = true;                         // false: no renderer (pictures are answered 503)
   int pictureWidth = 480, pictureHeight = 360;  // pixels
-  // Sessions kept at most (each holds two simulated worlds and a model, about 27 MB); beyond, the one used longest
-  // ago is let go and rebuilt from the records when needed. A completed participant's is let go at once.
-  std::size_t maxSessions = 64;
+  // Sessions kept at most (each holds two simulated worlds and a model, about 24 MB: 256 are about 6 GB); beyond,
+  // the idle one used longest ago is let go and rebuilt from the records when needed (0.2-1.4 s, holding up its
+  // planner's participants). A completed participant's is let go at once.
+  std::size_t maxSessions = 256;
   // What the people running the study tell participants (StudyInfo.h), sent with every page's state as "study";
   // an empty object: the built-in consent text, no contact.
   nlohmann::json about = nlohmann::json::object();
@@ -61,11 +65,14 @@ struct StudyServiceOptions {
 
 class StudyService : public StudyApi {
  public:
-  // `lp` (the Feeding program) and `facts` must outlive the service. Opens (creating) the study database; throws
-  // StudyError or profile::StoreError when it cannot. Pictures are rendered from the program's scene; when no
-  // renderer can be made (no EGL here), they are answered 503 and pictureProblem() says why.
+  // `lp` (the Feeding program) and `facts` must outlive the service, and so must `morePlanners`: the same program
+  // loaded again, one more planner each (they must be the very same program: a participant's pages must not depend
+  // on the planner they get). With a language-model text backend only `lp` plans (a model client serves one thread).
+  // Opens (creating) the study database and locks it to this service (StudyDatabaseLock.h); throws StudyError or
+  // profile::StoreError when it cannot. Pictures are rendered from the program's scene; when no renderer can be
+  // made (no EGL here), they are answered 503 and pictureProblem() says why.
   StudyService(const approach::PreparedProgram& lp, const domains::ProgramFacts& facts, StudyServiceOptions options,
-               const std::string& databasePath);
+               const std::string& databasePath, std::vector<const approach::PreparedProgram*> morePlanners = {});
   ~StudyService() override;
 
   HttpReply begin(const std::string& participant) override;
@@ -77,13 +84,19 @@ class StudyService : public StudyApi {
   const std::string& pictureProblem() const { return noRendererReason_; }
   // Sessions held in memory now (StudyServiceOptions::maxSessions).
   std::size_t sessionsInMemory();
+  std::size_t planners() const { return planners_.size(); }
 
  private:
   struct Session;
+  struct Planner {
+    const approach::PreparedProgram* program;
+    std::mutex mutex;  // over the program and every session it plans for
+  };
+  class Lease;  // a participant's session, held with its planner's lock (StudyService.cpp)
+  Lease lease(const Participant& p);
   // The stored participant, or the reply saying why there is none (400 for an invalid id, 404 for an unknown one).
   std::optional<HttpReply> lookUp(const std::string& participant, Participant& out);
-  Session& sessionOf(const Participant& p);  // the caller holds programMutex_
-  // The caller holds programMutex_ in these.
+  // The caller holds the session's Lease in these.
   std::optional<HttpReply> ensureBuilt(Session& s, const Participant& p);
   HttpReply stateReply(Session& s, const Participant& p, const char* status = nullptr);
   HttpReply storeAnswers(Session& s, const Participant& p, const NewRecord& r);
@@ -98,15 +111,18 @@ class StudyService : public StudyApi {
                         const std::function<HttpReply(Session&, std::size_t)>& answer);
   HttpReply renderPicture(Session& s, std::size_t picture);
 
-  const approach::PreparedProgram& lp_;
+  const approach::PreparedProgram& lp_;  // the first planner's: the graph every planner shares
   const domains::ProgramFacts& facts_;
   StudyServiceOptions options_;
   std::mutex dbMutex_;
   StudyRecords records_;
   profile::ProfileStore profiles_;
-  std::mutex programMutex_;  // over sessions_ and everything a session does
+  StudyDatabaseLock serverLock_;  // after the two above, which create the file
+  std::vector<std::unique_ptr<Planner>> planners_;
+  std::mutex sessionsMutex_;  // over sessions_, uses_ and each session's users and planner (not what it does)
   std::map<std::string, std::unique_ptr<Session>> sessions_;
   std::uint64_t uses_ = 0;  // requests that touched a session, for letting the least recently used go
+  std::mutex renderMutex_;  // over renderer_ and pictureWorkspace_
   std::shared_ptr<const world::Scene> scene_;
   std::unique_ptr<world::OffscreenRenderer> renderer_;
   std::unique_ptr<world::Workspace> pictureWorkspace_;

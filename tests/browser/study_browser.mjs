@@ -187,10 +187,11 @@ class Browser {
       console.log(`[browser page error] ${error.message}`);
       this.pageErrors.push(error.message);
     });
-    // The pages may load nothing but the server's own files.
+    // The pages may load nothing but the server's own files (pictures are shown from blob: copies of them).
     page.on('request', (request) => {
       const url = request.url();
-      if (!url.startsWith(this.origin) && !url.startsWith('data:')) this.foreignRequests.push(url);
+      const own = url.startsWith(this.origin) || url.startsWith(`blob:${this.origin}`) || url.startsWith('data:');
+      if (!own) this.foreignRequests.push(url);
     });
   }
 
@@ -200,10 +201,14 @@ class Browser {
       `${where}: the page fetched from elsewhere than the server: ${this.foreignRequests.join(', ')}`);
   }
 
-  // The participant's state, asked from inside the page (same origin, as the page's own script asks).
+  // The participant's state, asked from inside the page (same origin, as the page's own script asks), with the
+  // key the page keeps in its address (#key=...).
   async apiState() {
     return this.page.evaluate(async (id) => {
-      const response = await fetch(`/api/participants/${id}`, {cache: 'no-store'});
+      const key = (/#key=([0-9a-f]{64})/.exec(location.hash) || [])[1];
+      if (!key) return {error: `the page's address holds no key: ${location.href}`};
+      const response = await fetch(`/api/participants/${id}`,
+        {cache: 'no-store', headers: {Authorization: `Bearer ${key}`}});
       return response.json();
     }, PARTICIPANT);
   }
@@ -456,8 +461,9 @@ async function answersPage(b, artifacts, expected, meal) {
 async function checkWrongTrialIndex(b) {
   const before = await b.apiState();
   const answer = await b.page.evaluate(async ([id, trial]) => {
+    const key = (/#key=([0-9a-f]{64})/.exec(location.hash) || [])[1];
     const response = await fetch(`/api/participants/${id}/records`, {
-      method: 'POST', headers: {'Content-Type': 'application/json'},
+      method: 'POST', headers: {'Content-Type': 'application/json', Authorization: `Bearer ${key}`},
       body: JSON.stringify({trial_index: trial + 2, kind: 'rating', meal: 4, elapsed_ms: 1, rt_ms: 1,
         response: {likert: 3}}),
     });

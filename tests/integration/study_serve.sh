@@ -33,14 +33,19 @@ start() {
   return 1
 }
 
-# HTTP through python3 (no curl on a fresh machine): METHOD PATH [BODY] -> "status body"
+# HTTP through python3 (no curl on a fresh machine): METHOD PATH [BODY] -> "status body", with the participant's key
+# $key when set.
+key=""
 http() {
-  python3 - "$port" "$@" <<'PY'
+  python3 - "$port" "$key" "$@" <<'PY'
 import sys, urllib.request, urllib.error
-port, method, path = sys.argv[1], sys.argv[2], sys.argv[3]
-body = sys.argv[4].encode() if len(sys.argv) > 4 else b""
+port, key, method, path = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4]
+body = sys.argv[5].encode() if len(sys.argv) > 5 else b""
+headers = {"Content-Type": "application/json"}
+if key:
+    headers["Authorization"] = "Bearer " + key
 req = urllib.request.Request(f"http://127.0.0.1:{port}{path}", data=body if method == "POST" else None, method=method,
-                             headers={"Content-Type": "application/json"})
+                             headers=headers)
 try:
     with urllib.request.urlopen(req, timeout=120) as r:
         print(r.status, r.read().decode())
@@ -55,7 +60,17 @@ record() {  # TRIAL KIND MEAL RESPONSE
 }
 
 start 0 || exit 1
-[[ $(http POST /api/participants/p1 '{}') == "200 "*'"page":"consent"'* ]] || fail "begin"
+begun=$(http POST /api/participants/p1 '{}')
+[[ $begun == "200 "*'"page":"consent"'* ]] || fail "begin: $begun"
+key=$(python3 -c 'import json, sys; print(json.loads(sys.argv[1].split(" ", 1)[1])["key"])' "$begun")
+# Without the key nothing about the participant is answered, and a second begin hands out no key.
+key_kept=$key
+key=""
+[[ $(http GET /api/participants/p1) == "403 "* ]] || fail "a state without the key"
+[[ $(http GET /api/participants/nobody) == "$(http GET /api/participants/p1)" ]] ||
+  fail "an unknown and a known participant are told apart without a key"
+[[ $(http POST /api/participants/p1 '{}') == "403 "* ]] || fail "a second begin without the key"
+key=$key_kept
 record 0 consent 0 '{"agree": true}' | grep -q '^200 ' || fail "consent"
 record 1 demographics 0 \
   '{"age": null, "gender": "prefer-not-to-say", "gender_other": "", "robot_experience": false, "fed_experience": false}' \
@@ -123,6 +138,43 @@ else
   [[ $rc -eq 1 ]] && grep -q "cannot listen" "$work/out2" || fail "second server (exit $rc): $(cat "$work/out2")"
 fi
 [[ $(http GET /api/participants/p1) == "$before" ]] || fail "the first server after the second's attempt"
+# A second server on the same database is refused (two once gave two participants one seed).
+out=$(timeout 120 "$cbtl" study serve "$program" --db "$work/study.sqlite" --port 0 --no-pictures 2>&1)
+rc=$?
+[[ $rc -eq 1 ]] && grep -q "another study server is using this database" <<<"$out" ||
+  fail "a second server on the same database (exit $rc): $out"
+
+# Slow clients (one byte every 2 s, each holding a connection open) do not keep others out: 24 of them, three
+# times what once took every request thread, while a participant's page is asked for.
+slow=$(python3 - "$port" <<'PY'
+import socket, sys, threading, time, urllib.request
+port = int(sys.argv[1])
+stop = time.time() + 9
+def trickle():
+    try:
+        with socket.create_connection(("127.0.0.1", port), timeout=20) as c:
+            for b in b"GET /p/slow HTTP/1.1\r\nHost: x\r\n":
+                if time.time() > stop:
+                    break
+                c.sendall(bytes([b]))
+                time.sleep(2)
+    except OSError:
+        pass
+threads = [threading.Thread(target=trickle) for _ in range(24)]
+for t in threads:
+    t.start()
+time.sleep(3)
+start = time.time()
+try:
+    with urllib.request.urlopen(f"http://127.0.0.1:{port}/static/study.css", timeout=5) as r:
+        print(r.status, round(time.time() - start, 2))
+except Exception as e:
+    print("no answer:", e)
+for t in threads:
+    t.join()
+PY
+)
+[[ $slow == "200 "* ]] || fail "a request among slow clients: $slow"
 
 kill -9 "$pid"
 wait "$pid" 2>/dev/null

@@ -235,6 +235,25 @@ void addStudy(CLI::App& app, int& exitCode) {
                    "rebuilt from the database when needed")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  serve
+      ->add_option("--max-participants", args->maxParticipants,
+                   "participants the study admits in all (0: no limit); beyond, a new one is told the study is full")
+      ->check(CLI::Range(0, 100000000))
+      ->capture_default_str();
+  serve
+      ->add_option("--new-participants-per-minute", args->newParticipantsPerMinute,
+                   "new participants admitted a minute on average, up to 60 at once (0: no limit); also bounds the "
+                   "trying of participant ids")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
+  serve
+      ->add_option("--planners", args->planners,
+                   "copies of the program that plan participants' meals in parallel (0: one per core, at most 8)")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
+  serve->add_option("--connections", args->connections, "requests answered at once (threads); a slow client holds one")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
   serve->add_option("--picture-width", args->width, "picture width in pixels")
       ->check(CLI::Range(16, 1280))
       ->capture_default_str();

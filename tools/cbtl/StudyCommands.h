@@ -17,7 +17,8 @@ namespace cbtl::cli {
 struct StudyArgs {
   std::string file, out, stdlibDir, db, host = "127.0.0.1", studyInfo;
   int participants = 60, firstParticipant = 0, participant = 0, trials = 5, width = 480, height = 360, port = 8080,
-      jobs = 1, maxSessions = 64;
+      jobs = 1, maxSessions = 256, connections = 128, maxParticipants = 1000, planners = 0;
+  double newParticipantsPerMinute = 120;
   std::uint64_t seed = 0;
   bool noExploringView = false, force = false, noPictures = false, inProcess = false;
   SolverArgs solver;

@@ -4,6 +4,7 @@
 #include "tools/cbtl/StudyCommands.h"
 
 #include "app/SimulatorFacts.h"
+#include "app/study/ParticipantAccess.h"
 #include "app/study/StudyHttpServer.h"
 #include "app/study/StudyInfo.h"
 #include "app/study/StudyService.h"
@@ -11,6 +12,7 @@
 #include <fmt/core.h>
 
 #include <pthread.h>
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <ctime>
@@ -77,11 +79,28 @@ int runStudyServe(const StudyArgs& a) {
     fmt::print(stderr, "{} {}\n", stamp, line);
   };
   const domains::ProgramFacts facts = app::simulatorFacts(*lp);
-  app::study::StudyService service(*lp, facts, options, a.db);
+  // One planner per core: the program is loaded again for each (a session plans with one copy, not thread-safe).
+  const int planners =
+      a.planners > 0 ? a.planners : std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 8);
+  std::vector<std::unique_ptr<app::LoadedProgram>> copies;
+  std::vector<const approach::PreparedProgram*> morePlanners;
+  for (int k = 1; k < planners; ++k) {
+    domains::feeding::StudyOptions same;
+    copies.push_back(loadFeedingStudy("study serve", a, same));
+    if (!copies.back()) return 1;
+    morePlanners.push_back(copies.back().get());
+  }
+  app::study::StudyService service(*lp, facts, options, a.db, morePlanners);
   if (!service.pictureProblem().empty() && !a.noPictures)
     fmt::print(stderr, "cbtl study serve: warning: {}; the view pictures will be answered 503\n",
                service.pictureProblem());
-  app::study::StudyHttpServer server(service);
+  app::study::AdmissionOptions admission;
+  admission.perMinute = a.newParticipantsPerMinute;
+  admission.total = a.maxParticipants;
+  app::study::ParticipantAccess access(service, a.db, admission);
+  app::study::HttpServerLimits limits;
+  limits.connections = a.connections;
+  app::study::StudyHttpServer server(access, limits);
   std::string error;
   const int port = server.bind(a.host, a.port, error);
   if (port < 0) {
@@ -90,8 +109,8 @@ int runStudyServe(const StudyArgs& a) {
   }
   if (a.host != "127.0.0.1" && a.host != "localhost" && a.host != "::1")
     fmt::print(stderr,
-               "cbtl study serve: warning: listening on {}: other machines can reach the study (no encryption, no "
-               "login)\n",
+               "cbtl study serve: warning: listening on {}: other machines can reach the study without encryption; "
+               "put it behind a TLS reverse proxy (docs/study.md, Deploying)\n",
                a.host);
   fmt::print("listening on http://{}:{}/\n", a.host, port);
   fmt::print("participants' pages: http://{}:{}/p/<participant id>; database {}; Ctrl-C stops\n", a.host, port, a.db);

@@ -7,6 +7,7 @@
 #include "tools/cbtl/StudyCommands.h"
 
 #include "app/SimulatorFacts.h"
+#include "app/study/ParticipantAccess.h"
 #include "app/study/SimulatedParticipant.h"
 #include "app/study/StudyAnalysis.h"
 #include "app/study/StudyHttpServer.h"
@@ -20,6 +21,7 @@
 #include <iostream>
 #include <mutex>
 #include <thread>
+#include <vector>
 
 namespace cbtl::cli {
 
@@ -52,8 +54,9 @@ bool chooseDatabase(const StudyArgs& a, std::string& db, std::optional<fs::path>
 
 // Runs participants first .. first + count - 1 on `jobs` threads; the first failure stops the others.
 void takeAll(const StudyArgs& a, int port) {
+  std::vector<std::string> keys;
   for (int n = a.firstParticipant; n < a.firstParticipant + a.participants; ++n)
-    app::study::beginStudy("127.0.0.1", port, fmt::format("sim-{}", n));
+    keys.push_back(app::study::beginStudy("127.0.0.1", port, fmt::format("sim-{}", n)));
   std::atomic<int> next{a.firstParticipant};
   std::mutex failureMutex;
   std::string failure;
@@ -64,7 +67,8 @@ void takeAll(const StudyArgs& a, int port) {
         if (!failure.empty()) return;
       }
       try {
-        app::study::takeStudy("127.0.0.1", port, fmt::format("sim-{}", n), static_cast<std::uint64_t>(n));
+        app::study::takeStudy("127.0.0.1", port, fmt::format("sim-{}", n), static_cast<std::uint64_t>(n),
+                              keys.at(static_cast<std::size_t>(n - a.firstParticipant)));
       } catch (const std::exception& e) {
         std::lock_guard<std::mutex> lock(failureMutex);
         if (failure.empty()) failure = e.what();
@@ -91,7 +95,9 @@ int runStudySimulateOverHttp(const StudyArgs& a) {
   int code = 0;
   {
     app::study::StudyService service(*lp, facts, options, db);
-    app::study::StudyHttpServer server(service);
+    // Simulated participants all begin at once, on loopback: no admission limit.
+    app::study::ParticipantAccess access(service, db, app::study::AdmissionOptions{0, 0, 0});
+    app::study::StudyHttpServer server(access);
     std::string error;
     const int port = server.bind("127.0.0.1", 0, error);
     if (port < 0) {

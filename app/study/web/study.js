@@ -12,6 +12,33 @@
 
   const participant = participantFromPath(location.pathname);
   const apiBase = participant ? `/api/participants/${encodeURIComponent(participant)}` : '';
+  // The participant's key (docs/study-api.md, "Keys"): issued by the first begin, kept in the link's fragment (never
+  // sent to a server) and in this browser's storage, and sent with every request.
+  const keyStorage = `cbtl-study-key:${participant}`;
+  let key = keyFromFragment() || storedKey();
+
+  function keyFromFragment() {
+    const match = /(?:^#|&)key=([0-9a-f]{64})(?:&|$)/.exec(location.hash);
+    return match ? match[1] : '';
+  }
+
+  function storedKey() {
+    try {
+      return localStorage.getItem(keyStorage) || '';
+    } catch (e) {
+      return '';  // storage refused (a private window): the link still holds the key
+    }
+  }
+
+  function keepKey(issued) {
+    key = issued;
+    try {
+      localStorage.setItem(keyStorage, issued);
+    } catch (e) {
+      // the link keeps it
+    }
+    history.replaceState(null, '', `${location.pathname}${location.search}#key=${issued}`);
+  }
 
   let busy = false;        // a record is being sent: no second submission until it is answered
   let pageShownAt = 0;     // performance.now() when the current page was rendered (for rt_ms)
@@ -123,18 +150,20 @@
   // the right reaction.
   async function requestOnce(method, path, body) {
     const init = {method, headers: {Accept: 'application/json'}, cache: 'no-store'};
+    if (key) init.headers.Authorization = `Bearer ${key}`;
     if (body !== undefined) {
       init.headers['Content-Type'] = 'application/json';
       init.body = JSON.stringify(body);
     }
     const response = await fetch(path, init);
+    const retryAfter = Number(response.headers.get('Retry-After')) || 0;
     let data = null;
     try {
       data = await response.json();
     } catch (e) {
       if (response.ok) throw e;  // an OK answer cut short: treat it as lost
     }
-    return {ok: response.ok, status: response.status, data};
+    return {ok: response.ok, status: response.status, data, retryAfter};
   }
 
   // Resends the very same body until some HTTP answer arrives. The server answers a repeated record "replayed"
@@ -439,15 +468,27 @@
     return 'your view of the table and your plate';
   }
 
+  // A picture needs the key too, so it is fetched with it and shown from memory (a blob: address).
+  async function loadPicture(image, url, failed) {
+    try {
+      const response = await fetch(url, {headers: key ? {Authorization: `Bearer ${key}`} : {}, cache: 'no-store'});
+      if (!response.ok) throw new Error(`HTTP ${response.status}`);
+      image.src = URL.createObjectURL(await response.blob());
+    } catch (e) {
+      failed.hidden = false;
+    }
+  }
+
   function pictureQuestion(url, index, count, state) {
     const title = `Picture ${index + 1} of ${count}`;
-    const image = el('img', {class: 'view', src: url,
+    const image = el('img', {class: 'view',
       alt: `${title}: the robot arm above your plate, seen from where you sit`});
     const failed = el('p', {class: 'hint', hidden: true},
       'This picture did not load. Please reload the page to try again.');
     image.addEventListener('error', () => {
       failed.hidden = false;
     });
+    loadPicture(image, url, failed);
     return el('section', {class: 'picture'}, el('h3', {}, title), el('figure', {}, image), failed,
       yesNoGroup(`blocked-${index}`, `Would the robot arm here block ${viewOf(state)}?`));
   }
@@ -533,7 +574,16 @@
       fatalPage('This address does not name a participant. Please use the exact link you were given.');
       return;
     }
-    const result = await request('POST', apiBase, {});
+    let result = await request('POST', apiBase, {});
+    // Many people joining at once: the server says when to come back.
+    while (result.status === 429) {
+      const seconds = Math.max(1, result.retryAfter || 5);
+      setStatus(`Many people are joining the study right now. You will be let in in ${seconds} s…`);
+      await sleep(seconds * 1000);
+      result = await request('POST', apiBase, {});
+    }
+    setStatus('');
+    if (result.ok && result.data && typeof result.data.key === 'string') keepKey(result.data.key);
     if (result.ok && result.data && result.data.page) render(result.data);
     else fatalPage(errorMessage(result));
   }

@@ -344,12 +344,33 @@ TEST_F(StudyRecordsTest, RefusesNewerStudyTables) {
   sqlite3* raw = nullptr;
   ASSERT_EQ(sqlite3_open(path_.c_str(), &raw), SQLITE_OK);
   ASSERT_EQ(
-      sqlite3_exec(raw, "UPDATE study_meta SET value = 2 WHERE key = 'schema_version'", nullptr, nullptr, nullptr),
+      sqlite3_exec(raw, "UPDATE study_meta SET value = 3 WHERE key = 'schema_version'", nullptr, nullptr, nullptr),
       SQLITE_OK);
   sqlite3_close(raw);
   const std::string message = errorOf([&] { StudyRecords study(path_); });
-  EXPECT_TRUE(contains(message, "study tables of schema 2, newer than this cbtl's 1")) << message;
+  EXPECT_TRUE(contains(message, "study tables of schema 3, newer than this cbtl's 2")) << message;
   EXPECT_NO_THROW(profile::ProfileStore(path_, false));  // the profiles are still readable
+}
+
+// A database of schema 1 (before participants' keys) gets the keys' table when opened, and keeps its participants.
+TEST_F(StudyRecordsTest, ASchemaOneDatabaseGetsTheKeysTable) {
+  {
+    StudyRecords study(path_);
+    study.begin("p1", 0, "{}");
+  }
+  sqlite3* raw = nullptr;
+  ASSERT_EQ(sqlite3_open(path_.c_str(), &raw), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(raw, "DROP TABLE study_keys; UPDATE study_meta SET value = 1 WHERE key = 'schema_version'",
+                         nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(raw);
+  StudyRecords study(path_);
+  ASSERT_TRUE(study.participant("p1").has_value());
+  EXPECT_FALSE(study.keyHash("p1").has_value());
+  EXPECT_TRUE(study.claimKey("p1", "hash-1"));
+  EXPECT_FALSE(study.claimKey("p1", "hash-2")) << "the first claim wins";
+  EXPECT_EQ(study.keyHash("p1"), "hash-1");
+  EXPECT_EQ(study.participantCount(), 1);
 }
 
 TEST_F(StudyRecordsTest, AWriterThatCannotGetTheLockFailsAsBusy) {

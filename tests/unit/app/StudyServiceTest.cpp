@@ -4,6 +4,8 @@
 #include "app/study/StudyService.h"
 
 #include "app/DomainSolverOptions.h"
+#include "app/study/ParticipantAccess.h"
+#include "app/study/StudyHttpServer.h"
 #include "app/study/StudyInfo.h"
 #include "app/study/StudyPages.h"
 #include "app/study/StudyRecords.h"
@@ -41,9 +43,11 @@ StudyServiceOptions serviceOptions(bool pictures = false) {
 
 json body(const HttpReply& r) { return json::parse(r.body); }
 
-// A StudyHttpServer answering on a free port of 127.0.0.1 until destroyed (also when an assertion returns early).
+// A StudyHttpServer answering on a free port of 127.0.0.1 until destroyed (also when an assertion returns early),
+// with participants' keys checked over the study's database `db`.
 struct ServerOnLoopback {
-  explicit ServerOnLoopback(StudyApi& api) : server(api) {
+  ServerOnLoopback(StudyApi& api, const std::string& db, AdmissionOptions admission = {})
+      : access(api, db, admission), server(access) {
     port = server.bind("127.0.0.1", 0, error);
     if (port > 0) listening = std::thread([this] { server.listen(); });
   }
@@ -52,6 +56,7 @@ struct ServerOnLoopback {
     server.stop();
     listening.join();
   }
+  ParticipantAccess access;
   StudyHttpServer server;
   std::string error;
   int port = -1;
@@ -230,6 +235,7 @@ TEST_F(StudyServiceTest, AProfileVersionLostToAKilledServerIsWrittenWhenTheSessi
   ASSERT_EQ(versions.size(), 1u);
   EXPECT_EQ(versions[0].reason, "study: meal 1");
   // Rebuilt again (another start), nothing is written twice.
+  s.reset();
   auto again = service(db_);
   EXPECT_EQ(body(again->state("P-7")), state);
   EXPECT_EQ(profile::ProfileStore(db_).versions("P-7", "feeding").size(), 1u);
@@ -252,6 +258,26 @@ TEST_F(StudyServiceTest, SessionsBeyondTheCapAreLetGoAndRebuiltAsTheyWere) {
   EXPECT_EQ(a, a2);
   EXPECT_EQ(b, b2);
   EXPECT_EQ(many->sessionsInMemory(), 2u);
+}
+
+// Two planners (the program loaded twice) plan two participants at the same time, and each participant's pages are
+// the ones a single planner shows them one after the other.
+TEST_F(StudyServiceTest, TwoPlannersServeParticipantsAtOnceWithTheSamePages) {
+  static const auto second = LoadedProgram::load(std::string(CBTL_DOMAINS_DIR) + "/feeding/feeding.cbtl");
+  ASSERT_TRUE(second->ok());
+  StudyService two(feedingProgram(), test::programFacts("feeding"), serviceOptions(), db_, {second.get()});
+  EXPECT_EQ(two.planners(), 2u);
+  json begun[2] = {body(two.begin("P-14")), body(two.begin("P-15"))};
+  json atOnce[2];
+  std::thread other([&] { atOnce[1] = answerUntil(two, "P-15", begun[1], "rating", 4); });
+  atOnce[0] = answerUntil(two, "P-14", begun[0], "rating", 4);
+  other.join();
+  auto one = service((dir_ / "one.sqlite").string());
+  EXPECT_EQ(one->planners(), 1u);
+  const json first = answerUntil(*one, "P-14", body(one->begin("P-14")), "rating", 4);
+  const json then = answerUntil(*one, "P-15", body(one->begin("P-15")), "rating", 4);
+  EXPECT_EQ(atOnce[0], first);
+  EXPECT_EQ(atOnce[1], then);
 }
 
 TEST_F(StudyServiceTest, AResentRecordIsReplayedAndADifferentAnswerToAnAnsweredPageConflicts) {
@@ -339,10 +365,15 @@ TEST_F(StudyServiceTest, PicturesAreTheCurrentMealsOnly) {
   // renderer (an OpenGL context is current in one thread at a time; a black picture would say it was not).
   std::optional<httplib::Result> second;
   {
-    ServerOnLoopback loopback(*s);
+    ServerOnLoopback loopback(*s, db_);
     ASSERT_GT(loopback.port, 0) << loopback.error;
     httplib::Client client("127.0.0.1", loopback.port);
-    second = client.Get(atAnswers["views"][1].get<std::string>());
+    // P-5 began through the service, without a key: its first begin over HTTP issues one.
+    auto begun = client.Post("/api/participants/P-5", "", "application/json");
+    ASSERT_TRUE(begun);
+    ASSERT_EQ(begun->status, 200) << begun->body;
+    const std::string key = json::parse(begun->body)["key"];
+    second = client.Get(atAnswers["views"][1].get<std::string>(), {{"Authorization", "Bearer " + key}});
   }
   ASSERT_TRUE(*second);
   const httplib::Response& viaServer = **second;
@@ -357,7 +388,7 @@ TEST_F(StudyServiceTest, PicturesAreTheCurrentMealsOnly) {
 
 TEST_F(StudyServiceTest, TheHttpServerServesThePagesAndTheApiOnLoopback) {
   auto s = service(db_);
-  ServerOnLoopback loopback(*s);
+  ServerOnLoopback loopback(*s, db_);
   ASSERT_GT(loopback.port, 0) << loopback.error;
   const int port = loopback.port;
   httplib::Client client("127.0.0.1", port);
@@ -391,22 +422,165 @@ TEST_F(StudyServiceTest, TheHttpServerServesThePagesAndTheApiOnLoopback) {
   ASSERT_TRUE(begun);
   EXPECT_EQ(begun->status, 200);
   EXPECT_EQ(json::parse(begun->body)["page"], "consent");
-  auto consent = client.Post("/api/participants/P-6/records", recordBody(0, "consent", 0, {{"agree", true}}).dump(),
-                             "application/json");
+  const std::string key = json::parse(begun->body).value("key", "");
+  EXPECT_EQ(key.size(), 64u) << begun->body;
+  const httplib::Headers withKey = {{"Authorization", "Bearer " + key}};
+  auto consent = client.Post("/api/participants/P-6/records", withKey,
+                             recordBody(0, "consent", 0, {{"agree", true}}).dump(), "application/json");
   ASSERT_TRUE(consent);
   EXPECT_EQ(consent->status, 200) << consent->body;
   EXPECT_EQ(json::parse(consent->body)["state"]["page"], "demographics");
-  auto tooLarge = client.Post("/api/participants/P-6/records", std::string(100 * 1024, ' '), "application/json");
+  auto tooLarge =
+      client.Post("/api/participants/P-6/records", withKey, std::string(100 * 1024, ' '), "application/json");
   ASSERT_TRUE(tooLarge);
   EXPECT_EQ(tooLarge->status, 413);
   auto badId = client.Get("/api/participants/a%20b");
   ASSERT_TRUE(badId);
   EXPECT_EQ(badId->status, 400);
   // A second server cannot take a port the first one listens on (it would share its connections).
-  StudyHttpServer second(*s);
+  StudyHttpServer second(loopback.access);
   std::string error;
   EXPECT_EQ(second.bind("127.0.0.1", port, error), -1);
   EXPECT_NE(error.find("cannot listen"), std::string::npos) << error;
+}
+
+// Nobody acts as a participant without their key: not by knowing or guessing the id, not from another site, not with
+// a form; and the answers are never read back.
+TEST_F(StudyServiceTest, ParticipantsActOnlyWithTheirKeyAndOnlyFromTheStudysPages) {
+  auto s = service(db_);
+  ServerOnLoopback loopback(*s, db_);
+  ASSERT_GT(loopback.port, 0) << loopback.error;
+  httplib::Client client("127.0.0.1", loopback.port);
+  client.set_read_timeout(std::chrono::seconds(60));
+  auto begun = client.Post("/api/participants/P-10", "", "application/json");
+  ASSERT_TRUE(begun);
+  ASSERT_EQ(begun->status, 200) << begun->body;
+  const std::string key = json::parse(begun->body)["key"];
+  const httplib::Headers withKey = {{"Authorization", "Bearer " + key}};
+  const std::string consent = recordBody(0, "consent", 0, {{"agree", true}}).dump();
+  // Without the key, with another, with another participant's: 403, the same words for a known and an unknown id.
+  auto other = client.Post("/api/participants/P-11", "", "application/json");
+  ASSERT_TRUE(other);
+  const std::string otherKey = json::parse(other->body)["key"];
+  std::string refusal;
+  for (const auto& [path, headers] : std::vector<std::pair<std::string, httplib::Headers>>{
+           {"/api/participants/P-10", {}},
+           {"/api/participants/P-10", {{"Authorization", "Bearer " + std::string(64, '0')}}},
+           {"/api/participants/P-10", {{"Authorization", "Bearer " + otherKey}}},
+           {"/api/participants/P-10", {{"Authorization", key}}},
+           {"/api/participants/nobody", {}},
+           {"/api/participants/nobody", withKey},
+           {"/api/participants/P-10/views/1/0.json", {}}}) {
+    auto r = client.Get(path, headers);
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 403) << path << ": " << r->body;
+    if (refusal.empty()) refusal = r->body;
+    EXPECT_EQ(r->body, refusal) << path;
+  }
+  auto noKeyRecord = client.Post("/api/participants/P-10/records", consent, "application/json");
+  ASSERT_TRUE(noKeyRecord);
+  EXPECT_EQ(noKeyRecord->status, 403);
+  // A second begin without the key does not hand out a key to a participant who has one.
+  auto again = client.Post("/api/participants/P-10", "", "application/json");
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->status, 403);
+  EXPECT_FALSE(json::parse(again->body).contains("key"));
+  auto continued = client.Post("/api/participants/P-10", withKey, "", "application/json");
+  ASSERT_TRUE(continued);
+  EXPECT_EQ(continued->status, 200);
+  EXPECT_FALSE(json::parse(continued->body).contains("key")) << "a key is sent once";
+  // Not JSON (what a cross-site form sends), or from another site: refused, nothing stored.
+  auto form = client.Post("/api/participants/P-10/records", withKey, consent, "text/plain");
+  ASSERT_TRUE(form);
+  EXPECT_EQ(form->status, 415) << form->body;
+  httplib::Headers elsewhere = withKey;
+  elsewhere.emplace("Origin", "https://attacker.example");
+  auto crossSite = client.Post("/api/participants/P-10/records", elsewhere, consent, "application/json");
+  ASSERT_TRUE(crossSite);
+  EXPECT_EQ(crossSite->status, 403) << crossSite->body;
+  httplib::Headers fetchMetadata = withKey;
+  fetchMetadata.emplace("Sec-Fetch-Site", "cross-site");
+  auto crossSiteFetch = client.Post("/api/participants/P-10/records", fetchMetadata, consent, "application/json");
+  ASSERT_TRUE(crossSiteFetch);
+  EXPECT_EQ(crossSiteFetch->status, 403);
+  EXPECT_EQ(StudyRecords(db_, false).nextTrial("P-10"), 0) << "a refused request stored an answer";
+  // From the study's own page (its Origin is the Host it talks to): taken.
+  httplib::Headers samePage = withKey;
+  samePage.emplace("Origin", "http://127.0.0.1:" + std::to_string(loopback.port));
+  auto fromPage = client.Post("/api/participants/P-10/records", samePage, consent, "application/json");
+  ASSERT_TRUE(fromPage);
+  EXPECT_EQ(fromPage->status, 200) << fromPage->body;
+  // The database keeps a hash of the key, never the key.
+  EXPECT_EQ(StudyRecords(db_, false).keyHash("P-10"), participantKeyHash(key));
+}
+
+// A different answer to an answered page is refused without quoting what is stored (an age, a self-described gender).
+TEST_F(StudyServiceTest, AConflictNeverQuotesTheStoredAnswer) {
+  auto s = service(db_);
+  answerUntil(*s, "P-12", body(s->begin("P-12")), "rating", 1);
+  const json changed = recordBody(1, "demographics", 0,
+                                  {{"age", 45},
+                                   {"gender", "female"},
+                                   {"gender_other", ""},
+                                   {"robot_experience", false},
+                                   {"fed_experience", false}});
+  const HttpReply r = s->record("P-12", changed.dump());
+  EXPECT_EQ(r.status, 409);
+  EXPECT_EQ(r.body.find("agender"), std::string::npos) << r.body;
+  EXPECT_EQ(r.body.find("31"), std::string::npos) << r.body;
+}
+
+// New participants are admitted at a bounded rate and up to a bounded number; trying ids counts too.
+TEST_F(StudyServiceTest, NewParticipantsAreAdmittedAtABoundedRateAndNumber) {
+  auto s = service(db_);
+  ParticipantAccess access(*s, db_, AdmissionOptions{60, 2, 3});
+  auto now = std::chrono::steady_clock::time_point{};
+  access.setClock([&] { return now; });
+  EXPECT_EQ(access.begin("A-1", "").status, 200);
+  EXPECT_EQ(access.begin("A-2", "").status, 200);
+  const HttpReply tooFast = access.begin("A-3", "");
+  EXPECT_EQ(tooFast.status, 429) << tooFast.body;
+  EXPECT_EQ(tooFast.retryAfterSeconds, 1);
+  EXPECT_EQ(access.begin("A-1", "").status, 429) << "trying a known id without its key is counted as well";
+  now += std::chrono::seconds(1);
+  EXPECT_EQ(access.begin("A-3", "").status, 200);
+  now += std::chrono::seconds(10);
+  const HttpReply full = access.begin("A-4", "");
+  EXPECT_EQ(full.status, 403);
+  EXPECT_NE(full.body.find("all the participants"), std::string::npos) << full.body;
+  EXPECT_EQ(StudyRecords(db_, false).participantCount(), 3);
+}
+
+TEST(AdmissionLimit, RefillsAtItsRateUpToItsBurst) {
+  AdmissionLimit limit(AdmissionOptions{30, 2, 0});
+  auto t = std::chrono::steady_clock::time_point{};
+  EXPECT_EQ(limit.admit(t, 0).verdict, AdmissionLimit::Verdict::Admitted);
+  EXPECT_EQ(limit.admit(t, 0).verdict, AdmissionLimit::Verdict::Admitted);
+  const AdmissionLimit::Decision d = limit.admit(t, 0);
+  EXPECT_EQ(d.verdict, AdmissionLimit::Verdict::TooFast);
+  EXPECT_EQ(d.retryAfterSeconds, 2);
+  t += std::chrono::hours(1);  // the bucket holds at most its burst
+  EXPECT_EQ(limit.admit(t, 0).verdict, AdmissionLimit::Verdict::Admitted);
+  EXPECT_EQ(limit.admit(t, 0).verdict, AdmissionLimit::Verdict::Admitted);
+  EXPECT_EQ(limit.admit(t, 0).verdict, AdmissionLimit::Verdict::TooFast);
+  EXPECT_EQ(AdmissionLimit(AdmissionOptions{0, 0, 5}).admit(t, 5).verdict, AdmissionLimit::Verdict::Full);
+  EXPECT_EQ(AdmissionLimit(AdmissionOptions{0, 0, 0}).admit(t, 1000000).verdict, AdmissionLimit::Verdict::Admitted);
+}
+
+// One server per database: a second service on it is refused while the first runs, and takes it after.
+TEST_F(StudyServiceTest, ASecondServerOnTheSameDatabaseIsRefused) {
+  {
+    auto first = service(db_);
+    try {
+      auto second = service(db_);
+      ADD_FAILURE() << "two services on one database";
+    } catch (const StudyError& e) {
+      EXPECT_NE(std::string(e.what()).find("another study server is using this database"), std::string::npos)
+          << e.what();
+    }
+    EXPECT_EQ(first->begin("P-13").status, 200);
+  }
+  EXPECT_NO_THROW(service(db_));
 }
 
 }  // namespace
@@ -426,6 +600,28 @@ TEST(StudyPages, GenderOtherIsOnlyRequiredForTheGenderOther) {
   const auto missing = demographics({{"gender", "other"}});
   ASSERT_TRUE(missing.has_value());
   EXPECT_NE(missing->find("gender_other"), std::string::npos) << *missing;
+}
+
+// Text fields are as long as the page lets them be: counted in UTF-16 units, as a browser's maxlength counts, not in
+// UTF-8 bytes (100 letters of Greek are 200 bytes; an emoji is two units).
+TEST(StudyPages, TextLimitsCountAsThePageCounts) {
+  const auto other = [](const std::string& text) {
+    return cbtl::app::study::checkResponse("demographics", {{"age", nullptr},
+                                                            {"gender", "other"},
+                                                            {"gender_other", text},
+                                                            {"robot_experience", false},
+                                                            {"fed_experience", true}});
+  };
+  std::string greek, emoji, hanzi;
+  for (int i = 0; i < 100; ++i) greek += "\u03b1";     // 2 bytes, 1 unit
+  for (int i = 0; i < 50; ++i) emoji += "\U0001F600";  // 4 bytes, 2 units
+  for (int i = 0; i < 2000; ++i) hanzi += "\u5b57";    // 3 bytes, 1 unit
+  EXPECT_FALSE(other(greek).has_value()) << *other(greek);
+  EXPECT_FALSE(other(emoji).has_value());
+  EXPECT_TRUE(other(greek + "\u03b1").has_value());
+  EXPECT_TRUE(other(emoji + "a").has_value()) << "51 emoji are 102 units";
+  EXPECT_FALSE(cbtl::app::study::checkResponse("complete", {{"comments", hanzi}}).has_value());
+  EXPECT_TRUE(cbtl::app::study::checkResponse("complete", {{"comments", hanzi + "x"}}).has_value());
 }
 
 // The study-info file: every field optional, texts only, an unknown field named (a typo would vanish otherwise).

@@ -149,8 +149,8 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
       {"E0319", "function expands too much",
        "The runtime inlines every call of a user function: the call is replaced by the function's body. A\n"
        "function whose body, with all its calls inlined, has more than 100000 expression nodes or more than\n"
-       "1000 levels, or through which calls nest more than 64 deep (the runtime's own limit), is refused\n"
-       "where it is declared. A function that calls another twice doubles its size at each level, so a few\n"
+       "1000 levels, or a call of which inlines more than 64 nested calls (the runtime's own limit), is\n"
+       "refused where it is declared. A function that calls another twice doubles its size at each level, so a few\n"
        "lines can ask for more memory than any machine has.\n"
        "Example:  fn f1(v: real) -> real = f0(v) + f0(v + 1);  ...  fn f20(v: real) -> real = f19(v) + f19(v + 1);\n"
        "Fix: compute a value used twice once (pass it as an argument, make it a constant), or write the\n"

@@ -40,8 +40,9 @@ struct CompileLimits {
   // ... and at most this many levels (the expression depth limit above, which the runtime's recursive
   // compiler and evaluator are known to cope with, applies to what they see after inlining).
   static constexpr std::size_t kMaxInlinedDepth = 1000;
-  // Calls nest at most this deep through function bodies: the runtime refuses a deeper expansion ("expands
-  // too deeply", its limit is 64), so the compiler must not accept one.
+  // A call inlines at most this many nested calls (the function itself, the calls in its body, and so on):
+  // the runtime refuses a deeper expansion ("expands too deeply", its limit is 64), so the compiler must not
+  // accept one.
   static constexpr std::size_t kMaxCallDepth = 64;
 
   // --- lower: quantifiers (E0320) ---

@@ -168,11 +168,12 @@ Expansion checkExpansion(DiagnosticEngine& diags, const FuncDecl& f, Expansion e
       "the runtime inlines every call of a user function, so a function that calls another twice doubles its "
       "size: call it once and reuse the result (a parameter, a constant or a variable), or write the expression "
       "without the nested calls";
-  if (e.callDepth > CompileLimits::kMaxCallDepth) {
+  // A call of f inlines f itself and then the calls nested in its body: the runtime's count is one more.
+  if (e.callDepth + 1 > CompileLimits::kMaxCallDepth) {
     diags
         .error("E0319", f.name.range,
-               fmt::format("calls nest {} deep through the body of function '{}', more than the limit of {}",
-                           e.callDepth, name, CompileLimits::kMaxCallDepth))
+               fmt::format("a call of function '{}' inlines {} nested calls, more than the limit of {}", name,
+                           e.callDepth + 1, CompileLimits::kMaxCallDepth))
         .note("the deepest chain starts with this call", e.deepestCall->range)
         .help("call fewer functions inside each other; the runtime refuses a deeper expansion");
   } else if (e.nodes > CompileLimits::kMaxInlinedNodes) {

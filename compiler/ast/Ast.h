@@ -8,6 +8,7 @@
 
 #include "compiler/source/SourceManager.h"
 
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -297,6 +298,9 @@ struct CallableDecl : Decl {
 };
 struct FuncDecl : CallableDecl {
   FuncDecl() : CallableDecl(DeclKind::Function) {}
+  // Set by check-types: the expression nodes of the body with every call in it inlined, as the runtime builds it
+  // (0 when not measured: extern, recursive, or over a limit, which are errors).
+  std::size_t inlinedNodes = 0;
 };
 struct SamplerDecl : CallableDecl {
   SamplerDecl() : CallableDecl(DeclKind::Sampler) {}

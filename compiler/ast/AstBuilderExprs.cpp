@@ -1,6 +1,7 @@
 // AST builder: arguments, binders and expressions. Operator chains are built recursively, so nesting is
 // bounded here (kMaxExprDepth) as well as by the parser's pre-scan.
 #include "compiler/ast/AstBuilderInternal.h"
+#include "compiler/driver/CompileLimits.h"
 
 #include <cstdlib>
 
@@ -9,7 +10,7 @@ namespace {
 
 // Expression trees deeper than this are cut (the parser's token pre-scan bounds brackets and prefix
 // operators; this bounds long operator chains such as a+a+...+a).
-constexpr int kMaxExprDepth = 1000;
+constexpr int kMaxExprDepth = CompileLimits::kMaxExprDepth;
 
 }  // namespace
 

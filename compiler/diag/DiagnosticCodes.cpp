@@ -146,6 +146,22 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
        "be checked but never run.\n"
        "Example:  extern fn warmth(t: real) -> real;   require warmth(temperature) > 0.5;\n"
        "Fix:      fn warmth(t: real) -> real = clamp((t - 50) / 30, 0, 1);   (written in the language)"},
+      {"E0319", "function expands too much",
+       "The runtime inlines every call of a user function: the call is replaced by the function's body. A\n"
+       "function whose body, with all its calls inlined, has more than 100000 expression nodes or more than\n"
+       "1000 levels, or a call of which inlines more than 64 nested calls (the runtime's own limit), is\n"
+       "refused where it is declared. A function that calls another twice doubles its size at each level, so a few\n"
+       "lines can ask for more memory than any machine has.\n"
+       "Example:  fn f1(v: real) -> real = f0(v) + f0(v + 1);  ...  fn f20(v: real) -> real = f19(v) + f19(v + 1);\n"
+       "Fix: compute a value used twice once (pass it as an argument, make it a constant), or write the\n"
+       "expression without the nested calls."},
+      {"E0320", "quantifier ranges over too many values",
+       "The runtime evaluates a quantifier's body once per combination of its binders' values, every time it\n"
+       "checks a candidate. A nest of quantifiers (calls into functions included) whose sets, known at compile\n"
+       "time, have more than 1000000 combinations in all is refused at the innermost quantifier that goes over.\n"
+       "Example:  require forall a, b in Big: a != b or a == pick;   (Big has 200000 members)\n"
+       "Fix: range over a smaller set, or over the members that matter (a 'where' clause does not reduce the\n"
+       "work: every combination is still tried)."},
       {"E0401", "malformed initiation pattern",
        "A glob or regular expression in a 'when' clause is not well formed: an unclosed '{' capture, an empty\n"
        "capture name, or a regex syntax error.\nFix: correct the pattern. Globs: * any run, ? one character,\n"
@@ -206,6 +222,15 @@ const std::vector<DiagnosticCodeInfo>& diagnosticCodes() {
        "Example:  personal comfy(s: real, t: real) { when s ~ \"speed\"; ... }   (no pattern for t)\n"
        "Fix:      personal comfy(s: real, t: real) { when s ~ \"speed\", t ~ \"turnRate\"; ... }\n"
        "          (write t ~ \"*\" if every real variable is really meant)"},
+      {"E0418", "too many generator instances",
+       "The runtime makes one personalized constraint instance for every tuple of distinct variables that a\n"
+       "generator's patterns match, in every task. All generators together may make at most 100000 instances,\n"
+       "and finding them may take at most 2000000 steps (a variable looked at, a candidate tried, a pattern\n"
+       "tested). The error is at the 'when' clause of the generator that goes over.\n"
+       "Example:  personal balanced(a: real, b: real, c: real) { when a ~ \"*\", b ~ \"*\", c ~ \"*\"; ... }\n"
+       "          over 100 real variables: 970200 triples\n"
+       "Fix: make the patterns match fewer variables; a capture the parameters share\n"
+       "(a ~ \"low[{i}]\", b ~ \"high[{i}]\") pairs only the variables with the same index."},
       // --- E05xx: skills and tasks ---------------------------------------------------------------
       {"E0501", "skill used twice",
        "A task runs the same skill twice without naming the instances, so their variables would clash.\n"

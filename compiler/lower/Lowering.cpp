@@ -86,13 +86,16 @@ void Lowerer::followCallsInReadSets() {
   }
 }
 
-std::size_t Lowerer::nodeCount(const ir::Expr& x) {
+std::size_t Lowerer::nodeCount(const ir::Expr& x) const {
   std::size_t n = 1;
+  if (x.op == ir::Op::Call) {
+    if (const auto it = inlinedNodes_.find(x.text); it != inlinedNodes_.end()) n += it->second;
+  }
   for (const auto& c : x.children) n += nodeCount(c);
   return n;
 }
 
-std::size_t Lowerer::actionSize(const ir::Action& a) {
+std::size_t Lowerer::actionSize(const ir::Action& a) const {
   std::size_t n = 1 + (a.set ? nodeCount(*a.set) : 0) + (a.condition ? nodeCount(*a.condition) : 0);
   if (a.allow && a.allow->target) n += nodeCount(*a.allow->target);
   for (const auto& x : a.args) n += nodeCount(x);

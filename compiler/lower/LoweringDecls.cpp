@@ -104,6 +104,7 @@ void Lowerer::declareCallable(const CallableDecl& c) {
   f.result = c.result ? typeDesc(c.result->resolved) : ir::TypeDesc{ir::TypeKind::Void, "void"};
   // The body is lowered once the global variables exist (lowerFunctionBodies): it may read them.
   if (c.body) pendingBodies_.emplace_back(g_.functions.size(), &c);
+  if (c.kind == DeclKind::Function) inlinedNodes_[c.name.name] = static_cast<const FuncDecl&>(c).inlinedNodes;
   f.span = span(c.range);
   g_.functions.push_back(std::move(f));
 }

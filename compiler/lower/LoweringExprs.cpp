@@ -126,11 +126,14 @@ ir::Expr Lowerer::lower(const Expr* e, Ctx& ctx) {
       x.children.push_back(lower(e->operands[1].get(), ctx));
       return x;
     case ExprKind::Quantifier: {
+      checkQuantifierNest(*e, ctx);
+      ++quantifierNesting_;
       x.op = e->quant == QuantKind::Forall ? ir::Op::Forall : ir::Op::Exists;
       for (const auto& n : e->binder->names) x.names.push_back(n->name.name);
       x.children.push_back(lower(e->binder->set.get(), ctx));
       x.children.push_back(lower(e->operands[0].get(), ctx));
       x.children.push_back(lower(e->operands[1].get(), ctx));
+      --quantifierNesting_;
       return x;
     }
     case ExprKind::If:

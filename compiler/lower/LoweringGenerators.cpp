@@ -65,6 +65,7 @@ void Lowerer::lowerGenerator(const PersonalDecl& p) {
   if (!p.fallbacks.empty()) g.fallback = p.fallbacks[0]->number;
   g.exploreAccepted = !p.explores.empty() && p.explores[0].name == "accepted";
   for (const auto& rule : p.learnRules) g.learnRules.push_back(lowerLearnRule(p, rule, none));
+  checkGeneratorInstances(p, g);
   warnIfUnmatched(p, g);
   warnIfNeverTogether(p, g);
   g_.generators.push_back(std::move(g));

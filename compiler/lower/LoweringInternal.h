@@ -14,10 +14,12 @@
 //                           `forall`), `sample` and `cost`
 //   LoweringTasks.cpp       tasks, their skill instances and the instances' actions
 //   LoweringGenerators.cpp  personalized generators: patterns, model factors, guards, learning rules, W0401
+//   LoweringLimits.cpp      quantifier nests and generator instances, measured for CompileLimits
 #pragma once
 
 #include "compiler/ast/Ast.h"
 #include "compiler/diag/DiagnosticEngine.h"
+#include "compiler/driver/CompileLimits.h"
 #include "compiler/sema/Symbols.h"
 #include "compiler/sema/Type.h"
 #include "ir/ConstraintGraph.h"
@@ -83,14 +85,17 @@ class Lowerer {
   // exhausted machine. kMaxSetSize bounds one integer range used as a family index or `for` set;
   // kMaxGraphSize bounds the whole graph in units of one variable, constraint, sampler, cost or action plus
   // one per expression node. Real programs stay orders of magnitude below both.
-  static constexpr std::size_t kMaxSetSize = 100000;
-  static constexpr std::size_t kMaxGraphSize = 2000000;
+  // (The values are in compiler/driver/CompileLimits.h.)
+  static constexpr std::size_t kMaxSetSize = CompileLimits::kMaxSetSize;
+  static constexpr std::size_t kMaxGraphSize = CompileLimits::kMaxGraphSize;
   // A top-level forall is unrolled only while the number of instances stays below this; beyond it the
   // constraint keeps its quantifier (same meaning, one hyperedge).
-  static constexpr std::size_t kMaxUnrolled = 10000;
+  static constexpr std::size_t kMaxUnrolled = CompileLimits::kMaxUnrolled;
 
-  static std::size_t nodeCount(const ir::Expr& x);
-  static std::size_t actionSize(const ir::Action& a);
+  // The nodes the runtime builds for `x`: each call of a user function counts with its inlined body
+  // (FuncDecl::inlinedNodes, measured by check-types).
+  std::size_t nodeCount(const ir::Expr& x) const;
+  std::size_t actionSize(const ir::Action& a) const;
   // Adds `units` to the graph's size; false (with E0317 reported once) when the graph is too large.
   bool grow(std::size_t units, SourceRange at);
   // E0317 for a set of more than kMaxSetSize members; `what` names its use.
@@ -174,6 +179,24 @@ class Lowerer {
   // `allow PART near|touch TARGET LENGTH`: the exception, its separation signed by the mode.
   ir::Allowance lowerAllowance(const AllowClause& a, Ctx& ctx);
 
+  // --- LoweringLimits.cpp: quantifier nests and generator instances (CompileLimits) ---
+  // E0320 when the nest of quantifiers that starts at `quantifier` ranges over more than
+  // kMaxQuantifierBindings combinations (once per quantifier; nothing inside an outer nest being lowered).
+  void checkQuantifierNest(const Expr& quantifier, const Ctx& ctx);
+  // The number of members of a set known at compile time; 1 for one that is not (it is not counted).
+  std::size_t setSize(const Expr* set, const Ctx& ctx);
+  // The largest product of set sizes along a path of nested quantifiers in `e`, calls followed into function
+  // bodies; saturates at SIZE_MAX. With `report`, E0320 at the innermost quantifier that goes over the limit.
+  std::size_t quantifierBindings(const Expr* e, const Ctx& ctx, bool report);
+  std::size_t functionBindings(const FuncDecl& f);
+  // E0418 once the instances the runtime would make for the generators so far, or the steps to find them,
+  // exceed their limits; counted by replaying the runtime's matching without building instances.
+  void checkGeneratorInstances(const PersonalDecl& p, const ir::Generator& g);
+  void reportTooManyInstances(const PersonalDecl& p, const std::string& task, bool instances,
+                              const std::vector<const std::vector<ir::VarId>*>& candidates);
+  // The variables of task `task` (an index into the graph's tasks) whose type is spelled `type`, in order.
+  const std::vector<ir::VarId>& candidatesOfType(std::size_t task, const std::string& type);
+
   // --- LoweringGenerators.cpp: personalized generators ---
   void lowerGenerator(const PersonalDecl& p);
   // A generator belongs to no task: its expressions are lowered in one empty context, `none`.
@@ -191,6 +214,13 @@ class Lowerer {
   ir::ConstraintGraph& g_;
   Ctx globalCtx_;
   std::vector<std::pair<std::size_t, const CallableDecl*>> pendingBodies_;  // function index, its declaration
+  std::map<std::string, std::size_t> inlinedNodes_;  // user function name -> FuncDecl::inlinedNodes
+  int quantifierNesting_ = 0;                        // quantifiers being lowered around the current expression
+  std::set<const Expr*> quantifiersReported_;        // E0320 once per quantifier (unrolling lowers copies)
+  std::map<const FuncDecl*, std::size_t> functionBindings_;
+  std::size_t generatorInstances_ = 0, generatorMatchSteps_ = 0;
+  bool generatorsTooLarge_ = false;  // E0418 reported: later generators are not counted
+  std::map<std::size_t, std::map<std::string, std::vector<ir::VarId>>> candidatesByTask_;
   std::size_t graphSize_ = 0;
   bool tooLarge_ = false;
   std::vector<const VarDecl*> declOf_;  // the declaration of each graph variable, by id

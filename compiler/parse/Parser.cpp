@@ -1,6 +1,7 @@
 #include "compiler/parse/Parser.h"
 
 #include "compiler/ast/AstBuilder.h"
+#include "compiler/driver/CompileLimits.h"
 #include "compiler/parse/SyntaxErrors.h"
 
 #include "grammar/CbtlLexer.h"
@@ -54,7 +55,7 @@ std::size_t firstInvalidUtf8(const std::string& s) {
   return std::string::npos;
 }
 
-constexpr int kMaxNesting = 200;
+constexpr int kMaxNesting = CompileLimits::kMaxNesting;
 
 }  // namespace
 

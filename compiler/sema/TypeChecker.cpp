@@ -1,13 +1,10 @@
-// The `check-types` entry point, the declaration dispatch and the recursion check; the other concerns of
+// The `check-types` entry point and the declaration dispatch; the other concerns of
 // the checker are implemented in the TypeChecker*.cpp files listed in TypeCheckerInternal.h.
 #include "compiler/sema/TypeChecker.h"
 
 #include "compiler/sema/TypeCheckerInternal.h"
 
 #include <fmt/format.h>
-
-#include <functional>
-#include <map>
 
 namespace cbtl {
 
@@ -110,7 +107,7 @@ void TypeChecker::run(const std::vector<std::unique_ptr<Module>>& modules) {
   for (const auto& m : modules) {
     for (auto& d : m->decls) checkTop(*d);
   }
-  checkRecursion(modules);
+  checkFunctions(modules);
 }
 
 void TypeChecker::checkTop(Decl& d) {
@@ -153,43 +150,6 @@ void TypeChecker::checkTop(Decl& d) {
       break;
     default:
       break;
-  }
-}
-
-void TypeChecker::collectCalls(const Expr* e, std::vector<const FuncDecl*>& out) {
-  if (e == nullptr) return;
-  if (e->kind == ExprKind::Call && e->ref.kind == RefKind::Function) {
-    const auto* f = static_cast<const FuncDecl*>(e->ref.decl);
-    if (!f->isExtern) out.push_back(f);
-  }
-  for (const auto& op : e->operands) collectCalls(op.get(), out);
-  for (const auto& a : e->args) collectCalls(a.value.get(), out);
-  if (e->binder) collectCalls(e->binder->set.get(), out);
-}
-
-void TypeChecker::checkRecursion(const std::vector<std::unique_ptr<Module>>& modules) {
-  // Depth-first search; a callee found on the stack closes a cycle, reported once at its caller.
-  std::map<const FuncDecl*, int> state;  // 0 unvisited, 1 on the stack, 2 done
-  std::function<void(const FuncDecl*)> visit = [&](const FuncDecl* f) {
-    state[f] = 1;
-    std::vector<const FuncDecl*> callees;
-    collectCalls(f->body.get(), callees);
-    for (const FuncDecl* c : callees) {
-      if (state[c] == 1) {
-        diags_.error("E0308", f->name.range, fmt::format("function '{}' is recursive", f->name.name))
-            .note(fmt::format("it calls '{}'", c->name.name), c->name.range);
-        break;
-      }
-      if (state[c] == 0) visit(c);
-    }
-    state[f] = 2;
-  };
-  for (const auto& m : modules) {
-    for (const auto& d : m->decls) {
-      if (d->kind != DeclKind::Function) continue;  // only then is the downcast valid
-      const auto* f = static_cast<const FuncDecl*>(d.get());
-      if (!f->isExtern && state[f] == 0) visit(f);
-    }
   }
 }
 

@@ -4,7 +4,8 @@
 // its concerns call each other recursively (typing a name checks a constant's declaration on first use,
 // declarations type their expressions, calls check their arguments) and share the pass's state (the
 // domain flag, the constants being checked). Its member functions are implemented by concern:
-//   TypeChecker.cpp       the entry point, the declaration dispatch and the recursion check
+//   TypeChecker.cpp       the entry point and the declaration dispatch
+//   TypeCheckerFunctions.cpp  the call graph of user functions: recursion and inlined size
 //   TypeCheckerExprs.cpp  expression typing (names, members, operators, indexing, lists, binders)
 //   TypeCheckerCalls.cpp  calls against extern and user signatures (argument matching, unification)
 //   TypeCheckerDecls.cpp  constants, index sets, variables and their domains, samples, items, robots,
@@ -46,10 +47,16 @@ class TypeChecker {
  private:
   const Type* err() { return types_.error(); }
 
-  // --- TypeChecker.cpp: declaration dispatch and recursion ---
+  // --- TypeChecker.cpp: declaration dispatch ---
   void checkTop(Decl& d);
+
+  // --- TypeCheckerFunctions.cpp: the call graph of user functions ---
+  // The user functions `e` calls (extern ones left out), in the order written.
   void collectCalls(const Expr* e, std::vector<const FuncDecl*>& out);
-  void checkRecursion(const std::vector<std::unique_ptr<Module>>& modules);
+  // E0308 for a function that calls itself, directly or through others; E0319 for one whose inlined
+  // expansion is over a limit of CompileLimits (nodes, depth, nested calls). Sets FuncDecl::inlinedNodes of
+  // every function that is neither. Runs after every function body is typed.
+  void checkFunctions(const std::vector<std::unique_ptr<Module>>& modules);
 
   // --- TypeCheckerExprs.cpp: expressions ---
   const Type* checkInner(Expr& e, bool allowFamily);

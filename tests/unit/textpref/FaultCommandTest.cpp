@@ -69,7 +69,7 @@ TEST(LlmFaultsInARun, ASilentServerOpensTheBreakerAndTheRunFinishes) {
                                  " --llm-timeout-ms 200 --llm-attempts 1 --llm-breaker 2 --out " + out.path.string());
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_EQ(occurrences(run.output, "warning: language model: circuit breaker open"), 1) << run.output;
-  EXPECT_NE(run.output.find("circuit breaker open after 2 consecutive transport failures"), std::string::npos)
+  EXPECT_NE(run.output.find("circuit breaker open after 2 consecutive server failures"), std::string::npos)
       << run.output;
   EXPECT_EQ(server.requestCount(), 2);  // nothing after the breaker opened
   const nlohmann::json faults = out.read("llm.json")["faults"];

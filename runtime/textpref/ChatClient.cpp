@@ -181,8 +181,8 @@ Result<ChatResponse> ChatClient::send(const nlohmann::json& body) {
       Error e = result.error();
       e.attempts = attempt;
       const bool retried = !last && config_.retry.retryTransportErrors;
-      const auto wait =
-          retryWait(errorKindName(e.kind), !retried, retried ? backoffDelayMs(attempt - 1, config_.retry, rng_) : 0);
+      const auto wait = retryWait(fmt::format("failed ({})", errorKindName(e.kind)), !retried,
+                                  retried ? backoffDelayMs(attempt - 1, config_.retry, rng_) : 0);
       if (!wait) return e;
       sleep_(std::chrono::milliseconds(*wait));
       continue;
@@ -197,6 +197,7 @@ Result<ChatResponse> ChatClient::send(const nlohmann::json& body) {
         return Error{ErrorKind::QuotaExceeded, fmt::format("quota exhausted (not retried): {}", serverMessage(r.body)),
                      server(), status, attempt};
       case RetryDecision::Fail:
+        if (progress_) progress_->attemptFailed(server(), fmt::format("answered HTTP {}", status), std::nullopt);
         return Error{ErrorKind::HttpStatus, serverMessage(r.body), server(), status, attempt};
       case RetryDecision::Retry: {
         // The server's own wait, capped by maxRetryAfterMs, before our backoff (the RNG is drawn only without it,

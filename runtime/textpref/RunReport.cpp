@@ -26,14 +26,15 @@ Status writeLlmReport(const std::filesystem::path& dir, const TextBackend* backe
 }
 
 namespace {
-// The runs in progress. A list, so that each guard's iterator stays valid while others come and go.
+// The runs in progress. A list, so that each guard's iterator stays valid while others come and go. Never
+// destroyed: the interrupt's exit thread may still be writing while the main thread returns from main().
 std::mutex& liveMutex() {
-  static std::mutex m;
-  return m;
+  static auto* m = new std::mutex;  // NOLINT(cppcoreguidelines-owning-memory)
+  return *m;
 }
 std::list<LlmReportGuard::Entry>& liveRuns() {
-  static std::list<LlmReportGuard::Entry> runs;
-  return runs;
+  static auto* runs = new std::list<LlmReportGuard::Entry>;  // NOLINT(cppcoreguidelines-owning-memory)
+  return *runs;
 }
 }  // namespace
 

@@ -143,9 +143,9 @@ TEST(LlmFaultsInARun, AnInterruptedRunLeavesLlmJson) {
     std::filesystem::remove(pidFile);
     EXPECT_EQ(run.exitCode, 128 + signal) << run.output;
     EXPECT_NE(run.output.find("cbtl run: interrupted;"), std::string::npos) << run.output;
-    const nlohmann::json faults = out.read("llm.json")["faults"];
-    ASSERT_TRUE(faults.is_object()) << run.output;
-    EXPECT_EQ(faults["rating_fallbacks_by_kind"]["http-status"], 1);
+    const nlohmann::json llm = out.read("llm.json");
+    ASSERT_TRUE(llm.is_object()) << "no llm.json after signal " << signal << "\n" << run.output;
+    EXPECT_EQ(llm["faults"]["rating_fallbacks_by_kind"]["http-status"], 1);
   }
 }
 

@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <stdexcept>
 
 namespace cbtl::approach {
@@ -463,6 +464,10 @@ ExperimentResult runExperiment(const PreparedProgram& lp, const SimulatorFactory
     done.recordedSeconds = out.recordedSeconds();
     return done;
   }
+  // From here on the run folder exists: llm.json is written however the run ends (an exception leaving it,
+  // SIGINT/SIGTERM through cbtl's interrupt handler), not only at its normal end below (textpref/RunReport.h).
+  std::optional<textpref::LlmReportGuard> llmReport;
+  if (out.enabled()) llmReport.emplace(out.dir(), config.textBackend.get());
   Trial tr(lp, config, out, std::move(world), static_cast<std::size_t>(task));
   std::int64_t start = 0;
   if (out.resumeFrom()) {
@@ -492,6 +497,7 @@ ExperimentResult runExperiment(const PreparedProgram& lp, const SimulatorFactory
     if (auto s = textpref::writeLlmReport(out.dir(), config.textBackend.get(), tr.result.llmFaults); !s.ok()) {
       throw std::runtime_error(s.error().describe());
     }
+    llmReport->finish();
   }
   tr.result.finalProfile = tr.user.toJson();
   tr.result.finalLabels = tr.user.dataCount();

@@ -144,6 +144,23 @@ Result<ChatResponse> ChatClient::completeUnredacted(const ChatRequest& request) 
   }
 }
 
+Result<ChatResponse> ChatClient::parseAnswer(const HttpResponse& r, int attempt) const {
+  const int status = static_cast<int>(r.status);
+  nlohmann::json raw = nlohmann::json::parse(r.body, nullptr, /*allow_exceptions=*/false);
+  if (raw.is_discarded())
+    return Error{ErrorKind::MalformedResponse, "response body is not valid JSON", server(), status, attempt};
+  auto parsed = parseChatResponse(raw, server());
+  if (!parsed) {
+    Error e = parsed.error();
+    e.httpStatus = status;
+    e.attempts = attempt;
+    return e;
+  }
+  parsed.value().attempts = attempt;
+  parsed.value().raw = std::move(raw);
+  return parsed;
+}
+
 Result<ChatResponse> ChatClient::send(const nlohmann::json& body) {
   HttpRequest http;
   std::string base = config_.baseUrl;
@@ -163,42 +180,48 @@ Result<ChatResponse> ChatClient::send(const nlohmann::json& body) {
     if (!result) {
       Error e = result.error();
       e.attempts = attempt;
-      if (last || !config_.retry.retryTransportErrors) return e;
-      sleep_(std::chrono::milliseconds(backoffDelayMs(attempt - 1, config_.retry, rng_)));
+      const bool retried = !last && config_.retry.retryTransportErrors;
+      const auto wait = retryWait(fmt::format("failed ({})", errorKindName(e.kind)), !retried,
+                                  retried ? backoffDelayMs(attempt - 1, config_.retry, rng_) : 0);
+      if (!wait) return e;
+      sleep_(std::chrono::milliseconds(*wait));
       continue;
     }
     const HttpResponse& r = result.value();
     const int status = static_cast<int>(r.status);
     switch (classifyResponse(r)) {
-      case RetryDecision::Done: {
-        nlohmann::json raw = nlohmann::json::parse(r.body, nullptr, /*allow_exceptions=*/false);
-        if (raw.is_discarded())
-          return Error{ErrorKind::MalformedResponse, "response body is not valid JSON", server(), status, attempt};
-        auto parsed = parseChatResponse(raw, server());
-        if (!parsed) {
-          Error e = parsed.error();
-          e.httpStatus = status;
-          e.attempts = attempt;
-          return e;
-        }
-        parsed.value().attempts = attempt;
-        parsed.value().raw = std::move(raw);
-        return parsed;
-      }
+      case RetryDecision::Done:
+        return parseAnswer(r, attempt);
       case RetryDecision::Quota:
+        if (progress_) progress_->attemptFailed(server(), "has no quota left (HTTP 429)", std::nullopt);
         return Error{ErrorKind::QuotaExceeded, fmt::format("quota exhausted (not retried): {}", serverMessage(r.body)),
                      server(), status, attempt};
       case RetryDecision::Fail:
+        if (progress_) progress_->attemptFailed(server(), fmt::format("answered HTTP {}", status), std::nullopt);
         return Error{ErrorKind::HttpStatus, serverMessage(r.body), server(), status, attempt};
-      case RetryDecision::Retry:
-        if (last)
-          return Error{ErrorKind::HttpStatus, fmt::format("giving up: {}", serverMessage(r.body)), server(), status,
-                       attempt};
-        const auto wait = retryAfterMs(r, config_.retry);
-        sleep_(std::chrono::milliseconds(wait ? *wait : backoffDelayMs(attempt - 1, config_.retry, rng_)));
+      case RetryDecision::Retry: {
+        // The server's own wait, capped by maxRetryAfterMs, before our backoff (the RNG is drawn only without it,
+        // as before, so runs that never see Retry-After keep their jitter sequence).
+        const auto asked = last ? std::optional<long>{} : retryAfterMs(r, config_.retry);
+        const long wanted = last ? 0 : asked ? *asked : backoffDelayMs(attempt - 1, config_.retry, rng_);
+        const auto wait = retryWait(fmt::format("answered HTTP {}", status), last, wanted);
+        if (!wait)
+          return Error{
+              ErrorKind::HttpStatus,
+              fmt::format("giving up{}: {}", last ? "" : " (the run's retry budget is spent)", serverMessage(r.body)),
+              server(), status, attempt};
+        sleep_(std::chrono::milliseconds(*wait));
         break;
+      }
     }
   }
+}
+
+std::optional<long> ChatClient::retryWait(const std::string& what, bool last, long wantedMs) {
+  std::optional<long> wait;
+  if (!last && (!budget_ || budget_->take(wantedMs) == RetryGrant::Granted)) wait = wantedMs;
+  if (progress_) progress_->attemptFailed(server(), what, wait);
+  return wait;
 }
 
 }  // namespace cbtl::textpref

@@ -9,7 +9,11 @@
 // empty no Authorization header is sent (local servers need none; OpenAI then answers 401). A server that echoes
 // the key back is quoted only after redactSecrets() (Redaction.h): every Error this client returns is redacted.
 // Circuit breaker (optional, shared, setBreaker): while it is open, a request the cache cannot answer is a
-// CircuitOpen error and the network is not used; each request's transport outcome is reported to it.
+// CircuitOpen error and the network is not used; each request's outcome (after its retries) is reported to it.
+// Retry budget (optional, shared, setRetryBudget): every retry, and the wait before it, is taken from the run's
+// budget (RetryBudget.h); once it is spent a failed attempt is the request's last. Without one, only
+// RetryPolicy::maxAttempts bounds the retries. Fault progress (optional, shared, setProgress): every failed
+// attempt is reported to it (FaultProgress.h), for the live lines on a terminal.
 //
 // A client is used from one thread at a time (its backoff RNG is not shared); make one client per thread.
 // Cache (optional, not owned, must outlive the client): looked up before the network; in ReadOnly mode a miss is
@@ -17,8 +21,10 @@
 #pragma once
 
 #include "runtime/textpref/CircuitBreaker.h"
+#include "runtime/textpref/FaultProgress.h"
 #include "runtime/textpref/ResponseCache.h"
 #include "runtime/textpref/Result.h"
+#include "runtime/textpref/RetryBudget.h"
 #include "runtime/textpref/RetryPolicy.h"
 
 #include <nlohmann/json.hpp>
@@ -94,16 +100,27 @@ class ChatClient {
 
   // Shares a circuit breaker (null: none). Set before the first request.
   void setBreaker(std::shared_ptr<CircuitBreaker> breaker) { breaker_ = std::move(breaker); }
+  // Shares the run's retry budget (null: none). Set before the first request.
+  void setRetryBudget(std::shared_ptr<RetryBudget> budget) { budget_ = std::move(budget); }
+  // Shares a progress reporter (null: none). Set before the first request.
+  void setProgress(std::shared_ptr<FaultProgress> progress) { progress_ = std::move(progress); }
 
  private:
   Result<ChatResponse> completeUnredacted(const ChatRequest& request);
   Result<ChatResponse> send(const nlohmann::json& body);
+  // A 2xx answer of attempt `attempt`, parsed (MalformedResponse when it is not a chat completion).
+  Result<ChatResponse> parseAnswer(const HttpResponse& response, int attempt) const;
+  // After a failed attempt (`what` for the progress line): the wait before the next attempt, or nullopt when the
+  // request gives up (this was its last attempt, or the run's retry budget refused the retry).
+  std::optional<long> retryWait(const std::string& what, bool last, long wantedMs);
 
   ChatConfig config_;
   ResponseCache* cache_;
   SleepFunction sleep_;
   std::mt19937_64 rng_;
   std::shared_ptr<CircuitBreaker> breaker_;
+  std::shared_ptr<RetryBudget> budget_;
+  std::shared_ptr<FaultProgress> progress_;
 };
 
 }  // namespace cbtl::textpref

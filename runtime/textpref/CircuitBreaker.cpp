@@ -4,6 +4,21 @@
 
 namespace cbtl::textpref {
 
+BreakerOutcome classifyForBreaker(const Error& error) {
+  switch (error.kind) {
+    case ErrorKind::Transport:
+    case ErrorKind::Timeout:
+    case ErrorKind::QuotaExceeded:
+      return BreakerOutcome::ServerFault;
+    case ErrorKind::HttpStatus: {
+      const int s = error.httpStatus;
+      return s == 408 || s == 429 || (s >= 500 && s < 600) ? BreakerOutcome::ServerFault : BreakerOutcome::Answered;
+    }
+    default:
+      return BreakerOutcome::Answered;
+  }
+}
+
 CircuitBreaker::CircuitBreaker(int threshold, Notice onOpen)
     : threshold_(threshold < 0 ? 0 : threshold), onOpen_(std::move(onOpen)) {}
 
@@ -18,7 +33,7 @@ std::string CircuitBreaker::reason() const {
 }
 
 void CircuitBreaker::recordFailure(const Error& error) {
-  if (error.kind != ErrorKind::Transport && error.kind != ErrorKind::Timeout) {
+  if (classifyForBreaker(error) == BreakerOutcome::Answered) {
     recordAnswer();
     return;
   }
@@ -30,7 +45,7 @@ void CircuitBreaker::recordFailure(const Error& error) {
     open_ = true;
     reason_ = error.describe();
     notice = fmt::format(
-        "language model: circuit breaker open after {} consecutive transport failures; the server is not called "
+        "language model: circuit breaker open after {} consecutive server failures; the server is not called "
         "again in this run and ratings fall back (last failure: {})",
         consecutive_, reason_);
   }
@@ -45,7 +60,7 @@ void CircuitBreaker::recordAnswer() {
 Error CircuitBreaker::openError(const std::string& server) const {
   return Error{
       ErrorKind::CircuitOpen,
-      fmt::format("circuit breaker open after {} consecutive transport failures; the server is not called", threshold_),
+      fmt::format("circuit breaker open after {} consecutive server failures; the server is not called", threshold_),
       server};
 }
 

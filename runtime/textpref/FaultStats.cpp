@@ -31,21 +31,31 @@ void FaultReport::add(const FaultReport& other) {
     breakerReason = other.breakerReason;
   }
   breakerThreshold = other.breakerThreshold;
+  retryBudget = other.retryBudget;
+  retryWaitBudgetMs = other.retryWaitBudgetMs;
+  retriesUsed += other.retriesUsed;
+  retryWaitedMs += other.retryWaitedMs;
+  retryBudgetSpent = retryBudgetSpent || other.retryBudgetSpent;
   backend = other.backend;
 }
 
 nlohmann::json FaultReport::toJson() const {
-  return nlohmann::json{
-      {"backend", backend},
-      {"rating_fallbacks", ratingFallbackTotal()},
-      {"rating_fallbacks_by_kind", ratingFallbacks},
-      {"learning_failures", learningFailureTotal()},
-      {"learning_failures_by_kind", learningFailures},
-      {"first_error", firstError.empty() ? nlohmann::json(nullptr) : nlohmann::json(firstError)},
-      {"breaker",
-       {{"threshold", breakerThreshold},
-        {"open", breakerOpen},
-        {"reason", breakerReason.empty() ? nlohmann::json(nullptr) : nlohmann::json(breakerReason)}}}};
+  return nlohmann::json{{"backend", backend},
+                        {"rating_fallbacks", ratingFallbackTotal()},
+                        {"rating_fallbacks_by_kind", ratingFallbacks},
+                        {"learning_failures", learningFailureTotal()},
+                        {"learning_failures_by_kind", learningFailures},
+                        {"first_error", firstError.empty() ? nlohmann::json(nullptr) : nlohmann::json(firstError)},
+                        {"breaker",
+                         {{"threshold", breakerThreshold},
+                          {"open", breakerOpen},
+                          {"reason", breakerReason.empty() ? nlohmann::json(nullptr) : nlohmann::json(breakerReason)}}},
+                        {"retries",
+                         {{"budget", retryBudget},
+                          {"used", retriesUsed},
+                          {"wait_budget_ms", retryWaitBudgetMs},
+                          {"waited_ms", retryWaitedMs},
+                          {"spent", retryBudgetSpent}}}};
 }
 
 std::string FaultReport::summary() const {
@@ -59,9 +69,14 @@ std::string FaultReport::summary() const {
   if (!firstError.empty()) out += fmt::format("language model: first error: {}\n", firstError);
   if (breakerOpen)
     out += fmt::format(
-        "language model: circuit breaker open after {} consecutive transport failures: the server "
+        "language model: circuit breaker open after {} consecutive server failures: the server "
         "was not called again ({})\n",
         breakerThreshold, breakerReason);
+  if (retryBudgetSpent)
+    out += fmt::format(
+        "language model: retry budget spent ({} retries, {:.1f} s of waits): later failed requests were not "
+        "retried\n",
+        retriesUsed, retryWaitedMs / 1000.0);
   return out;
 }
 

@@ -27,14 +27,21 @@ struct FaultReport {
   int breakerThreshold = 0;  // consecutive transport failures that open the breaker; 0 = off
   bool breakerOpen = false;
   std::string breakerReason;  // the failure that opened it, "" while closed
+  // The run's retry budget (RetryBudget.h): its limits, what was used, and whether a retry was refused.
+  int retryBudget = 0;
+  long retryWaitBudgetMs = 0;
+  int retriesUsed = 0;
+  long retryWaitedMs = 0;
+  bool retryBudgetSpent = false;
 
   std::int64_t ratingFallbackTotal() const;
   std::int64_t learningFailureTotal() const;
-  bool any() const { return ratingFallbackTotal() + learningFailureTotal() > 0 || breakerOpen; }
+  bool any() const { return ratingFallbackTotal() + learningFailureTotal() > 0 || breakerOpen || retryBudgetSpent; }
   // Adds another report's counts (several trials of one command); keeps this report's first error if any.
   void add(const FaultReport& other);
   // {"backend", "rating_fallbacks", "rating_fallbacks_by_kind", "learning_failures",
-  //  "learning_failures_by_kind", "first_error" (null when none), "breaker": {"threshold", "open", "reason"}}.
+  //  "learning_failures_by_kind", "first_error" (null when none), "breaker": {"threshold", "open", "reason"},
+  //  "retries": {"budget", "used", "wait_budget_ms", "waited_ms", "spent"}}.
   nlohmann::json toJson() const;
   // Human-readable lines (each ending in '\n'), "" when there is nothing to report, e.g.
   //   "language model: 12 ratings fell back to the generator's fallback (no-logprobs 12); first error: ..."

@@ -5,9 +5,10 @@
 // the status rule. Never retried: 429 whose error code is `insufficient_quota` (billing; waiting cannot help),
 // and every other 4xx.
 // Waits: `retry-after-ms` (milliseconds) first, then `Retry-After` as delta-seconds (decimals allowed), clamped
-// to [0, maxRetryAfterMs]; an HTTP-date Retry-After is ignored. Without a usable header the wait is
-// min(baseDelayMs * 2^k, maxDelayMs) * u for the k-th retry (k = 0, 1, ...), u uniform in [jitterMin, 1] from the
-// caller's seeded RNG. The number of attempts is bounded by maxAttempts (first attempt included): budgets are
+// to [0, maxRetryAfterMs] (10 s by default: a server asking for 30 s is retried after 10 s, and a run's total
+// wait is bounded by its retry budget, RetryBudget.h); an HTTP-date Retry-After is ignored. Without a usable header the
+// wait is min(baseDelayMs * 2^k, maxDelayMs) * u for the k-th retry (k = 0, 1, ...), u uniform in [jitterMin, 1] from
+// the caller's seeded RNG. The number of attempts is bounded by maxAttempts (first attempt included): budgets are
 // counts, never wall-clock time. Sleeping goes through an injectable SleepFunction so tests never wait.
 #pragma once
 
@@ -26,7 +27,7 @@ struct RetryPolicy {
   long baseDelayMs = 500;
   long maxDelayMs = 8000;
   double jitterMin = 0.75;       // in [0, 1]
-  long maxRetryAfterMs = 60000;  // server-requested waits are clamped to this
+  long maxRetryAfterMs = 10000;  // server-requested waits are clamped to this
   bool retryTransportErrors = true;
 };
 

@@ -6,6 +6,9 @@
 // failures; an open circuit breaker stays open), runFaults() when it ends, and writeLlmReport() to store both in
 // its output folder as llm.json:
 //   {"text_backend": textBackendJson(backend), "faults": FaultReport::toJson()}
+// llm.json is written on every way a run with an output folder ends: its normal end (writeLlmReport), an
+// exception leaving the run (LlmReportGuard's destructor), and SIGINT/SIGTERM (the interrupt handler of cbtl
+// calls writeLiveLlmReports(), tools/cbtl/Interrupt.h). Only SIGKILL or a power cut leave a run without one.
 #pragma once
 
 #include "runtime/textpref/FaultStats.h"
@@ -14,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <list>
 
 namespace cbtl::textpref {
 
@@ -29,5 +33,33 @@ FaultReport runFaults(const TextBackend* backend);
 
 // Writes `dir`/llm.json atomically.
 Status writeLlmReport(const std::filesystem::path& dir, const TextBackend* backend, const FaultReport& faults);
+
+// A run in progress, registered for writeLiveLlmReports() from construction to destruction. If it is destroyed
+// before finish() (an exception is leaving the run: a solver or simulator failure, a failed write), the
+// destructor writes `dir`/llm.json with the faults so far, best effort: a failure to write is ignored there, the
+// run's own error is the one reported. `backend` (null: offline) must outlive the guard. Thread-safe.
+class LlmReportGuard {
+ public:
+  LlmReportGuard(std::filesystem::path dir, const TextBackend* backend);
+  ~LlmReportGuard();
+  LlmReportGuard(const LlmReportGuard&) = delete;
+  LlmReportGuard& operator=(const LlmReportGuard&) = delete;
+
+  // The run wrote its own llm.json at its normal end: nothing more to write.
+  void finish() { finished_ = true; }
+
+  struct Entry {  // one registered run
+    std::filesystem::path dir;
+    const TextBackend* backend;
+  };
+
+ private:
+  std::list<Entry>::iterator entry_;
+  bool finished_ = false;
+};
+
+// Writes llm.json (the faults so far) for every run in progress; the number of files written. Called once by
+// cbtl's interrupt handler (outside the signal handler itself) before the process exits.
+int writeLiveLlmReports();
 
 }  // namespace cbtl::textpref

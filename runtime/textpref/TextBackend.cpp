@@ -37,7 +37,10 @@ Result<TextBackendConfig> textBackendConfigFromJson(const nlohmann::json& j) {
                                            "min_coverage",
                                            "top_logprobs",
                                            "seed",
-                                           "breaker_threshold"};
+                                           "breaker_threshold",
+                                           "retry_budget",
+                                           "retry_wait_budget_ms",
+                                           "max_retry_after_ms"};
   for (const auto& [key, value] : j.items())
     if (!known.count(key)) return bad(fmt::format("unknown text-backend option \"{}\"", key));
 
@@ -64,7 +67,10 @@ Result<TextBackendConfig> textBackendConfigFromJson(const nlohmann::json& j) {
         integer("connect_timeout_ms", c.chat.connectTimeoutMs, 1, 3600000),
         integer("request_timeout_ms", c.chat.requestTimeoutMs, 1, 3600000),
         integer("max_attempts", c.chat.retry.maxAttempts, 1, 100), integer("top_logprobs", c.topLogprobs, 1, 20),
-        integer("seed", c.seed, 0, INT64_MAX), integer("breaker_threshold", c.breakerThreshold, 0, 1000)})
+        integer("seed", c.seed, 0, INT64_MAX), integer("breaker_threshold", c.breakerThreshold, 0, 1000),
+        integer("retry_budget", c.retryBudget.retries, 0, 1000000),
+        integer("retry_wait_budget_ms", c.retryBudget.waitMs, 0, 86400000),
+        integer("max_retry_after_ms", c.chat.retry.maxRetryAfterMs, 0, 3600000)})
     if (e) return *e;
   if (j.contains("renormalize")) {
     if (!j["renormalize"].is_boolean()) return bad("text-backend option \"renormalize\" must be a boolean");
@@ -103,14 +109,27 @@ struct ClientWithCache {
 };
 }  // namespace
 
-TextBackend::TextBackend(TextBackendConfig config, WarningSink warn, SleepFunction sleep) : config_(std::move(config)) {
+TextBackend::TextBackend(TextBackendConfig config, WarningSink warn, SleepFunction sleep,
+                         std::shared_ptr<FaultProgress> progress)
+    : config_(std::move(config)) {
   if (config_.kind == BackendKind::OpenAiCompatible) {
     breaker_ = std::make_shared<CircuitBreaker>(config_.breakerThreshold, warn);
+    // A spent budget is said on a terminal only: llm.json and the run's summary record it anyway.
+    RetryBudget::Notice onSpent;
+    if (progress) onSpent = [progress](const std::string& line) { progress->notice(line); };
+    budget_ = std::make_shared<RetryBudget>(config_.retryBudget, std::move(onSpent));
     cache_ = std::make_shared<ResponseCache>(config_.cacheDir, config_.cacheMode, std::move(warn));
     auto holder = std::make_shared<ClientWithCache>(cache_, config_.chat, std::move(sleep));
     client_ = std::shared_ptr<ChatClient>(holder, &holder->client);  // aliasing: owns the holder
     client_->setBreaker(breaker_);
+    client_->setRetryBudget(budget_);
+    client_->setProgress(std::move(progress));
   }
+}
+
+void TextBackend::resetFaultCounts() const {
+  faults_->reset();
+  if (budget_) budget_->reset();
 }
 
 FaultReport TextBackend::faultReport() const {
@@ -120,6 +139,14 @@ FaultReport TextBackend::faultReport() const {
     r.breakerThreshold = breaker_->threshold();
     r.breakerOpen = breaker_->isOpen();
     r.breakerReason = breaker_->reason();
+  }
+  if (budget_) {
+    const RetryBudgetUse used = budget_->used();
+    r.retryBudget = budget_->limits().retries;
+    r.retryWaitBudgetMs = budget_->limits().waitMs;
+    r.retriesUsed = used.retries;
+    r.retryWaitedMs = used.waitedMs;
+    r.retryBudgetSpent = used.spent;
   }
   return r;
 }
@@ -132,7 +159,10 @@ nlohmann::json TextBackend::identityJson() const {
                         {"model", config_.chat.model},
                         {"request_timeout_ms", config_.chat.requestTimeoutMs},
                         {"max_attempts", config_.chat.retry.maxAttempts},
-                        {"breaker_threshold", config_.breakerThreshold}};
+                        {"breaker_threshold", config_.breakerThreshold},
+                        {"retry_budget", config_.retryBudget.retries},
+                        {"retry_wait_budget_ms", config_.retryBudget.waitMs},
+                        {"max_retry_after_ms", config_.chat.retry.maxRetryAfterMs}};
 }
 
 LlmModelOptions TextBackend::llmOptions(const PromptTemplates& prompts) const {

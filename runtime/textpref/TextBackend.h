@@ -8,16 +8,21 @@
 //
 // Faults: the backend owns one FaultStats that all its language models share (every failed rating and learning
 // request is counted there, FaultStats.h) and, for the language-model backend, one CircuitBreaker shared by its
-// client (CircuitBreaker.h; it opens after `breakerThreshold` consecutive transport failures and then says so
-// once through the WarningSink). Both are thread-safe and may be read or reset through a const backend.
+// client (CircuitBreaker.h; it opens after `breakerThreshold` consecutive server failures -- no answer, 408, 429
+// or 5xx -- and then says so once through the WarningSink) and one RetryBudget (RetryBudget.h; `retryBudget`
+// retries and waits per run, reset by resetFaultCounts() when a run starts). All are thread-safe and may be read
+// or reset through a const backend. An optional FaultProgress (FaultProgress.h; the caller passes one only for a
+// terminal) is told of every failed attempt and of the retry budget being spent.
 #pragma once
 
 #include "runtime/textpref/ChatClient.h"
 #include "runtime/textpref/CircuitBreaker.h"
+#include "runtime/textpref/FaultProgress.h"
 #include "runtime/textpref/FaultStats.h"
 #include "runtime/textpref/LlmPreferenceModel.h"
 #include "runtime/textpref/OfflineDescriptorModel.h"
 #include "runtime/textpref/ResponseCache.h"
+#include "runtime/textpref/RetryBudget.h"
 
 #include <nlohmann/json.hpp>
 
@@ -44,7 +49,8 @@ struct TextBackendConfig {
   double minCoverage = 0.5;
   int topLogprobs = 20;
   std::int64_t seed = 0;
-  int breakerThreshold = 3;  // consecutive transport failures that open the circuit breaker; 0 disables it
+  int breakerThreshold = 3;       // consecutive server failures that open the circuit breaker; 0 disables it
+  RetryBudgetLimits retryBudget;  // retries and requested waits per run (RetryBudget.h)
   OfflineModelOptions offline;
 };
 
@@ -53,13 +59,14 @@ struct TextBackendConfig {
 //    "api_key_env": "OPENAI_API_KEY", "max_tokens_field": "max_tokens", "connect_timeout_ms": 5000,
 //    "request_timeout_ms": 60000, "max_attempts": 5, "cache_dir": "cache/llm", "cache_mode": "read-only",
 //    "scale": "digits", "renormalize": true, "split": "auto", "min_coverage": 0.5, "top_logprobs": 20, "seed": 0,
-//    "breaker_threshold": 3}
+//    "breaker_threshold": 3, "retry_budget": 100, "retry_wait_budget_ms": 300000, "max_retry_after_ms": 10000}
 // Every key is optional; unknown keys and wrong types are Configuration errors naming the key.
 Result<TextBackendConfig> textBackendConfigFromJson(const nlohmann::json& j);
 
 class TextBackend {
  public:
-  explicit TextBackend(TextBackendConfig config, WarningSink warn = {}, SleepFunction sleep = realSleep());
+  explicit TextBackend(TextBackendConfig config, WarningSink warn = {}, SleepFunction sleep = realSleep(),
+                       std::shared_ptr<FaultProgress> progress = nullptr);
 
   const TextBackendConfig& config() const { return config_; }
   // A fresh model for one constraint generator. Never null. `scale` overrides the configured rating scale for
@@ -73,9 +80,10 @@ class TextBackend {
 
   // The failures counted so far, with the backend's name ("offline" or "openai") and the breaker's state.
   FaultReport faultReport() const;
-  // Forgets the counted failures (a new trial starts); an open breaker stays open.
-  void resetFaultCounts() const { faults_->reset(); }
-  // {"backend": "openai", "base_url", "model", "request_timeout_ms", "max_attempts", "breaker_threshold"} for
+  // Forgets the counted failures and refills the retry budget (a new trial starts); an open breaker stays open.
+  void resetFaultCounts() const;
+  // {"backend": "openai", "base_url", "model", "request_timeout_ms", "max_attempts", "breaker_threshold",
+  //  "retry_budget", "retry_wait_budget_ms", "max_retry_after_ms"} for
   // the language-model backend; {"backend": "offline", "base_url": null, "model": null} for the offline one.
   nlohmann::json identityJson() const;
 
@@ -87,6 +95,7 @@ class TextBackend {
   std::shared_ptr<ChatClient> client_;
   std::shared_ptr<FaultStats> faults_ = std::make_shared<FaultStats>();
   std::shared_ptr<CircuitBreaker> breaker_;
+  std::shared_ptr<RetryBudget> budget_;
 };
 
 }  // namespace cbtl::textpref

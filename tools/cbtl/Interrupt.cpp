@@ -2,8 +2,15 @@
 
 #include <fmt/core.h>
 
+#include "runtime/textpref/RunReport.h"
+
+#include <fcntl.h>
 #include <unistd.h>
+#include <atomic>
+#include <cerrno>
 #include <csignal>
+#include <mutex>
+#include <thread>
 
 namespace cbtl::cli {
 namespace {
@@ -13,21 +20,74 @@ std::vector<std::string>& storedCommandLine() {
   return words;
 }
 
-// Set once before the handlers are installed and never changed after: the handler only reads it.
+// Set before the handlers are installed; the handler and the exit thread only read it.
 std::string& interruptText() {
   static std::string text;
   return text;
 }
 
-extern "C" void onInterrupt(int signal) {
-  const std::string& text = interruptText();
+void writeToStderr(const std::string& text) {
   std::size_t written = 0;
   while (written < text.size()) {
     const ssize_t n = ::write(STDERR_FILENO, text.data() + written, text.size() - written);
     if (n <= 0) break;
     written += static_cast<std::size_t>(n);
   }
+}
+
+// The first signal's number (0: none yet) and the write end of the pipe that wakes the exit thread (-1: none).
+// Lock-free atomics, so the signal handler may use them.
+std::atomic<int> pendingSignal{0};
+std::atomic<int> wakeFd{-1};
+static_assert(std::atomic<int>::is_always_lock_free);
+
+// The signal handler only wakes the exit thread: writing llm.json takes locks and allocates, which a signal
+// handler must not do. A second signal, or a process without the thread, exits at once as before.
+extern "C" void onInterrupt(int signal) {
+  int none = 0;
+  if (pendingSignal.compare_exchange_strong(none, signal)) {
+    const int fd = wakeFd.load();
+    const char byte = 1;
+    if (fd >= 0 && ::write(fd, &byte, 1) == 1) return;
+    writeToStderr(interruptText());
+  }
   ::_exit(128 + signal);
+}
+
+// Runs in its own thread, outside any signal handler: says what was kept, writes llm.json for the runs in
+// progress (their fault counts live only in memory, textpref/RunReport.h), and ends the process.
+void exitThread(int readFd) {
+  char byte = 0;
+  for (;;) {
+    const ssize_t n = ::read(readFd, &byte, 1);
+    if (n == 1) break;
+    if (n < 0 && errno == EINTR) continue;
+    wakeFd.store(-1);  // cannot wait any more: the handler exits by itself
+    return;
+  }
+  const int signal = pendingSignal.load();
+  writeToStderr(interruptText());
+  try {
+    textpref::writeLiveLlmReports();
+  } catch (...) {  // NOLINT(bugprone-empty-catch): the exit below must happen whatever failed
+  }
+  ::_exit(128 + signal);
+}
+
+// Starts the exit thread once; without it (no pipe, no thread) the handler keeps the immediate exit.
+void startExitThread() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    int fds[2];
+    if (::pipe2(fds, O_CLOEXEC) != 0) return;
+    try {
+      std::thread(exitThread, fds[0]).detach();
+      wakeFd.store(fds[1]);
+    } catch (...) {
+      ::close(fds[0]);
+      ::close(fds[1]);
+    }
+  });
 }
 
 std::string shellQuoted(const std::string& word) {
@@ -61,6 +121,7 @@ std::string resumeCommand(const std::vector<std::string>& words) {
 
 void sayOnInterrupt(std::string message) {
   interruptText() = std::move(message);
+  startExitThread();
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);
 }

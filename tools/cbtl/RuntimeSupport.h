@@ -17,6 +17,8 @@
 
 #include <fmt/core.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <limits>
@@ -126,14 +128,21 @@ inline solver::SolverOptions solverOptionsFor(const SolverArgs& a, const std::st
 // Fault bounds (language-model backend only; -1 = not given, the backend's default):
 //   --llm-timeout-ms T  whole-request timeout per attempt, 1..3600000 (default 60000; connect timeout min(5000, T))
 //   --llm-attempts N    attempts per request, retries included, 1..100 (default 5)
-//   --llm-breaker N     open the circuit breaker after N consecutive transport failures, 0..1000 (default 3;
-//                       0 = never): the server is then not called for the rest of the command, ratings fall back
+//   --llm-breaker N     open the circuit breaker after N consecutive server failures (no answer, HTTP 408, 429,
+//                       5xx), 0..1000 (default 3; 0 = never): the server is then not called for the rest of the
+//                       command, ratings fall back
+//   --llm-retry-budget N          retries per run, all requests together, 0..1000000 (default 100)
+//   --llm-retry-wait-ms T         total wait before retries per run, 0..86400000 ms (default 300000)
+//   --llm-max-retry-after-ms T    cap of a server's Retry-After, 0..3600000 ms (default 10000)
+// (textpref/RetryBudget.h: once either budget is spent, no request of the run is retried.)
 // Out-of-range values are usage errors (exit 2) naming the option.
+// On a terminal (stderr is a tty) failed attempts are also reported live, at most a line per 5 s
+// (textpref/FaultProgress.h); piped output only gets the breaker's one-line notice.
 struct TextBackendArgs {
   std::string backend = "offline";
   std::string baseUrl, model;
-  long timeoutMs = -1;
-  int attempts = -1, breaker = -1;
+  long timeoutMs = -1, retryWaitMs = -1, maxRetryAfterMs = -1;
+  int attempts = -1, breaker = -1, retryBudget = -1;
 };
 
 inline void addTextBackendOptions(CLI::App* cmd, TextBackendArgs& a) {
@@ -148,20 +157,33 @@ inline void addTextBackendOptions(CLI::App* cmd, TextBackendArgs& a) {
   cmd->add_option("--llm-attempts", a.attempts, "attempts per request, retries included, >= 1 (default 5)")
       ->check(CLI::Range(1, 100));
   cmd->add_option("--llm-breaker", a.breaker,
-                  "stop calling the server after N consecutive transport failures (default 3, 0 = never)")
+                  "stop calling the server after N consecutive failures: no answer, HTTP 408, 429 or 5xx (default 3, "
+                  "0 = never)")
       ->check(CLI::Range(0, 1000));
+  cmd->add_option("--llm-retry-budget", a.retryBudget,
+                  "retries per run, all requests together; once spent, no request is retried (default 100)")
+      ->check(CLI::Range(0, 1000000));
+  cmd->add_option("--llm-retry-wait-ms", a.retryWaitMs,
+                  "total wait before retries per run in ms; once spent, no request is retried (default 300000)")
+      ->check(CLI::Range(0L, 86400000L));
+  cmd->add_option("--llm-max-retry-after-ms", a.maxRetryAfterMs,
+                  "longest wait a server's Retry-After gets, in ms (default 10000)")
+      ->check(CLI::Range(0L, 3600000L));
 }
 
 // The backend the options ask for, or nullopt after printing a usage error. A null backend is the offline default.
 inline std::optional<std::shared_ptr<const textpref::TextBackend>> makeTextBackend(const std::string& command,
                                                                                    const TextBackendArgs& a) {
   if (a.backend == "offline") {
-    const char* openaiOnly = !a.baseUrl.empty() ? "--llm-base-url"
-                             : !a.model.empty() ? "--llm-model"
-                             : a.timeoutMs >= 0 ? "--llm-timeout-ms"
-                             : a.attempts >= 0  ? "--llm-attempts"
-                             : a.breaker >= 0   ? "--llm-breaker"
-                                                : nullptr;
+    const char* openaiOnly = !a.baseUrl.empty()       ? "--llm-base-url"
+                             : !a.model.empty()       ? "--llm-model"
+                             : a.timeoutMs >= 0       ? "--llm-timeout-ms"
+                             : a.attempts >= 0        ? "--llm-attempts"
+                             : a.breaker >= 0         ? "--llm-breaker"
+                             : a.retryBudget >= 0     ? "--llm-retry-budget"
+                             : a.retryWaitMs >= 0     ? "--llm-retry-wait-ms"
+                             : a.maxRetryAfterMs >= 0 ? "--llm-max-retry-after-ms"
+                                                      : nullptr;
     if (openaiOnly != nullptr) {
       fmt::print(stderr, "cbtl {}: error: {} needs --text-backend openai\n", command, openaiOnly);
       return std::nullopt;
@@ -182,8 +204,17 @@ inline std::optional<std::shared_ptr<const textpref::TextBackend>> makeTextBacke
   }
   if (a.attempts >= 0) config.chat.retry.maxAttempts = a.attempts;
   if (a.breaker >= 0) config.breakerThreshold = a.breaker;
+  if (a.retryBudget >= 0) config.retryBudget.retries = a.retryBudget;
+  if (a.retryWaitMs >= 0) config.retryBudget.waitMs = a.retryWaitMs;
+  if (a.maxRetryAfterMs >= 0) config.chat.retry.maxRetryAfterMs = a.maxRetryAfterMs;
   auto warn = [command](const std::string& message) { fmt::print(stderr, "cbtl {}: warning: {}\n", command, message); };
-  return std::make_shared<const textpref::TextBackend>(std::move(config), warn);
+  // Live fault lines only for a person at a terminal: tests and logs see the same output as before.
+  std::shared_ptr<textpref::FaultProgress> progress;
+  if (::isatty(STDERR_FILENO) != 0)
+    progress = std::make_shared<textpref::FaultProgress>(
+        [command](const std::string& line) { fmt::print(stderr, "cbtl {}: {}\n", command, line); });
+  return std::make_shared<const textpref::TextBackend>(std::move(config), warn, textpref::realSleep(),
+                                                       std::move(progress));
 }
 
 // Prints what the language model's failures cost a run (FaultReport::summary()); nothing when there were none.

@@ -1,6 +1,7 @@
 // `cbtl run`, `cbtl solve` and `cbtl experiment` with a failing language-model server (the Feeding domain, whose
 // three text factors ask for ratings): the fallbacks are counted and printed, a silent server opens the circuit
-// breaker (said once) instead of stalling the run, llm.json and config.json name the backend, quoted server
+// breaker (said once) instead of stalling the run, and so does a server answering 5xx; llm.json and config.json
+// name the backend, and llm.json is there however the run ends (an error, SIGINT, SIGTERM); quoted server
 // messages never show the API key, and out-of-range fault options are usage errors naming the option.
 // Bounded time is checked by the ctest TIMEOUT, not by assertions.
 #include "tests/unit/textpref/ChatTestServer.h"
@@ -9,10 +10,13 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <signal.h>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <string>
+#include <thread>
 
 namespace cbtl::textpref::testing {
 namespace {
@@ -69,7 +73,7 @@ TEST(LlmFaultsInARun, ASilentServerOpensTheBreakerAndTheRunFinishes) {
                                  " --llm-timeout-ms 200 --llm-attempts 1 --llm-breaker 2 --out " + out.path.string());
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_EQ(occurrences(run.output, "warning: language model: circuit breaker open"), 1) << run.output;
-  EXPECT_NE(run.output.find("circuit breaker open after 2 consecutive transport failures"), std::string::npos)
+  EXPECT_NE(run.output.find("circuit breaker open after 2 consecutive server failures"), std::string::npos)
       << run.output;
   EXPECT_EQ(server.requestCount(), 2);  // nothing after the breaker opened
   const nlohmann::json faults = out.read("llm.json")["faults"];
@@ -77,6 +81,72 @@ TEST(LlmFaultsInARun, ASilentServerOpensTheBreakerAndTheRunFinishes) {
   EXPECT_EQ(faults["breaker"]["threshold"], 2);
   EXPECT_EQ(faults["rating_fallbacks_by_kind"]["timeout"], 2);
   EXPECT_GT(faults["rating_fallbacks_by_kind"]["circuit-open"].get<long>(), 0);
+}
+
+TEST(LlmFaultsInARun, AServerAnswering500OpensTheBreakerAndBoundsTheRequests) {
+  ChatTestServer server;
+  server.setDefault(reply(500, errorBody("internal error", "server_error", "")));
+  OutDir out;
+  const CommandRun run = runCbtl("run " + kFeeding + kShortTrial + openai(server) +
+                                 " --llm-attempts 2 --llm-breaker 2 --out " + out.path.string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_EQ(occurrences(run.output, "warning: language model: circuit breaker open"), 1) << run.output;
+  EXPECT_EQ(server.requestCount(), 2 * 2);  // threshold x attempts; the previous binary never stopped
+  const nlohmann::json faults = out.read("llm.json")["faults"];
+  EXPECT_EQ(faults["breaker"]["open"], true);
+  EXPECT_EQ(faults["rating_fallbacks_by_kind"]["http-status"], 2);
+  EXPECT_EQ(faults["retries"]["used"], 2);
+  // Not a terminal: no live fault lines.
+  EXPECT_EQ(run.output.find("retrying in"), std::string::npos) << run.output;
+}
+
+TEST(LlmFaultsInARun, ARunStoppedByAnErrorLeavesLlmJson) {
+  ChatTestServer server;
+  server.setDefault(reply(503, "overloaded"));
+  OutDir out;
+  // The first checkpoint's write fails: the run stops with an error (exit 1) before its end.
+  const CommandRun run =
+      runCbtl("run " + kFeeding + kShortTrial + openai(server) + " --llm-attempts 1 --out " + out.path.string(),
+              "CBTL_TEST_WRITE_FAILS=checkpoint.json ");
+  ASSERT_NE(run.exitCode, 0) << run.output;
+  const nlohmann::json llm = out.read("llm.json");
+  ASSERT_TRUE(llm.is_object()) << run.output;
+  EXPECT_EQ(llm["text_backend"]["backend"], "openai");
+  EXPECT_TRUE(llm["faults"]["retries"].is_object()) << llm.dump();
+  EXPECT_FALSE(std::filesystem::exists(out.path / "complete.json"));
+}
+
+TEST(LlmFaultsInARun, AnInterruptedRunLeavesLlmJson) {
+  for (const int signal : {SIGINT, SIGTERM}) {
+    ChatTestServer server;
+    server.push(reply(500, "down"));
+    server.setDefault(server.hang());
+    OutDir out;
+    const std::filesystem::path pidFile = out.path.string() + ".pid";
+    CommandRun run;
+    // `exec` keeps the shell's pid, written first, for the signal.
+    std::thread cbtl([&] {
+      run = runCbtl("run " + kFeeding + kShortTrial + openai(server) +
+                        " --llm-attempts 1 --llm-timeout-ms 60000 --out " + out.path.string(),
+                    "echo $$ > " + pidFile.string() + "; exec ");
+    });
+    long pid = 0;
+    for (int i = 0; i < 600 && (pid == 0 || server.requestCount() < 2); ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      std::ifstream in(pidFile);
+      in >> pid;
+    }
+    ASSERT_GT(pid, 0);
+    ASSERT_GE(server.requestCount(), 2);  // the run waits on its second request
+    ::kill(static_cast<pid_t>(pid), signal);
+    cbtl.join();
+    std::filesystem::remove(pidFile);
+    EXPECT_EQ(run.exitCode, 128 + signal) << run.output;
+    EXPECT_NE(run.output.find("cbtl run: interrupted;"), std::string::npos) << run.output;
+    const nlohmann::json llm = out.read("llm.json");
+    ASSERT_TRUE(llm.is_object()) << "no llm.json after signal " << signal << "\n" << run.output;
+    EXPECT_EQ(llm["faults"]["rating_fallbacks_by_kind"]["http-status"], 1);
+  }
 }
 
 TEST(LlmFaultsInARun, OfflineRunsRecordTheOfflineBackendAndNoFaults) {
@@ -114,7 +184,8 @@ TEST(LlmFaultsInAnExperiment, TheSummaryCountsEveryTrial) {
 
 TEST(LlmFaultOptions, OutOfRangeValuesAreUsageErrorsNamingTheOption) {
   for (const std::string option :
-       {"--llm-attempts 0", "--llm-timeout-ms 0", "--llm-breaker -1", "--llm-attempts 101"}) {
+       {"--llm-attempts 0", "--llm-timeout-ms 0", "--llm-breaker -1", "--llm-attempts 101", "--llm-retry-budget -1",
+        "--llm-retry-wait-ms -1", "--llm-max-retry-after-ms 3600001"}) {
     const CommandRun run = runCbtl("run " + kFeeding + " --text-backend openai " + option);
     EXPECT_EQ(run.exitCode, 2) << option << "\n" << run.output;
     EXPECT_NE(run.output.find(option.substr(0, option.find(' '))), std::string::npos) << run.output;

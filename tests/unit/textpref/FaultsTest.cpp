@@ -149,7 +149,7 @@ TEST(CircuitBreaker, OpensAfterConsecutiveTimeoutsAndStopsCallingTheServer) {
   for (int i = 2; i < 6; ++i) EXPECT_EQ(kinds[i], ErrorKind::CircuitOpen);
   EXPECT_EQ(h.server.requestCount(), 2);  // nothing after the breaker opened
   ASSERT_EQ(notices.size(), 1u);          // said once
-  EXPECT_NE(notices[0].find("circuit breaker open after 2 consecutive transport failures"), std::string::npos)
+  EXPECT_NE(notices[0].find("circuit breaker open after 2 consecutive server failures"), std::string::npos)
       << notices[0];
   const FaultReport r = backend.faultReport();
   EXPECT_TRUE(r.breakerOpen);
@@ -187,7 +187,7 @@ TEST(CircuitBreaker, ConnectionRefusedCountsAndZeroDisablesIt) {
   int notices = 0;
   CircuitBreaker on(3, [&](const std::string&) { ++notices; });
   on.recordFailure(Error{ErrorKind::Transport, "refused"});
-  on.recordFailure(Error{ErrorKind::HttpStatus, "answered", "s", 500});  // an answer resets
+  on.recordFailure(Error{ErrorKind::HttpStatus, "answered", "s", 400});  // an answer resets
   on.recordFailure(Error{ErrorKind::Transport, "refused"});
   on.recordFailure(Error{ErrorKind::Timeout, "slow"});
   EXPECT_FALSE(on.isOpen());

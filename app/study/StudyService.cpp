@@ -22,6 +22,7 @@ struct StudyService::Session {
   std::string broken;                            // why it could not be built or continued; empty when fine
   std::size_t picturesMeal = static_cast<std::size_t>(-1);
   std::vector<std::vector<std::uint8_t>> pictures;  // the current meal's, PNG bytes, rendered on first request
+  std::mutex mutex;  // held by the request that has the session (Lease)
   // Under StudyService::sessionsMutex_:
   Planner* planner = nullptr;  // for life: the session's worlds are bound to its program
   std::uint64_t lastUse = 0;   // StudyService::uses_ when a request last touched it
@@ -30,11 +31,12 @@ struct StudyService::Session {
 };
 
 // A participant's session for the length of one request: counted as in use, so that it is not let go meanwhile,
-// and held with its planner's lock, so that nothing else plans with that program.
+// and locked, so that the participant's requests take turns. Planning takes the planner's lock besides (planning()),
+// only while it plans: a request that only reads the session (a picture's measure, a page about no meal) does not
+// wait for another participant's planning.
 class StudyService::Lease {
  public:
-  Lease(StudyService& service, Session& session)
-      : service_(service), session_(session), lock_(session.planner->mutex) {}
+  Lease(StudyService& service, Session& session) : service_(service), session_(session), lock_(session.mutex) {}
   ~Lease() {
     lock_.unlock();
     std::lock_guard<std::mutex> lock(service_.sessionsMutex_);
@@ -186,8 +188,18 @@ feeding::StudyOptions optionsOf(const Participant& p, feeding::StudyOptions base
 
 }  // namespace
 
+namespace {
+
+// The lock of the program `planner` plans with; the caller holds a session's Lease. Taken around everything that
+// plans: building or replaying a session, answering a meal, and presenting the next one (StudySession::current()
+// plans it on its first call, so every planning step ends by calling it, and later calls only read).
+std::unique_lock<std::mutex> planning(std::mutex& planner) { return std::unique_lock<std::mutex>(planner); }
+
+}  // namespace
+
 std::optional<HttpReply> StudyService::ensureBuilt(Session& s, const Participant& p) {
   if (!s.study && s.broken.empty()) {
+    const auto plans = planning(s.planner->mutex);
     std::vector<StoredRecord> stored;
     std::size_t profileVersions = 0;
     {
@@ -213,6 +225,7 @@ std::optional<HttpReply> StudyService::ensureBuilt(Session& s, const Participant
           ++profileVersions;
         }
       }
+      if (!s.study->finished()) s.study->current();
     } catch (const std::exception& e) {
       s.study.reset();
       s.broken = fmt::format(
@@ -420,7 +433,9 @@ HttpReply StudyService::storeAnswers(Session& s, const Participant& p, const New
     return storageError(e);
   }
   try {
+    const auto plans = planning(s.planner->mutex);
     s.study->answer(answers);
+    if (!s.study->finished()) s.study->current();
   } catch (const std::exception& e) {
     // The answers are stored; the session is rebuilt from the records on the next request, which says why it fails.
     s.study.reset();

@@ -14,11 +14,12 @@
 //
 // Every request is checked completely before anything changes; a refused one changes nothing. Concurrency: a
 // session plans with a loaded copy of the program (a "planner"), which is not thread-safe (its built-ins are bound
-// to the world being planned in), so the requests that touch sessions of one planner run one at a time; the service
-// is given one planner per core (`cbtl study serve` loads the program that many times) and spreads participants
-// over them, so that planning, and rebuilding a session let go, hold up only the participants of one planner,
-// never all of them. Finding a participant's session takes a lock of its own for microseconds; a session in use is
-// never let go. The database has a lock of its own (taken inside a planner's, and alone by begin() and look-ups);
+// to the world being planned in), so the sessions of one planner plan one at a time; the service is given one
+// planner per core (`cbtl study serve` loads the program that many times) and spreads participants over them, so
+// that planning, and rebuilding a session let go, hold up only the planning of one planner's participants. A
+// participant's requests take turns on their session's own lock; a request that does not plan (a page about no
+// meal, a picture's measure, a rating) never waits for another participant's planning. Finding a participant's
+// session takes a lock of its own for microseconds; a session in use is never let go. The database has a lock of its own (taken inside a planner's, and alone by begin() and look-ups);
 // pictures are rendered under the renderer's own lock.
 #pragma once
 
@@ -90,9 +91,9 @@ class StudyService : public StudyApi {
   struct Session;
   struct Planner {
     const approach::PreparedProgram* program;
-    std::mutex mutex;  // over the program and every session it plans for
+    std::mutex mutex;  // over the program, held while one of its sessions plans
   };
-  class Lease;  // a participant's session, held with its planner's lock (StudyService.cpp)
+  class Lease;  // a participant's session, held for one request (StudyService.cpp)
   Lease lease(const Participant& p);
   // The stored participant, or the reply saying why there is none (400 for an invalid id, 404 for an unknown one).
   std::optional<HttpReply> lookUp(const std::string& participant, Participant& out);

@@ -22,7 +22,7 @@ struct StudyService::Session {
   std::string broken;                            // why it could not be built or continued; empty when fine
   std::size_t picturesMeal = static_cast<std::size_t>(-1);
   std::vector<std::vector<std::uint8_t>> pictures;  // the current meal's, PNG bytes, rendered on first request
-  std::mutex mutex;  // held by the request that has the session (Lease)
+  std::mutex mutex;                                 // held by the request that has the session (Lease)
   // Under StudyService::sessionsMutex_:
   Planner* planner = nullptr;  // for life: the session's worlds are bound to its program
   std::uint64_t lastUse = 0;   // StudyService::uses_ when a request last touched it

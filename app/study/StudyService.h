@@ -19,8 +19,9 @@
 // that planning, and rebuilding a session let go, hold up only the planning of one planner's participants. A
 // participant's requests take turns on their session's own lock; a request that does not plan (a page about no
 // meal, a picture's measure, a rating) never waits for another participant's planning. Finding a participant's
-// session takes a lock of its own for microseconds; a session in use is never let go. The database has a lock of its own (taken inside a planner's, and alone by begin() and look-ups);
-// pictures are rendered under the renderer's own lock.
+// session takes a lock of its own for microseconds; a session in use is never let go. The database has a lock of its
+// own (taken inside a planner's, and alone by begin() and look-ups); pictures are rendered under the renderer's own
+// lock.
 #pragma once
 
 #include "app/profile/ProfileStore.h"
